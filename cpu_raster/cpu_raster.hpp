@@ -1,0 +1,30 @@
+// The CPU renderer: an independent pipeline that reproduces lavapipe (profile Lavapipe) or
+// follows only what the Vulkan specification requires (profile Spec). See docs/cpu-raster.md.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "model/render_result.hpp"
+#include "model/scene.hpp"
+
+namespace rastercmp {
+
+enum class CpuProfile { Lavapipe, Spec };
+
+struct CpuOptions {
+  CpuProfile profile = CpuProfile::Lavapipe;
+  // Model lavapipe's llvm.fmuladd as fused (true on FMA hosts; see lavapipe_fuses_on_this_host()).
+  bool fma = true;
+  // Sub-pixel precision of the device being judged (spec profile); lavapipe: 8.
+  uint32_t sub_pixel_bits = 8;
+  // 0: the exact scalar path alone. >= 1: the fast path with this many threads (bit-identical).
+  uint32_t threads = 0;
+  // Method overrides (--method STAGE=NAME); empty: the exact pipeline.
+  std::vector<MethodChoice> methods;
+};
+
+// Renders a scene. Throws NotSupportedError for state the profile cannot reproduce.
+RenderResult render_cpu(const Scene& scene, const CpuOptions& options);
+
+}  // namespace rastercmp

@@ -1,0 +1,32 @@
+#include "model/host.hpp"
+
+#include <cpuid.h>
+
+#include <cstdlib>
+#include <string_view>
+
+namespace rastercmp {
+
+bool host_cpu_has_fma() {
+  unsigned eax = 0, ebx = 0, ecx = 0, edx = 0;
+  if (!__get_cpuid(1, &eax, &ebx, &ecx, &edx)) return false;
+  const bool fma = ecx & bit_FMA;
+  const bool osxsave = ecx & bit_OSXSAVE;
+  if (!fma || !osxsave) return false;
+  // The OS must save the YMM state (XCR0 bits 1 and 2), or AVX/FMA instructions fault.
+  unsigned xcr0_lo = 0, xcr0_hi = 0;
+  __asm__ volatile("xgetbv" : "=a"(xcr0_lo), "=d"(xcr0_hi) : "c"(0));
+  return (xcr0_lo & 0x6) == 0x6;
+}
+
+bool lavapipe_fuses_on_this_host() {
+  if (!host_cpu_has_fma()) return false;
+  // util/u_cpu_detect.c check_cpu_caps_override: the names below clear AVX and hence FMA.
+  const char* override_caps = std::getenv("GALLIUM_OVERRIDE_CPU_CAPS");
+  if (override_caps == nullptr) return true;
+  const std::string_view caps(override_caps);
+  return !(caps == "nosse" || caps == "sse" || caps == "sse2" || caps == "sse3" || caps == "ssse3" ||
+           caps == "sse4.1");
+}
+
+}  // namespace rastercmp

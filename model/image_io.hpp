@@ -1,0 +1,32 @@
+// Writing and reading what a renderer produced (OpenImageIO). Every file is written to a
+// temporary name in the same folder and renamed, so a reader never sees half a file.
+//
+// Files in an output folder:
+//   owner.tif        lossless owner ids: uint32, one channel per sample
+//   owner.png        false colour for people (background black, each owner a stable hue)
+//   depth.exr        depth value as float (single-sample scenes with depth)
+//   depth_raw.tif    raw stored bits: uint32 (D16 in the low 16 bits, X8_D24 in the low 24)
+//   render.json      backend, device, fma, size, samples, depth format
+#pragma once
+
+#include <string>
+
+#include "model/render_result.hpp"
+
+namespace rastercmp {
+
+// Creates `dir` if needed and checks it is writable. Throws InputError (file = dir) if not.
+void ensure_output_dir(const std::string& dir);
+
+void write_render_outputs(const RenderResult&, const std::string& dir);
+
+// Reads owner.tif / depth_raw.tif / render.json back (used by tests and merge).
+RenderResult read_render_outputs(const std::string& dir);
+
+// Atomic text write: temp file + rename.
+void write_text_file_atomic(const std::string& path, const std::string& text);
+
+// Stable false colour of an owner id (background: black).
+void owner_false_colour(uint32_t owner, unsigned char rgb[3]);
+
+}  // namespace rastercmp

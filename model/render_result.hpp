@@ -1,0 +1,44 @@
+// What a renderer hands back: per-sample owner ids and raw stored depth bits.
+// Layout of both arrays: index = (y * width + x) * samples + sample.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "model/scene.hpp"
+
+namespace rastercmp {
+
+// Owner of a sample: which draw and which primitive of it wrote the sample last.
+inline constexpr uint32_t kOwnerBackground = 0xFFFFFFFFu;
+inline constexpr uint32_t encode_owner(uint32_t draw, uint32_t primitive) {
+  return (draw << 24) | (primitive & 0x00FFFFFFu);
+}
+inline constexpr uint32_t owner_draw(uint32_t owner) { return owner >> 24; }
+inline constexpr uint32_t owner_primitive(uint32_t owner) { return owner & 0x00FFFFFFu; }
+
+// Per-pixel classification of the spec profile (three states of the CTS verifier).
+enum class CoverageClass : uint8_t { MustNot = 0, May = 1, Must = 2 };
+
+struct RenderResult {
+  std::string backend;  // "cpu" or "vulkan"
+  std::string device;   // device or profile description
+  bool fma = false;     // whether the depth/viewport arithmetic was fused
+  uint32_t width = 0, height = 0, samples = 1;
+  DepthFormat depth_format = DepthFormat::None;
+  std::vector<uint32_t> owner;      // width*height*samples
+  std::vector<uint32_t> depth_raw;  // same size, or empty when depth was not produced
+  // Spec profile only: per-sample must / may / must-not coverage of the union of all draws.
+  std::vector<CoverageClass> coverage_class;
+
+  size_t index(uint32_t x, uint32_t y, uint32_t sample = 0) const {
+    return (size_t(y) * width + x) * samples + sample;
+  }
+  bool has_depth() const { return !depth_raw.empty(); }
+};
+
+// Raw stored bits → depth value in [0,1] (UNORM k/(2^n-1), D32 reinterpreted).
+double depth_raw_to_value(DepthFormat, uint32_t raw);
+
+}  // namespace rastercmp
