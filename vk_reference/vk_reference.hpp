@@ -45,10 +45,15 @@ class VulkanRenderer {
   const DeviceInfo& device() const;
 
   // Renders and reads back. Throws NotSupportedError (state the device lacks),
-  // DeviceError (device lost / out of memory).
+  // DeviceError (device lost / out of memory), InputError (a scene Vulkan cannot take: an
+  // index past the positions, a viewport outside the device's limits, more than kMaxDraws draws).
+  // Single-sample scenes return owner and raw depth. Multisampled scenes return the owner of
+  // every sample (read by a compute shader) and NO depth: depth_raw stays empty, because
+  // multisampled depth values are out of scope (docs/lavapipe-rules.md §6, unverified there).
   RenderResult render(const Scene& scene);
 
   // For benchmarks: resources and command buffer built once, then submitted many times.
+  // A Prepared must not outlive its renderer; read_back needs at least one submit first.
   class Prepared {
    public:
     virtual ~Prepared() = default;

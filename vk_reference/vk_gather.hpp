@@ -1,0 +1,48 @@
+// Reads a multisampled owner attachment sample by sample: a compute shader
+// (shaders/gather_owner_ms.comp) texelFetches each sample of a usampler2DMS into a storage
+// buffer laid out as (y * width + x) * samples + sample, the RenderResult layout. The buffer is
+// bound in bands of whole rows, each within maxStorageBufferRange and offset-aligned.
+#pragma once
+
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+#include "vk_reference/vk_context.hpp"
+#include "vk_reference/vk_handle.hpp"
+#include "vk_reference/vk_resources.hpp"
+
+namespace rastercmp::vk {
+
+class OwnerGather {
+ public:
+  explicit OwnerGather(const Context& context);
+
+  struct Band {
+    VkDescriptorSet set = VK_NULL_HANDLE;
+    uint32_t first_row = 0, rows = 0;
+  };
+  // The descriptors of one scene: its owner image (in SHADER_READ_ONLY_OPTIMAL) and output buffer
+  // of width * height * samples uint32.
+  struct Binding {
+    Owned<VkDescriptorPool> pool;  // owns the sets
+    std::vector<Band> bands;
+    uint32_t width = 0, samples = 0;
+  };
+  // Throws NotSupportedError if a single row exceeds the device's storage-buffer range.
+  Binding bind(VkImageView owner_ms, const Buffer& owner_samples, uint32_t width, uint32_t height,
+               uint32_t samples) const;
+
+  // Records the dispatches; the caller places the barriers around them.
+  void record(VkCommandBuffer commands, const Binding& binding) const;
+
+ private:
+  const Context& context_;
+  Owned<VkSampler> sampler_;
+  Owned<VkDescriptorSetLayout> set_layout_;
+  Owned<VkPipelineLayout> layout_;
+  Owned<VkShaderModule> shader_;
+  Owned<VkPipeline> pipeline_;
+};
+
+}  // namespace rastercmp::vk

@@ -1,0 +1,67 @@
+// VulkanRenderer: the public face of the reference (vk_reference.hpp). One instance and device per
+// renderer; render passes and pipelines cached across scenes; each scene a Frame.
+#include <memory>
+#include <stdexcept>
+
+#include "vk_reference/vk_context.hpp"
+#include "vk_reference/vk_device_info.hpp"
+#include "vk_reference/vk_frame.hpp"
+#include "vk_reference/vk_gather.hpp"
+#include "vk_reference/vk_instance.hpp"
+#include "vk_reference/vk_pipeline.hpp"
+#include "vk_reference/vk_reference.hpp"
+
+namespace rastercmp {
+
+std::vector<DeviceInfo> list_vulkan_devices() {
+  const vk::Instance instance(/*validate=*/false);
+  const std::vector<VkPhysicalDevice> devices = instance.physical_devices();
+  std::vector<DeviceInfo> infos;
+  for (uint32_t i = 0; i < devices.size(); ++i) infos.push_back(vk::describe_device(devices[i], i));
+  return infos;
+}
+
+struct VulkanRenderer::Impl {
+  explicit Impl(const VkOptions& options) : context(options), pipelines(context) {}
+
+  vk::Context context;
+  vk::PipelineCache pipelines;
+  std::unique_ptr<vk::OwnerGather> gather;  // made on the first multisampled scene
+};
+
+namespace {
+
+vk::Frame& as_frame(VulkanRenderer::Prepared& prepared) {
+  auto* frame = dynamic_cast<vk::Frame*>(&prepared);
+  if (frame == nullptr) throw std::invalid_argument("VulkanRenderer: Prepared object from another renderer type");
+  return *frame;
+}
+
+}  // namespace
+
+VulkanRenderer::VulkanRenderer(const VkOptions& options) : impl_(std::make_unique<Impl>(options)) {}
+
+VulkanRenderer::~VulkanRenderer() = default;
+
+const DeviceInfo& VulkanRenderer::device() const { return impl_->context.info(); }
+
+RenderResult VulkanRenderer::render(const Scene& scene) {
+  const std::unique_ptr<Prepared> prepared = prepare(scene);
+  submit_and_wait_seconds(*prepared);
+  return read_back(*prepared);
+}
+
+std::unique_ptr<VulkanRenderer::Prepared> VulkanRenderer::prepare(const Scene& scene) {
+  if (scene.samples > 1 && !impl_->gather) impl_->gather = std::make_unique<vk::OwnerGather>(impl_->context);
+  return std::make_unique<vk::Frame>(impl_->context, impl_->pipelines, impl_->gather.get(), scene);
+}
+
+double VulkanRenderer::submit_and_wait_seconds(Prepared& prepared) { return as_frame(prepared).submit_and_wait(); }
+
+RenderResult VulkanRenderer::read_back(Prepared& prepared) { return as_frame(prepared).read_back(); }
+
+const std::vector<std::string>& VulkanRenderer::validation_messages() const {
+  return impl_->context.validation_messages();
+}
+
+}  // namespace rastercmp

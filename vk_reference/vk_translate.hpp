@@ -1,0 +1,37 @@
+// The scene model's API-neutral enums → Vulkan enums. Pure functions; the only place where
+// the two vocabularies meet (STYLE.md example 8).
+#pragma once
+
+#include <vulkan/vulkan.h>
+
+#include "model/scene.hpp"
+
+namespace rastercmp::vk {
+
+// The owner attachment: one uint32 owner id per sample (model/render_result.hpp).
+inline constexpr VkFormat kOwnerFormat = VK_FORMAT_R32_UINT;
+
+VkFormat to_vk_format(DepthFormat format);  // VK_FORMAT_UNDEFINED for None
+VkPrimitiveTopology to_vk(Topology topology);
+VkCullModeFlags to_vk(CullMode mode);
+VkFrontFace to_vk(FrontFace face);
+VkPolygonMode to_vk(PolygonMode mode);
+VkCompareOp to_vk(CompareOp op);
+VkLineRasterizationModeEXT to_vk(LineMode mode);
+VkSampleCountFlagBits to_vk_samples(uint32_t samples);  // throws NotSupportedError if not 1,2,4,..64
+
+// Bytes per texel that vkCmdCopyImageToBuffer writes for the depth aspect of `format`.
+uint32_t depth_copy_texel_bytes(DepthFormat format);
+
+// One texel of a depth-aspect copy → the raw stored bits (model/render_result.hpp depth_raw):
+// D16 zero-extended, X8_D24 the low 24 bits (the top 8 are undefined), D32 the float bits.
+uint32_t depth_raw_from_copy(DepthFormat format, const unsigned char* texel);
+
+VkViewport to_vk(const Viewport& viewport);
+
+// Vulkan forbids negative scissor offsets (VUID-vkCmdSetScissor-x-00595). The part of the
+// rectangle left of x = 0 or above y = 0 covers no pixel, so it is cut off; what remains selects
+// the same pixels (lavapipe draws framebuffer ∩ scissor, docs/lavapipe-rules.md §2.5).
+VkRect2D to_vk_scissor(const Rect2D& scissor);
+
+}  // namespace rastercmp::vk
