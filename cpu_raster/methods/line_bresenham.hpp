@@ -1,0 +1,25 @@
+// Bresenham's integer line algorithm, the notes' "Complete Bresenham's line drawing algorithm"
+// (lecture-rasterization-depth-sorting-culling.txt):
+//
+//   steep := |y1 - y0| > |x1 - x0|;  if steep: swap(x0, y0), swap(x1, y1)
+//   if x0 > x1: swap(x0, x1), swap(y0, y1)
+//   deltax := x1 - x0; deltay := |y1 - y0|; error := 0; ystep := y0 < y1 ? 1 : -1; y := y0
+//   for x from x0 to x1: plot (steep ? (y, x) : (x, y)); error += deltay;
+//                        if 2 * error >= deltax: y += ystep; error -= deltax
+//
+// Does: all octants with integers only. Because of the x0 > x1 swap the pixels come in
+//       increasing major-axis order, which is p1 -> p0 for lines drawn "backwards". An exact
+//       half (2 * error == deltax) steps the minor axis, towards y1 after the swap.
+// Does not: keep p0 -> p1 order, make a line and its reverse always hit the same pixels (the
+//       half-way rule depends on the direction after the swap), anti-alias, or clip.
+#pragma once
+
+#include <vector>
+
+#include "cpu_raster/methods/spans.hpp"
+
+namespace rastercmp::methods {
+
+std::vector<PixelXY> line_bresenham(PixelXY p0, PixelXY p1);
+
+}  // namespace rastercmp::methods
