@@ -1,0 +1,21 @@
+// The index.html of an experiment folder: each chart shown (SVG, linking its PNG), then the raw
+// files. Written atomically.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace rastercmp::experiments {
+
+struct PageSection {
+  std::string heading;
+  std::string text;                 // one paragraph, plain text (escaped)
+  std::vector<std::string> charts;  // chart names (NAME.svg / NAME.png)
+};
+
+void write_index_html(const std::string& dir, const std::string& title, const std::vector<PageSection>& sections,
+                      const std::vector<std::string>& raw_files);
+
+std::string html_escape(const std::string& text);
+
+}  // namespace rastercmp::experiments

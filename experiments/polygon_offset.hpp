@@ -1,0 +1,35 @@
+// `rastercmp sweep polygon-offset`: the wrong-surface and flip (z-fighting) fractions of a decal
+// over its base on both backends, against slope factor, constant factor, clamp, depth format,
+// far/near ratio and viewing angle; r per depth format as the driver writes it. Output folder:
+// polygon_offset.csv (one row per point, appended), polygon_offset.json, charts, index.html.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "experiments/depth_r.hpp"
+#include "experiments/scene_make.hpp"
+#include "experiments/sweep_common.hpp"
+
+namespace rastercmp::experiments {
+
+inline constexpr const char* kPolygonOffsetCsv = "polygon_offset.csv";
+
+// One sweep point. Points of one series differ only along the series' axis, in order.
+struct OffsetPoint {
+  std::string experiment;  // far_near | constant | slope | clamp | angle
+  PairParams params;
+};
+using OffsetSeries = std::vector<OffsetPoint>;
+
+std::vector<OffsetSeries> polygon_offset_plan(bool quick);
+std::vector<std::string> polygon_offset_header();
+
+// Runs the sweep (CSV), measures r, writes JSON, charts and the page. Throws EnvironmentError
+// without Vulkan or gnuplot.
+void run_polygon_offset_sweep(const SweepOptions& options);
+
+// Charts and index.html from the CSV and the r measurements (polygon_offset_charts.cpp).
+void write_polygon_offset_charts(const std::string& dir, const std::vector<DepthRMeasure>& r);
+
+}  // namespace rastercmp::experiments

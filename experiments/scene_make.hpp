@@ -1,0 +1,62 @@
+// Experiment scenes built in code (world space through model/camera.hpp, or window pixels through
+// pixels_to_clip), so every sweep point is one function call away from its parameters.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "model/scene.hpp"
+
+namespace rastercmp::experiments {
+
+// A scene where one draw (the "decal") is meant to win over the surface behind it.
+struct DecalScene {
+  Scene scene;
+  uint32_t decal_draw = 1;
+};
+
+enum class PairKind { Coplanar, NearCoplanar, House };
+const char* to_string(PairKind);
+
+struct PairParams {
+  PairKind kind = PairKind::Coplanar;
+  DepthFormat format = DepthFormat::D16Unorm;
+  double far_near_ratio = 1000;  // far fixed, near = far / ratio
+  double angle_deg = 45;         // rotation of the plane away from facing the eye (depth slope)
+  double separation = 0;         // NearCoplanar: world distance of the decal in front of the base
+  DepthBias decal_bias;          // applied to the decal (negative factors pull it towards the eye)
+};
+
+// Coplanar / near-coplanar pair: a 36x36 square 50 units in front of the eye (far = 100), split
+// along one diagonal, drawn first; then a 24x20 decal on (or `separation` in front of) the same
+// plane, split along the other diagonal, so the two interpolate depth from different vertices.
+// House: the lecture's house (z 30..54, notes "clipping-fill-zbuffer"), camera of
+// scenes/house/far_75.json (far 75), orbited by angle-45 degrees; decal = door and windows.
+DecalScene make_decal_scene(const PairParams& params);
+
+// The decal draw alone (for the mask of pixels where the decal should win).
+Scene decal_only(const DecalScene& decal);
+
+// A flat 48x48-pixel square at window depth kFlatPlaneDepth facing the eye (w = 1), one draw, with the bias.
+inline constexpr float kFlatPlaneDepth = 0.375f;
+Scene make_flat_plane(DepthFormat format, const DepthBias& bias);
+
+// Two thin triangles sharing an edge through a pixel centre: apex angle `angle_deg`, edge length
+// `length_px` pixels, in a 64x64 frame.
+Scene make_sliver_pair(double angle_deg, double length_px);
+
+// A long thin triangle reaching window x = distance_px (up to the viewportBoundsRange limit
+// 32767): frame 16384 x 4, the viewport ending at the far vertex.
+Scene make_far_triangle(double distance_px);
+
+// A height-field mesh of cells x cells quads (2 triangles each) seen in perspective, in a
+// size x size frame with D32 depth: the timing scene with many small triangles.
+Scene make_mesh_scene(uint32_t size, uint32_t cells);
+
+// A triangle with one vertex at clip (0.2, 0.6, 0, w): on the near plane, w approaching 0.
+Scene make_near_w_triangle(float w_clip);
+
+// One vertex component (x, y, z or w: `component` 0..3) replaced by `value` (NaN, +Inf, -Inf).
+Scene make_non_finite_triangle(uint32_t component, float value);
+
+}  // namespace rastercmp::experiments

@@ -1,0 +1,46 @@
+// `rastercmp sweep stability`: where methods stop being right. Experiments (column "experiment"):
+//   fight_onset   near-coplanar pair per depth format and separation against far/near
+//   sliver        sliver angle and size against coverage errors (exact path, no FMA, ablations)
+//   far_distance  distance from the origin up to the viewportBoundsRange limit (exact path)
+//   near_w        a vertex on the near plane with w approaching 0
+//   non_finite    NaN and infinite vertex components
+// Output: stability.csv (appended per point), stability.json (thresholds), charts, index.html.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "experiments/csv_log.hpp"
+#include "experiments/scene_make.hpp"
+#include "experiments/sweep_common.hpp"
+
+namespace rastercmp::experiments {
+
+inline constexpr const char* kStabilityCsv = "stability.csv";
+
+struct StabilityPoint {
+  std::string experiment, case_name, method;
+  double param_a = 0, param_b = 0;
+  std::function<Scene()> make_scene;
+  CpuOptions cpu;             // the method under test
+  uint32_t decal_draw = 0;    // fight_onset: the draw that should win (others: unused)
+};
+
+std::vector<StabilityPoint> stability_plan(bool quick);
+std::vector<std::string> stability_header();
+
+// The fight_onset geometry (also used by the tests' analytic bound): plane 50 units away,
+// rotated by 30 degrees, far plane 100.
+inline constexpr double kOnsetAngleDeg = 30;
+
+void run_stability_sweep(const SweepOptions& options);
+
+// stability.json, charts and index.html from the CSV (stability_charts.cpp).
+void write_stability_outputs(const std::string& dir);
+
+// The smallest far/near ratio of a (format, separation) series at which the wrong surface wins
+// anywhere on either backend; NaN when it never does.
+double fight_onset_ratio(const CsvTable& table, const std::string& format, const std::string& separation);
+
+}  // namespace rastercmp::experiments

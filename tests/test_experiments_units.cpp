@@ -1,0 +1,98 @@
+// Experiment building blocks that need no device: the append-only CSV and its resume, the
+// Pareto front, number formatting, the scene builders' invariants.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "experiments/csv_log.hpp"
+#include "experiments/scene_make.hpp"
+#include "experiments/speed_accuracy.hpp"
+#include "experiments/sweep_common.hpp"
+#include "model/errors.hpp"
+
+namespace rastercmp::experiments {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path temp_dir(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("rastercmp_test_experiments_units_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+TEST(ExperimentsCsv, ResumeKeepsCompleteRowsAndDropsACutOffRow) {
+  const fs::path path = temp_dir("csv") / "points.csv";
+  {
+    CsvAppender csv(path.string(), {"a", "b", "value"}, 2, false);
+    csv.append({"1", "x", "0.5"});
+    csv.append({"2", "x", "0.25"});
+  }
+  std::ofstream(path, std::ios::app) << "3,x,0.1";  // interrupted mid-row: no newline
+  CsvAppender resumed(path.string(), {"a", "b", "value"}, 2, true);
+  EXPECT_EQ(resumed.rows_kept(), 2u);
+  EXPECT_TRUE(resumed.has({"1", "x"}));
+  EXPECT_TRUE(resumed.has({"2", "x", "ignored"}));
+  EXPECT_FALSE(resumed.has({"3", "x"}));
+  resumed.append({"3", "x", "0.125"});
+  const CsvTable table = read_csv(path.string());
+  ASSERT_EQ(table.rows.size(), 3u);
+  EXPECT_EQ(table.rows[2][2], "0.125");
+}
+
+TEST(ExperimentsCsv, ResumeRefusesAnotherHeader) {
+  const fs::path path = temp_dir("header") / "points.csv";
+  { CsvAppender csv(path.string(), {"a", "b"}, 1, false); }
+  EXPECT_THROW(CsvAppender(path.string(), {"a", "c"}, 1, true), InputError);
+  EXPECT_NO_THROW(CsvAppender(path.string(), {"a", "c"}, 1, false));  // a fresh run starts over
+}
+
+TEST(ExperimentsNumbers, ShortestRoundTrip) {
+  for (double v : {0.1, 2.0 / 65535.0, 1e6, std::pow(10.0, 2.5), -1e-7})
+    EXPECT_EQ(std::strtod(num(v).c_str(), nullptr), v) << num(v);
+  EXPECT_EQ(num(std::nan("")), "nan");
+  EXPECT_EQ(num(-INFINITY), "-inf");
+}
+
+TEST(ExperimentsPareto, KeepsOnlyPointsNothingBeatsOnBothAxes) {
+  const std::vector<EntrySummary> entries = {{"f", "slow exact", 4.0, 0.0, 0.0},
+                                             {"f", "fast rough", 1.0, 5.0, 9.0},
+                                             {"f", "dominated", 3.0, 6.0, 1.0},
+                                             {"f", "middle", 2.0, 1.0, 1.0}};
+  EXPECT_EQ(pareto_front(entries, true), (std::vector<size_t>{1, 3, 0}));
+  EXPECT_EQ(pareto_front(entries, false), (std::vector<size_t>{1, 3, 0}));
+}
+
+TEST(ExperimentsScenes, DecalSceneBiasSignAndDraws) {
+  PairParams p;
+  p.kind = PairKind::NearCoplanar;
+  p.separation = 0.5;
+  p.decal_bias.enable = true;
+  p.decal_bias.constant_factor = -2;
+  const DecalScene decal = make_decal_scene(p);
+  ASSERT_EQ(decal.scene.draws.size(), 2u);
+  EXPECT_EQ(decal.decal_draw, 1u);
+  EXPECT_EQ(decal.scene.draws[1].state.depth_bias.constant_factor, -2.0f);
+  EXPECT_FALSE(decal.scene.draws[0].state.depth_bias.enable);
+  // The decal lies in front: its clip-space depth (z/w) is smaller at the centre of the view.
+  const glm::vec4 base = decal.scene.draws[0].positions_clip[0], front = decal.scene.draws[1].positions_clip[0];
+  EXPECT_GT(base.w, 0.0f);
+  EXPECT_GT(front.w, 0.0f);
+  const Scene alone = decal_only(decal);
+  ASSERT_EQ(alone.draws.size(), 1u);
+  EXPECT_FALSE(alone.draws[0].state.depth.test_enable);
+}
+
+TEST(ExperimentsScenes, FarTriangleReachesTheViewportBoundsLimit) {
+  const Scene scene = make_far_triangle(32767);
+  ASSERT_TRUE(scene.viewport.has_value());
+  EXPECT_EQ(double(scene.viewport->x) + scene.viewport->width, 32767.0);
+  EXPECT_LE(scene.viewport->width, float(kMaxFramebufferSide));
+  EXPECT_EQ(scene.width, kMaxFramebufferSide);
+}
+
+}  // namespace
+}  // namespace rastercmp::experiments
