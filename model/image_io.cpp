@@ -35,7 +35,9 @@ void commit_temp(const std::string& tmp, const std::string& path) {
   }
 }
 
-void write_image_atomic(const std::string& path, const OIIO::ImageSpec& spec, const void* pixels) {
+void write_image_atomic(const std::string& path, OIIO::ImageSpec spec, const void* pixels) {
+  // Same input, same bytes: OpenImageIO would stamp the current time (TIFF DateTime, EXR capDate).
+  spec.attribute("DateTime", "1970:01:01 00:00:00");
   const std::string tmp = temp_name_for(path);
   auto out = OIIO::ImageOutput::create(path);  // format from the final extension
   if (!out || !out->open(tmp, spec) || !out->write_image(spec.format, pixels)) {
