@@ -1,0 +1,126 @@
+#include "cpu_raster/spec/spec_profile.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "cpu_raster/spec/coverage_map.hpp"
+#include "cpu_raster/spec/shared_edges.hpp"
+#include "cpu_raster/spec/spec_primitives.hpp"
+#include "model/errors.hpp"
+
+namespace rastercmp {
+namespace {
+
+using namespace cpu::spec;
+
+std::string draw_path(size_t d) { return "$.draws[" + std::to_string(d) + "]"; }
+
+void check_spec_profile_support(const Scene& scene) {
+  for (size_t d = 0; d < scene.draws.size(); ++d) {
+    const Draw& draw = scene.draws[d];
+    for (size_t k = 0; k < draw.indices.size(); ++k)
+      if (draw.indices[k] >= draw.positions_clip.size())
+        throw InputError(scene.source_path, draw_path(d) + ".indices[" + std::to_string(k) + "]",
+                         "expected an index below the number of positions");
+    if (draw.topology == Topology::PointList)
+      throw NotSupportedError(draw_path(d) + ": point_list is not classified by the CPU spec profile");
+    if (is_triangle_topology(draw.topology) && draw.state.polygon_mode != PolygonMode::Fill)
+      throw NotSupportedError(draw_path(d) + ": polygon_mode \"" + to_string(draw.state.polygon_mode) +
+                              "\" is not classified by the CPU spec profile");
+    if (is_line_topology(draw.topology) && draw.state.line_mode == LineMode::RectangularSmooth)
+      throw NotSupportedError(draw_path(d) + ": line_mode \"rectangular_smooth\" is not classified by the CPU spec "
+                              "profile (smooth-line coverage is an implementation's alpha)");
+  }
+}
+
+// Pixels of `region` whose boxes can touch the grid rectangle [x_lo, x_hi] x [y_lo, y_hi].
+cpu::PixelRect pixels_near(int64_t x_lo, int64_t x_hi, int64_t y_lo, int64_t y_hi, uint32_t bits, bool multisample,
+                           const cpu::PixelRect& region) {
+  const PixelSpan xs = pixels_touching(x_lo, x_hi, bits, multisample);
+  const PixelSpan ys = pixels_touching(y_lo, y_hi, bits, multisample);
+  return cpu::PixelRect{int32_t(std::max<int64_t>(xs.first, region.x0)), int32_t(std::max<int64_t>(ys.first, region.y0)),
+                        int32_t(std::min<int64_t>(xs.last, region.x1)), int32_t(std::min<int64_t>(ys.last, region.y1))};
+}
+
+cpu::PixelRect triangle_pixels(const SnappedTriangle& t, uint32_t bits, bool multisample, const cpu::PixelRect& region) {
+  return pixels_near(t.x_min, t.x_max, t.y_min, t.y_max, bits, multisample, region);
+}
+
+// Row by row: whole FULL spans at once, classify_box only near the edges.
+void add_triangle(CoverageMap& map, const SpecTriangle& t, uint32_t bits, bool multisample) {
+  const cpu::PixelRect r = triangle_pixels(t.snapped, bits, multisample, map.region());
+  for (int32_t py = r.y0; py <= r.y1; ++py) {
+    const RowSpans spans = row_spans(t.snapped, py, bits, multisample);
+    const int64_t first = std::max<int64_t>(spans.touch_first, r.x0), last = std::min<int64_t>(spans.touch_last, r.x1);
+    for (int64_t x = first; x <= last; ++x) {
+      const int32_t px = int32_t(x);
+      const Coverage coverage = (x >= spans.full_first && x <= spans.full_last)
+                                    ? Coverage::Full
+                                    : classify_box(t.snapped, pixel_box(px, py, bits, multisample));
+      if (coverage != Coverage::None) map.add(px, py, coverage, triangle_gate_at(t, px, py));
+    }
+  }
+}
+
+void add_shared_edge(CoverageMap& map, const std::vector<SpecTriangle>& triangles, const SharedEdge& shared,
+                     uint32_t bits, bool multisample) {
+  const cpu::PixelRect r = cpu::intersect(triangle_pixels(triangles[shared.first].snapped, bits, multisample, map.region()),
+                                          triangle_pixels(triangles[shared.second].snapped, bits, multisample, map.region()));
+  for (int32_t py = r.y0; py <= r.y1; ++py)
+    for (int32_t px = r.x0; px <= r.x1; ++px)
+      if (!map.is_must(px, py) && promoted(triangles, shared, pixel_box(px, py, bits, multisample)) &&
+          triangle_gate_at(triangles[shared.first], px, py) == Gate::Certain &&
+          triangle_gate_at(triangles[shared.second], px, py) == Gate::Certain)
+        map.make_must(px, py);
+}
+
+// Row by row: only the columns where the May quads cross the band of the row's grown boxes.
+void add_line(CoverageMap& map, const SpecLine& line, uint32_t bits, bool multisample) {
+  const double half_px = std::ldexp(double(pixel_box(0, 0, bits, multisample).half), -int(bits));
+  const double reach = half_px + kLineMarginPx;  // the grown square's half-size
+  const PixelBounds b = may_bounds(line.shape);
+  const cpu::PixelRect& region = map.region();
+  const int32_t y_first = int32_t(std::max(double(region.y0), std::ceil(b.y_min - half_px - 0.5)));
+  const int32_t y_last = int32_t(std::min(double(region.y1), std::floor(b.y_max + half_px - 0.5)));
+  for (int32_t py = y_first; py <= y_last; ++py) {
+    const XExtent e = may_extent_in_band(line.shape, py + 0.5 - reach, py + 0.5 + reach);
+    if (e.x_min > e.x_max) continue;
+    const int32_t x_first = int32_t(std::max(double(region.x0), std::ceil(e.x_min - reach - 0.5)));
+    const int32_t x_last = int32_t(std::min(double(region.x1), std::floor(e.x_max + reach - 0.5)));
+    for (int32_t px = x_first; px <= x_last; ++px) {
+      const PixelSquare box{glm::dvec2(px + 0.5, py + 0.5), half_px};
+      const Coverage coverage = classify_line_box(line.shape, box);
+      if (coverage != Coverage::None) map.add(px, py, coverage, depth_gate_at(line.depth, box.centre));
+    }
+  }
+}
+
+}  // namespace
+
+std::vector<CoverageClass> spec_coverage_classes(const Scene& scene, const CpuOptions& options) {
+  check_spec_profile_support(scene);
+  const uint32_t bits = effective_sub_pixel_bits(options.sub_pixel_bits);
+  const bool multisample = scene.samples > 1;
+  CoverageMap map(scene);
+  if (map.region().empty()) return map.classes();
+  const SpecPrimitives primitives = build_spec_primitives(scene, options.fma, bits);
+  if (primitives.undefined) map.make_may_everywhere();
+  for (const SpecTriangle& t : primitives.triangles) add_triangle(map, t, bits, multisample);
+  for (const SharedEdge& shared : find_shared_edges(primitives.triangles))
+    add_shared_edge(map, primitives.triangles, shared, bits, multisample);
+  for (const SpecLine& line : primitives.lines) add_line(map, line, bits, multisample);
+  return map.classes();
+}
+
+RenderResult render_spec_profile(const Scene& scene, const CpuOptions& options) {
+  check_spec_profile_support(scene);
+  CpuOptions exact = options;
+  exact.profile = CpuProfile::Lavapipe;
+  RenderResult result = render_cpu(scene, exact);
+  result.device = "cpu spec profile (subPixelPrecisionBits " + std::to_string(options.sub_pixel_bits) + ")";
+  result.coverage_class = spec_coverage_classes(scene, options);
+  return result;
+}
+
+}  // namespace rastercmp

@@ -1,0 +1,29 @@
+// The CPU renderer's spec profile (--profile spec): what the Vulkan specification requires of ANY
+// conformant device with `CpuOptions::sub_pixel_bits` of sub-pixel precision, as the three states
+// of the CTS rasterization verifier (tcuRasterizationVerifier): every sample of the union of all
+// draws is Must, May or MustNot be covered. docs/spec-profile.md describes the rules, their
+// sources and the approximations.
+//
+// Not supported (NotSupportedError, as in the lavapipe profile): point_list, polygon_mode
+// line/point, rectangular_smooth lines.
+#pragma once
+
+#include <vector>
+
+#include "cpu_raster/cpu_raster.hpp"
+#include "model/render_result.hpp"
+#include "model/scene.hpp"
+
+namespace rastercmp {
+
+// Per sample (RenderResult order), the class of the union of all draws. Throws NotSupportedError,
+// InputError (an index past the positions), UsageError (sub_pixel_bits 0).
+std::vector<CoverageClass> spec_coverage_classes(const Scene& scene, const CpuOptions& options);
+
+// backend "cpu", device "cpu spec profile (subPixelPrecisionBits N)", coverage_class from
+// spec_coverage_classes. owner and depth_raw are a best estimate: the lavapipe profile's render
+// (render_cpu with CpuProfile::Lavapipe and the same fma, threads and methods). Only coverage is
+// judged by class; the estimate names owners for wrong-owner warnings and gives depth values.
+RenderResult render_spec_profile(const Scene& scene, const CpuOptions& options);
+
+}  // namespace rastercmp

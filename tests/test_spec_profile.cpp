@@ -1,0 +1,377 @@
+// The spec profile (cpu_raster/spec, docs/spec-profile.md) on scenes small enough to classify by
+// hand: inside / on an edge / outside, shared-edge promotion, facing, depth against the clear
+// value, scissor, multisample pixels, lines, and a deliberately wrong rasterization rejected.
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "cpu_raster/spec/spec_profile.hpp"
+#include "cpu_raster/spec/spec_primitives.hpp"
+#include "cpu_raster/spec/subpixel.hpp"
+#include "cpu_raster/spec/triangle_coverage.hpp"
+#include "model/errors.hpp"
+#include "test_spec_support.hpp"
+
+namespace rastercmp {
+namespace {
+
+using namespace spec_test;
+
+// 'M' Must, '?' May, '.' MustNot, one char per pixel (sample 0).
+std::vector<std::string> class_rows(const Scene& scene, const std::vector<CoverageClass>& classes) {
+  std::vector<std::string> rows(scene.height, std::string(scene.width, '.'));
+  for (uint32_t y = 0; y < scene.height; ++y)
+    for (uint32_t x = 0; x < scene.width; ++x) {
+      const CoverageClass c = classes[(size_t(y) * scene.width + x) * scene.samples];
+      rows[y][x] = c == CoverageClass::Must ? 'M' : c == CoverageClass::May ? '?' : '.';
+    }
+  return rows;
+}
+
+std::vector<CoverageClass> classify(const Scene& scene, uint32_t bits = 8) {
+  return spec_coverage_classes(scene, spec_options(bits));
+}
+
+size_t count(const std::vector<std::string>& rows, char c) {
+  size_t n = 0;
+  for (const std::string& row : rows) n += size_t(std::count(row.begin(), row.end(), c));
+  return n;
+}
+
+// Triangle (2,2), (10,2), (2,10). Pixel centres (x+.5, y+.5) with x, y >= 2 are inside by half a
+// pixel from the legs; the hypotenuse x + y = 12 runs through the centres with x + y = 11 (May);
+// centres with x + y <= 10 are inside by 1/sqrt(2) px, those with x + y >= 12 outside by as much.
+TEST(SpecProfile, SmallTriangleIsMustInsideMayOnTheEdgeMustNotOutside) {
+  Scene scene = make_scene(16, 16);
+  scene.draws.push_back(window_triangles(scene, {{2, 2}, {10, 2}, {2, 10}}));
+  const std::vector<std::string> expected = {
+      "................",  //
+      "................",  //
+      "..MMMMMMM?......",  //
+      "..MMMMMM?.......",  //
+      "..MMMMM?........",  //
+      "..MMMM?.........",  //
+      "..MMM?..........",  //
+      "..MM?...........",  //
+      "..M?............",  //
+      "..?.............",  //
+      "................",  //
+      "................",  //
+      "................",  //
+      "................",  //
+      "................",  //
+      "................",  //
+  };
+  EXPECT_EQ(class_rows(scene, classify(scene)), expected);
+}
+
+// The same triangle with the winding reversed classifies the same (coverage ignores winding).
+TEST(SpecProfile, WindingDoesNotChangeCoverage) {
+  Scene a = make_scene(16, 16), b = make_scene(16, 16);
+  a.draws.push_back(window_triangles(a, {{2, 2}, {10, 2}, {2, 10}}));
+  b.draws.push_back(window_triangles(b, {{2, 2}, {2, 10}, {10, 2}}));
+  EXPECT_EQ(classify(a), classify(b));
+}
+
+// A quad of two triangles whose outer edges lie on pixel borders (half a pixel from every centre):
+// the diagonal x + y = 14 runs through centres, which are PARTIAL for both triangles but lie
+// inside both triangles' other edges, so exactly one of them covers each: promoted to Must.
+TEST(SpecProfile, QuadDiagonalIsPromotedAndHasNoMayPixels) {
+  Scene scene = make_scene(16, 16);
+  scene.draws.push_back(window_triangles(scene, {{2, 2}, {12, 2}, {2, 12}, {12, 2}, {12, 12}, {2, 12}}));
+  const std::vector<std::string> rows = class_rows(scene, classify(scene));
+  EXPECT_EQ(count(rows, '?'), 0u);
+  for (uint32_t y = 0; y < 16; ++y)
+    for (uint32_t x = 0; x < 16; ++x)
+      EXPECT_EQ(rows[y][x], (x >= 2 && x < 12 && y >= 2 && y < 12) ? 'M' : '.') << x << "," << y;
+}
+
+// Each triangle alone leaves the diagonal May: the promotion needs the friend.
+TEST(SpecProfile, HalfAQuadKeepsItsDiagonalMay) {
+  Scene scene = make_scene(16, 16);
+  scene.draws.push_back(window_triangles(scene, {{2, 2}, {12, 2}, {2, 12}}));
+  const std::vector<std::string> rows = class_rows(scene, classify(scene));
+  for (uint32_t x = 2; x <= 11; ++x) EXPECT_EQ(rows[13 - x][x], '?') << x;
+}
+
+// Outer edges through pixel centres (corners on half pixels): those centres are May; the diagonal
+// x + y = 15 (centres with x + y = 14) is promoted except at the two corners it shares with them.
+TEST(SpecProfile, QuadOuterEdgesThroughCentresAreMayDiagonalIsMust) {
+  Scene scene = make_scene(16, 16);
+  scene.draws.push_back(window_triangles(scene, {{2.5, 2.5}, {12.5, 2.5}, {2.5, 12.5}, {12.5, 2.5}, {12.5, 12.5},
+                                                 {2.5, 12.5}}));
+  const std::vector<std::string> rows = class_rows(scene, classify(scene));
+  for (uint32_t x = 3; x <= 11; ++x) EXPECT_EQ(rows[14 - x][x], 'M') << "diagonal at x " << x;
+  for (uint32_t k = 2; k <= 12; ++k) {
+    EXPECT_EQ(rows[2][k], '?') << "top edge at x " << k;
+    EXPECT_EQ(rows[12][k], '?') << "bottom edge at x " << k;
+    EXPECT_EQ(rows[k][2], '?') << "left edge at y " << k;
+    EXPECT_EQ(rows[k][12], '?') << "right edge at y " << k;
+  }
+  EXPECT_EQ(rows[7][7], 'M');
+  EXPECT_EQ(rows[1][7], '.');
+  EXPECT_EQ(rows[13][7], '.');
+}
+
+// Two triangles with a common edge but on the SAME side of it (overlapping) are no pair.
+TEST(SpecProfile, OverlappingTrianglesOnOneSideAreNotPromoted) {
+  Scene scene = make_scene(16, 16);
+  scene.draws.push_back(window_triangles(scene, {{2, 2}, {12, 2}, {2, 12}, {12, 2}, {2, 12}, {1, 1}}));
+  const std::vector<std::string> rows = class_rows(scene, classify(scene));
+  for (uint32_t x = 2; x <= 11; ++x) EXPECT_EQ(rows[13 - x][x], '?') << x;
+}
+
+TEST(SpecProfile, CulledFacesAreMustNotAndTheOthersUnchanged) {
+  Scene scene = make_scene(16, 16);
+  // (2,2), (10,2), (2,10): right then down is clockwise on screen, Vulkan a = -32 < 0, so
+  // back-facing with front_face ccw.
+  scene.draws.push_back(window_triangles(scene, {{2, 2}, {10, 2}, {2, 10}}));
+  const std::vector<CoverageClass> drawn = classify(scene);
+  scene.draws[0].state.cull_mode = CullMode::Front;
+  EXPECT_EQ(classify(scene), drawn);
+  scene.draws[0].state.cull_mode = CullMode::Back;
+  EXPECT_EQ(count(class_rows(scene, classify(scene)), '.'), 256u);
+  scene.draws[0].state.front_face = FrontFace::Clockwise;
+  EXPECT_EQ(classify(scene), drawn);
+}
+
+TEST(SpecProfile, FacingIsCertainOnlyBeyondTheRoundingSlack) {
+  using cpu::spec::snap_triangle;
+  EXPECT_EQ(snap_triangle({glm::dvec2(2, 2), glm::dvec2(10, 2), glm::dvec2(2, 10)}, 8).area_sign, -1);
+  EXPECT_EQ(snap_triangle({glm::dvec2(2, 2), glm::dvec2(2, 10), glm::dvec2(10, 2)}, 8).area_sign, 1);
+  // 2a = 14 px * 0.004 px = 3670 units^2; moving the apex one unit in x or y changes it by ~3600.
+  EXPECT_EQ(snap_triangle({glm::dvec2(1, 1), glm::dvec2(15, 15), glm::dvec2(1, 1.004)}, 8).area_sign, 0);
+  RasterState state;
+  EXPECT_EQ(cpu::spec::facing_gate(state, 0), cpu::spec::Gate::Certain);
+  state.cull_mode = CullMode::Back;
+  EXPECT_EQ(cpu::spec::facing_gate(state, 0), cpu::spec::Gate::Maybe);
+  EXPECT_EQ(cpu::spec::facing_gate(state, -1), cpu::spec::Gate::Never);
+  EXPECT_EQ(cpu::spec::facing_gate(state, 1), cpu::spec::Gate::Certain);
+}
+
+// Such a sliver, back-facing as given, may still be drawn (a device's rounding can flip it).
+TEST(SpecProfile, AmbiguousFacingIsMayNotMustNot) {
+  Scene scene = make_scene(16, 16);
+  scene.draws.push_back(window_triangles(scene, {{1, 1}, {15, 15}, {1, 1.004}}));
+  scene.draws[0].state.cull_mode = CullMode::Back;
+  const std::vector<std::string> rows = class_rows(scene, classify(scene));
+  EXPECT_EQ(count(rows, 'M'), 0u);
+  EXPECT_GT(count(rows, '?'), 0u);
+}
+
+TEST(SpecProfile, DepthAgainstTheClearValueDecides) {
+  Scene scene = make_scene(16, 16);
+  scene.draws.push_back(window_triangles(scene, {{2, 2}, {10, 2}, {2, 10}}, 0.5f));
+  const std::vector<std::string> drawn = class_rows(scene, classify(scene));
+  RasterState& state = scene.draws[0].state;
+  state.depth.compare_op = CompareOp::Greater;  // 0.5 > 1.0 never holds
+  EXPECT_EQ(count(class_rows(scene, classify(scene)), '.'), 256u);
+  state.depth.compare_op = CompareOp::Never;
+  EXPECT_EQ(count(class_rows(scene, classify(scene)), '.'), 256u);
+  state.depth.compare_op = CompareOp::Equal;  // 0.5 == 1.0 neither: nothing
+  EXPECT_EQ(count(class_rows(scene, classify(scene)), '.'), 256u);
+  scene.depth_clear = 0.5f;  // equal to the clear value: up to rounding, so possibly
+  EXPECT_EQ(count(class_rows(scene, classify(scene)), 'M'), 0u);
+  EXPECT_EQ(count(class_rows(scene, classify(scene)), '?'), count(drawn, 'M') + count(drawn, '?'));
+  state.depth.test_enable = false;
+  EXPECT_EQ(class_rows(scene, classify(scene)), drawn);
+  scene.depth_format = DepthFormat::None;
+  state.depth.test_enable = true;
+  EXPECT_EQ(class_rows(scene, classify(scene)), drawn);
+}
+
+// z within the slack below the clear value: Less may fail after rounding.
+TEST(SpecProfile, DepthNearTheClearValueIsOnlyMay) {
+  Scene scene = make_scene(16, 16);
+  scene.depth_format = DepthFormat::D16Unorm;
+  scene.draws.push_back(window_triangles(scene, {{2, 2}, {10, 2}, {2, 10}}, 0.99999f));
+  const std::vector<std::string> rows = class_rows(scene, classify(scene));
+  EXPECT_EQ(count(rows, 'M'), 0u);
+  EXPECT_EQ(count(rows, '?'), 28u + 8u);  // the Must and May pixels of the triangle above
+}
+
+// A large constant depth bias could push a fragment past the clear value.
+TEST(SpecProfile, DepthBiasWidensTheDepthRange) {
+  Scene scene = make_scene(16, 16);
+  scene.depth_format = DepthFormat::D16Unorm;
+  scene.draws.push_back(window_triangles(scene, {{2, 2}, {10, 2}, {2, 10}}, 0.9f));
+  EXPECT_EQ(count(class_rows(scene, classify(scene)), 'M'), 28u);
+  scene.draws[0].state.depth_bias = DepthBias{true, 5000.0f, 0.0f, 0.0f};  // up to 5000 * 2/65535 = 0.15
+  EXPECT_EQ(count(class_rows(scene, classify(scene)), 'M'), 0u);
+  scene.draws[0].state.depth_bias.clamp = 0.01f;  // clamped below 0.01: certain again
+  EXPECT_EQ(count(class_rows(scene, classify(scene)), 'M'), 28u);
+}
+
+TEST(SpecProfile, OutsideTheScissorIsMustNot) {
+  Scene scene = make_scene(16, 16);
+  scene.scissor = Rect2D{4, 3, 3, 100};
+  scene.draws.push_back(window_triangles(scene, {{2, 2}, {10, 2}, {2, 10}}));
+  const std::vector<std::string> rows = class_rows(scene, classify(scene));
+  for (uint32_t y = 0; y < 16; ++y)
+    for (uint32_t x = 0; x < 16; ++x)
+      if (x < 4 || x > 6 || y < 3) {
+        EXPECT_EQ(rows[y][x], '.') << x << "," << y;
+      }
+  EXPECT_EQ(rows[3][4], 'M');
+  EXPECT_EQ(rows[6][5], '?');  // 5 + 6 = 11: on the hypotenuse
+  scene.scissor = Rect2D{4, 3, 0, 5};
+  EXPECT_EQ(count(class_rows(scene, classify(scene)), '.'), 256u);
+}
+
+// Multisample pixels are judged as a whole square: a pixel whose border an edge runs along is
+// May, every sample of a pixel has the pixel's class.
+TEST(SpecProfile, MultisamplePixelsAreJudgedAsWholeSquares) {
+  Scene scene = make_scene(16, 16, 4);
+  scene.draws.push_back(window_triangles(scene, {{2, 2}, {10, 2}, {2, 10}}));
+  const std::vector<CoverageClass> classes = classify(scene);
+  const std::vector<std::string> rows = class_rows(scene, classes);
+  EXPECT_EQ(rows[4][4], 'M');  // square [4,5]^2 (+3 units): corner sums up to 10.02 < 12
+  EXPECT_EQ(rows[4][5], 'M');  // [5,6] x [4,5]: up to 11.02
+  EXPECT_EQ(rows[5][5], '?');  // [5,6]^2 reaches x + y = 12.02: a centre-sampled pixel (Must) is May here
+  EXPECT_EQ(rows[5][2], '?');  // the leg x = 2 is the pixel's left border
+  EXPECT_EQ(rows[6][6], '?');  // [6,7]^2 touches the hypotenuse at its corner (6, 6)
+  EXPECT_EQ(rows[7][7], '.');  // [7,8]^2: corner sums from 13.98
+  EXPECT_EQ(rows[0][0], '.');
+  for (size_t p = 0; p < size_t(16 * 16); ++p)
+    for (uint32_t s = 1; s < 4; ++s) ASSERT_EQ(classes[p * 4 + s], classes[p * 4]) << p;
+}
+
+TEST(SpecProfile, RectangularLineIsMustOnlyAPixelInside) {
+  Scene scene = make_scene(32, 32);
+  Draw line;
+  line.topology = Topology::LineList;
+  line.state.line_mode = LineMode::Rectangular;
+  line.state.line_width = 4;
+  line.positions_clip = {clip_from_window(4, 16, 0.5f, 32, 32), clip_from_window(28, 16, 0.5f, 32, 32)};
+  scene.draws.push_back(line);
+  const std::vector<std::string> rows = class_rows(scene, classify(scene));
+  // Rectangle [4, 28] x [14, 18]: centres 1 px + box inside are Must (x 5..26, y 15..16), centres
+  // within 1 px (+ box, + 2 px past the ends) of it May, the rest MustNot.
+  EXPECT_EQ(rows[15][5], 'M');
+  EXPECT_EQ(rows[16][26], 'M');
+  EXPECT_EQ(rows[14][10], '?');
+  EXPECT_EQ(rows[17][10], '?');
+  EXPECT_EQ(rows[13][10], '?');
+  EXPECT_EQ(rows[18][10], '?');
+  EXPECT_EQ(rows[15][4], '?');
+  EXPECT_EQ(rows[12][10], '.');
+  EXPECT_EQ(rows[19][10], '.');
+  EXPECT_EQ(rows[16][0], '.');
+  EXPECT_EQ(rows[16][31], '.');
+  EXPECT_EQ(count(rows, 'M'), 22u * 2u);
+}
+
+// Only the segment is clipped: a wide line's pixels past the viewport are the device's choice.
+TEST(SpecProfile, WideLinesAreMustOnlyInsideTheViewport) {
+  Scene scene = make_scene(32, 32);
+  scene.viewport = Viewport{0, 0, 16, 32, 0, 1};
+  Draw line;
+  line.topology = Topology::LineList;
+  line.state.line_mode = LineMode::Rectangular;
+  line.state.line_width = 6;
+  // Window (4, 4) to (28, 28) through the viewport [0, 16] x [0, 32]: clip x = x / 8 - 1.
+  line.positions_clip = {glm::vec4(4.0f / 8 - 1, 4.0f / 16 - 1, 0.5f, 1), glm::vec4(28.0f / 8 - 1, 28.0f / 16 - 1, 0.5f, 1)};
+  scene.draws.push_back(line);
+  const std::vector<std::string> rows = class_rows(scene, classify(scene));
+  EXPECT_EQ(rows[10][10], 'M');
+  EXPECT_EQ(rows[14][14], 'M');  // centre 1.5 px from the viewport's edge x = 16
+  EXPECT_EQ(rows[15][15], '?');  // on the line, but within a pixel of that edge
+  EXPECT_EQ(rows[17][17], '?');  // past the viewport: the rectangle around the clipped end reaches here
+  EXPECT_EQ(rows[22][22], '.');  // past the clipped end by more than half the width and the margin
+  for (uint32_t y = 0; y < 32; ++y)
+    for (uint32_t x = 15; x < 32; ++x) EXPECT_NE(rows[y][x], 'M') << x << "," << y;
+}
+
+// A vertex the spec says nothing about (NaN) leaves every pixel in the scissor possible.
+TEST(SpecProfile, NonFiniteVerticesMakeEverythingInTheScissorMay) {
+  Scene scene = make_scene(16, 16);
+  scene.scissor = Rect2D{2, 2, 8, 8};
+  scene.draws.push_back(window_triangles(scene, {{2, 2}, {10, 2}, {2, 10}}));
+  scene.draws[0].positions_clip[1].x = std::nanf("");
+  const std::vector<std::string> rows = class_rows(scene, classify(scene));
+  EXPECT_EQ(count(rows, '?'), 64u);
+  EXPECT_EQ(count(rows, '.'), 256u - 64u);
+  scene.draws[0].state.cull_mode = CullMode::FrontAndBack;  // culled whatever its facing
+  EXPECT_EQ(count(class_rows(scene, classify(scene)), '.'), 256u);
+}
+
+TEST(SpecProfile, ThinBresenhamLineIsNeverMust) {
+  Scene scene = make_scene(32, 32);
+  Draw line;
+  line.topology = Topology::LineList;
+  line.state.line_mode = LineMode::Bresenham;
+  line.positions_clip = {clip_from_window(3, 5, 0.5f, 32, 32), clip_from_window(29, 20, 0.5f, 32, 32)};
+  scene.draws.push_back(line);
+  const std::vector<std::string> rows = class_rows(scene, classify(scene));
+  EXPECT_EQ(count(rows, 'M'), 0u);
+  EXPECT_GT(count(rows, '?'), 26u * 3u);
+  EXPECT_EQ(rows[30][1], '.');
+}
+
+TEST(SpecProfile, RenderResultCarriesTheLavapipeEstimateAndTheClasses) {
+  Scene scene = make_scene(16, 16);
+  scene.draws.push_back(window_triangles(scene, {{2, 2}, {10, 2}, {2, 10}}));
+  const RenderResult spec = render_spec_profile(scene, spec_options(6));
+  const RenderResult exact = render_cpu(scene, lavapipe_options());
+  EXPECT_EQ(spec.backend, "cpu");
+  EXPECT_EQ(spec.device, "cpu spec profile (subPixelPrecisionBits 6)");
+  EXPECT_EQ(spec.owner, exact.owner);
+  EXPECT_EQ(spec.depth_raw, exact.depth_raw);
+  EXPECT_EQ(spec.coverage_class, classify(scene, 6));
+  EXPECT_EQ(render_cpu(scene, spec_options(6)).coverage_class, spec.coverage_class);  // the CPU renderer's dispatch
+  const Violations v = judge(spec.coverage_class, exact);
+  EXPECT_FALSE(v.any()) << describe(v);
+}
+
+// The lavapipe profile's render shifted by one pixel (to the right, then down) is rejected.
+TEST(SpecProfile, ARasterizationShiftedByOnePixelIsRejected) {
+  Scene scene = make_scene(32, 32);
+  scene.draws.push_back(window_triangles(scene, {{3.3, 4.1}, {27.6, 9.8}, {11.2, 28.7}}));
+  const RenderResult exact = render_cpu(scene, lavapipe_options());
+  const std::vector<CoverageClass> classes = classify(scene);
+  EXPECT_FALSE(judge(classes, exact).any()) << describe(judge(classes, exact));
+  for (const auto& [dx, dy] : {std::pair{1, 0}, std::pair{0, 1}}) {
+    RenderResult shifted = exact;
+    for (uint32_t y = 0; y < 32; ++y)
+      for (uint32_t x = 0; x < 32; ++x) {
+        const bool inside = x >= uint32_t(dx) && y >= uint32_t(dy);
+        shifted.owner[shifted.index(x, y)] = inside ? exact.owner[exact.index(x - dx, y - dy)] : kOwnerBackground;
+      }
+    const Violations v = judge(classes, shifted);
+    EXPECT_GT(v.must_missing, 0u) << dx << "," << dy;
+    EXPECT_GT(v.must_not_covered, 0u) << dx << "," << dy;
+  }
+}
+
+TEST(SpecProfile, CoarserGridsAreMoreTolerant) {
+  Scene scene = make_scene(32, 32);
+  scene.draws.push_back(window_triangles(scene, {{3.3, 4.1}, {27.6, 9.8}, {11.2, 28.7}}));
+  const std::vector<std::string> fine = class_rows(scene, classify(scene, 8));
+  const std::vector<std::string> coarse = class_rows(scene, classify(scene, 2));
+  EXPECT_GT(count(coarse, '?'), count(fine, '?'));
+  for (uint32_t y = 0; y < 32; ++y)
+    for (uint32_t x = 0; x < 32; ++x)
+      if (coarse[y][x] != '?') {
+        EXPECT_EQ(coarse[y][x], fine[y][x]) << x << "," << y;
+      }
+}
+
+TEST(SpecProfile, NotSupportedAndBadOptions) {
+  Scene scene = make_scene(16, 16);
+  scene.draws.push_back(window_triangles(scene, {{2, 2}, {10, 2}, {2, 10}}));
+  scene.draws[0].state.polygon_mode = PolygonMode::Line;
+  EXPECT_THROW(classify(scene), NotSupportedError);
+  scene.draws[0].state.polygon_mode = PolygonMode::Fill;
+  scene.draws[0].topology = Topology::PointList;
+  EXPECT_THROW(classify(scene), NotSupportedError);
+  scene.draws[0].topology = Topology::TriangleList;
+  EXPECT_THROW(classify(scene, 0), UsageError);
+  EXPECT_EQ(cpu::spec::effective_sub_pixel_bits(20), 16u);
+  scene.draws[0].indices = {0, 1, 7};
+  EXPECT_THROW(classify(scene), InputError);
+}
+
+}  // namespace
+}  // namespace rastercmp

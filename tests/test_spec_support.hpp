@@ -1,0 +1,114 @@
+// Shared pieces of the spec-profile tests (tests/test_spec_*.cpp): scenes in window pixels, the
+// count of spec violations of a render, and a readable description of the first one.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <fmt/core.h>
+#include <glm/vec2.hpp>
+#include <glm/vec4.hpp>
+
+#include "cpu_raster/cpu_raster.hpp"
+#include "cpu_raster/spec/spec_profile.hpp"
+#include "model/render_result.hpp"
+#include "model/scene.hpp"
+
+namespace rastercmp::spec_test {
+
+// Window (x, y) → clip position for the default viewport of a w x h scene: exact for
+// power-of-two sizes (2x/w - 1 and the driver's (w/2) x_c + w/2 round nowhere).
+inline glm::vec4 clip_from_window(double x, double y, float z, uint32_t w, uint32_t h) {
+  return {float(2.0 * x / w - 1.0), float(2.0 * y / h - 1.0), z, 1.0f};
+}
+
+inline Scene make_scene(uint32_t w, uint32_t h, uint32_t samples = 1) {
+  Scene scene;
+  scene.name = "test.spec_profile";
+  scene.width = w;
+  scene.height = h;
+  scene.samples = samples;
+  return scene;
+}
+
+// A triangle list from window-space vertices at depth z.
+inline Draw window_triangles(const Scene& scene, const std::vector<glm::dvec2>& xy, float z = 0.5f) {
+  Draw draw;
+  for (const glm::dvec2& p : xy) draw.positions_clip.push_back(clip_from_window(p.x, p.y, z, scene.width, scene.height));
+  return draw;
+}
+
+inline CpuOptions lavapipe_options() {
+  CpuOptions o;
+  o.profile = CpuProfile::Lavapipe;
+  return o;
+}
+
+inline CpuOptions spec_options(uint32_t bits = 8) {
+  CpuOptions o;
+  o.profile = CpuProfile::Spec;
+  o.sub_pixel_bits = bits;
+  return o;
+}
+
+struct Violations {
+  uint64_t must_missing = 0, must_not_covered = 0;
+  uint64_t must = 0, may = 0, must_not = 0;  // the class counts
+  std::string first;                          // "" when there is none
+  bool any() const { return must_missing + must_not_covered > 0; }
+};
+
+// Judges `owner` (RenderResult layout) by `classes` as the CTS verifier does.
+inline Violations judge(const std::vector<CoverageClass>& classes, const RenderResult& render) {
+  Violations v;
+  for (uint32_t y = 0; y < render.height; ++y)
+    for (uint32_t x = 0; x < render.width; ++x)
+      for (uint32_t s = 0; s < render.samples; ++s) {
+        const size_t i = render.index(x, y, s);
+        const bool covered = render.owner[i] != kOwnerBackground;
+        const CoverageClass c = classes[i];
+        v.must += c == CoverageClass::Must;
+        v.may += c == CoverageClass::May;
+        v.must_not += c == CoverageClass::MustNot;
+        const bool missing = c == CoverageClass::Must && !covered;
+        const bool unexpected = c == CoverageClass::MustNot && covered;
+        v.must_missing += missing;
+        v.must_not_covered += unexpected;
+        if ((missing || unexpected) && v.first.empty())
+          v.first = fmt::format("first at ({}, {}) sample {}: {}", x, y, s, missing ? "Must but uncovered" : "MustNot but covered");
+      }
+  return v;
+}
+
+inline std::string describe(const Violations& v) {
+  return fmt::format("{} Must-missing, {} MustNot-covered (Must {}, May {}, MustNot {}) {}", v.must_missing,
+                     v.must_not_covered, v.must, v.may, v.must_not, v.first);
+}
+
+// The scene in a few lines, for a failing property's log.
+inline std::string describe(const Scene& scene) {
+  const Viewport v = scene.effective_viewport();
+  const Rect2D sc = scene.effective_scissor();
+  std::string text = fmt::format("{}x{} samples {} depth {} clear {} viewport ({}, {}, {}, {}, {}..{}) scissor ({}, {}, {}, {})\n",
+                                 scene.width, scene.height, scene.samples, to_string(scene.depth_format),
+                                 scene.depth_clear, v.x, v.y, v.width, v.height, v.min_depth, v.max_depth, sc.x, sc.y,
+                                 sc.width, sc.height);
+  for (const Draw& d : scene.draws) {
+    const RasterState& s = d.state;
+    text += fmt::format("draw {} cull {} front {} test {} op {} bias {} ({}, {}, {}) clamp {} clip {} line {} w {}\n",
+                        to_string(d.topology), to_string(s.cull_mode), to_string(s.front_face), s.depth.test_enable,
+                        to_string(s.depth.compare_op), s.depth_bias.enable, s.depth_bias.constant_factor,
+                        s.depth_bias.slope_factor, s.depth_bias.clamp, s.depth_clamp, s.depth_clip_enabled(),
+                        to_string(s.line_mode), s.line_width);
+    for (const glm::vec4& p : d.positions_clip) text += fmt::format("  [{}, {}, {}, {}]\n", p.x, p.y, p.z, p.w);
+    if (!d.indices.empty()) {
+      text += "  indices";
+      for (uint32_t i : d.indices) text += fmt::format(" {}", i);
+      text += "\n";
+    }
+  }
+  return text;
+}
+
+}  // namespace rastercmp::spec_test
