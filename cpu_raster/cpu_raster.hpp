@@ -24,6 +24,9 @@ struct CpuOptions {
   std::vector<MethodChoice> methods;
 };
 
+// RenderResult::device of the Lavapipe profile.
+inline constexpr const char* kLavapipeProfileDevice = "cpu lavapipe-22.3.6 profile";
+
 // Renders a scene. Throws NotSupportedError for state the profile cannot reproduce.
 RenderResult render_cpu(const Scene& scene, const CpuOptions& options);
 

@@ -1,0 +1,89 @@
+#include "cpu_raster/clip_triangle.hpp"
+
+#include <bit>
+#include <optional>
+
+#include "cpu_raster/clip_test.hpp"
+#include "cpu_raster/float_ops.hpp"
+
+namespace rastercmp::cpu {
+namespace {
+
+// draw_pipe_clip.c MAX_CLIPPED_VERTICES with 8 user planes: a longer polygon is dropped.
+constexpr size_t kMaxClippedVertices = 2 * (6 + 8) + 1;
+
+using Polygon = std::vector<ClipVertex>;
+
+// The intersection of edge (prev -> vert) with the plane, from the vertex nearer the plane (§1.6).
+ClipVertex intersect(const ClipVertex& prev, float dp_prev, const ClipVertex& vert, float dp,
+                     const ViewportTransform& viewport) {
+  const float denom = dp - dp_prev;
+  if (dp < 0.0f) {  // going out
+    if (-dp < dp_prev) return interpolate_clip_vertex(dp / denom, vert, prev, viewport);
+    return interpolate_clip_vertex(-dp_prev / denom, prev, vert, viewport);
+  }
+  if (-dp_prev < dp) return interpolate_clip_vertex(-dp_prev / denom, prev, vert, viewport);  // coming in
+  return interpolate_clip_vertex(dp / denom, vert, prev, viewport);
+}
+
+// One Sutherland–Hodgman pass; nullopt when the primitive must be discarded.
+std::optional<Polygon> clip_against(const Polygon& in, uint32_t plane, const ViewportTransform& viewport) {
+  Polygon out;
+  const ClipVertex* prev = &in[0];
+  float dp_prev = plane_distance(prev->pos_clip, plane);
+  if (is_inf_or_nan(dp_prev)) return std::nullopt;
+  for (size_t i = 1; i <= in.size(); ++i) {
+    const ClipVertex& vert = in[i % in.size()];  // inlist[n] = inlist[0]
+    const float dp = plane_distance(vert.pos_clip, plane);
+    if (is_inf_or_nan(dp)) return std::nullopt;
+    bool different_sign;
+    if (dp_prev >= 0.0f) {
+      if (out.size() >= kMaxClippedVertices) return std::nullopt;
+      out.push_back(*prev);
+      different_sign = dp < 0.0f;
+    } else {
+      different_sign = !(dp < 0.0f);
+    }
+    if (different_sign) {
+      if (out.size() >= kMaxClippedVertices) return std::nullopt;
+      out.push_back(intersect(*prev, dp_prev, vert, dp, viewport));
+    }
+    prev = &vert;
+    dp_prev = dp;
+  }
+  return out;
+}
+
+}  // namespace
+
+ClippedTriangles clip_triangle(const std::array<ClipVertex, 3>& triangle, const ViewportTransform& viewport) {
+  ClippedTriangles result;
+  const uint32_t union_mask = triangle[0].clip_mask | triangle[1].clip_mask | triangle[2].clip_mask;
+  if (union_mask == 0) {
+    result.triangles.push_back(triangle);
+    return result;
+  }
+  if ((triangle[0].clip_mask & triangle[1].clip_mask & triangle[2].clip_mask) != 0) {
+    result.fate = ClipFate::Outside;
+    return result;
+  }
+  Polygon polygon(triangle.begin(), triangle.end());
+  for (uint32_t mask = union_mask; mask != 0 && polygon.size() >= 3; mask &= mask - 1) {
+    if (polygon.size() >= kMaxClippedVertices) {
+      result.fate = ClipFate::Discarded;
+      return result;
+    }
+    std::optional<Polygon> next = clip_against(polygon, uint32_t(std::countr_zero(mask)), viewport);
+    if (!next) {
+      result.fate = ClipFate::Discarded;
+      return result;
+    }
+    polygon = std::move(*next);
+  }
+  result.fate = ClipFate::Clipped;
+  for (size_t k = 2; k < polygon.size(); ++k)  // emit_poly, flatshade_first
+    result.triangles.push_back({polygon[0], polygon[k - 1], polygon[k]});
+  return result;
+}
+
+}  // namespace rastercmp::cpu

@@ -1,0 +1,43 @@
+#include "cpu_raster/rasterize.hpp"
+
+namespace rastercmp::cpu {
+
+DepthTestState make_depth_test_state(const Scene& scene, const Draw& draw, const ViewportTransform& viewport, bool fma) {
+  DepthTestState state;
+  state.active = scene.has_depth() && draw.state.depth.test_enable;
+  state.write = state.active && draw.state.depth.write_enable;
+  state.op = draw.state.depth.compare_op;
+  state.format = scene.depth_format;
+  state.range = DepthRange{draw.state.depth_clamp, viewport.zmin, viewport.zmax};
+  state.fma = fma;
+  return state;
+}
+
+SampleVerdict evaluate_sample(const RasterPrimitive& p, const DepthTestState& depth, int32_t px, int32_t py,
+                              uint32_t sample, uint32_t stored_raw) {
+  SampleVerdict verdict;
+  // Without multisample rasterization every sample takes the pixel-centre result.
+  verdict.point = sample_point(px, py, p.per_sample ? sample : 0, p.per_sample);
+  verdict.failing_plane = first_failing_plane(p.planes, verdict.point.x_fixed, verdict.point.y_fixed);
+  if (!verdict.covered() || !depth.active) return verdict;
+  verdict.depth = sample_depth(p.depth, p.offset.offset, verdict.point.x, verdict.point.y, depth.range, depth.format,
+                               depth.fma);
+  verdict.depth_passed = depth_test_passes(depth.op, depth.format, verdict.depth.raw, stored_raw);
+  return verdict;
+}
+
+void rasterize_primitive(const RasterPrimitive& p, const DepthTestState& depth, RenderTargets& targets) {
+  for (int32_t py = p.visit.y0; py <= p.visit.y1; ++py) {
+    for (int32_t px = p.visit.x0; px <= p.visit.x1; ++px) {
+      for (uint32_t s = 0; s < targets.samples; ++s) {
+        const size_t i = targets.index(px, py, s);
+        const SampleVerdict verdict = evaluate_sample(p, depth, px, py, s, depth.active ? targets.depth_raw[i] : 0);
+        if (!verdict.passes()) continue;
+        if (depth.write) targets.depth_raw[i] = verdict.depth.raw;
+        targets.owner[i] = p.owner;
+      }
+    }
+  }
+}
+
+}  // namespace rastercmp::cpu

@@ -1,0 +1,20 @@
+#include "cpu_raster/render_targets.hpp"
+
+#include "cpu_raster/depth_sample.hpp"
+#include "model/render_result.hpp"
+
+namespace rastercmp::cpu {
+
+RenderTargets make_render_targets(const Scene& scene) {
+  RenderTargets targets;
+  targets.width = scene.width;
+  targets.height = scene.height;
+  targets.samples = scene.samples;
+  targets.depth_format = scene.depth_format;
+  const size_t count = size_t(scene.width) * scene.height * scene.samples;
+  targets.owner.assign(count, kOwnerBackground);
+  if (scene.has_depth()) targets.depth_raw.assign(count, clear_depth_raw(scene.depth_format, scene.depth_clear));
+  return targets;
+}
+
+}  // namespace rastercmp::cpu

@@ -1,0 +1,25 @@
+// What set-up needs to know besides the primitive: per render (framebuffer, region, methods,
+// arithmetic) and per draw (raster and depth state).
+#pragma once
+
+#include "cpu_raster/draw_region.hpp"
+#include "cpu_raster/setup_methods.hpp"
+#include "model/scene.hpp"
+
+namespace rastercmp::cpu {
+
+struct SetupContext {
+  PixelRect framebuffer;
+  PixelRect region;            // framebuffer ∩ scissor ∩ vpwh
+  bool multisample = false;    // the framebuffer has 4 samples
+  bool fma = true;             // llvm.fmuladd fused
+  SetupMethods methods;
+  DepthFormat depth_format = DepthFormat::None;
+  const RasterState* state = nullptr;  // the draw's state
+  uint32_t draw_index = 0;
+
+  // Depth is produced only with an attachment and the test on (Vulkan: no test, no write).
+  bool depth_active() const { return depth_format != DepthFormat::None && state->depth.test_enable; }
+};
+
+}  // namespace rastercmp::cpu

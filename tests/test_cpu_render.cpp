@@ -1,0 +1,166 @@
+// render_cpu with the lavapipe profile: the result it hands back, the method switches, what the
+// profile refuses, and the depth-state rules of the write stage.
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "cpu_raster/cpu_raster.hpp"
+#include "model/errors.hpp"
+#include "model/render_result.hpp"
+
+namespace rastercmp {
+namespace {
+
+// Two triangles covering a w x h framebuffer at depth z.
+Draw full_screen(float z) {
+  Draw draw;
+  draw.positions_clip = {{-1, -1, z, 1}, {1, -1, z, 1}, {-1, 1, z, 1}, {1, -1, z, 1}, {1, 1, z, 1}, {-1, 1, z, 1}};
+  return draw;
+}
+
+Scene small_scene(DepthFormat format = DepthFormat::D32Sfloat) {
+  Scene scene;
+  scene.width = 5;
+  scene.height = 3;
+  scene.depth_format = format;
+  return scene;
+}
+
+TEST(CpuRender, ResultNamesTheProfileAndTheArithmetic) {
+  Scene scene = small_scene(DepthFormat::D16Unorm);
+  scene.draws.push_back(full_screen(0.5f));
+  for (const bool fma : {true, false}) {
+    CpuOptions options;
+    options.fma = fma;
+    const RenderResult r = render_cpu(scene, options);
+    EXPECT_EQ(r.backend, "cpu");
+    EXPECT_EQ(r.device, "cpu lavapipe-22.3.6 profile");
+    EXPECT_EQ(r.fma, fma);
+    EXPECT_EQ(r.width, 5u);
+    EXPECT_EQ(r.height, 3u);
+    EXPECT_EQ(r.samples, 1u);
+    EXPECT_EQ(r.depth_format, DepthFormat::D16Unorm);
+    ASSERT_EQ(r.owner.size(), 15u);
+    ASSERT_EQ(r.depth_raw.size(), 15u);
+    EXPECT_EQ(r.depth_raw[0], 0x8000u);
+  }
+}
+
+TEST(CpuRender, NoDepthAttachmentMeansNoDepthOutput) {
+  Scene scene = small_scene(DepthFormat::None);
+  scene.draws.push_back(full_screen(0.5f));
+  const RenderResult r = render_cpu(scene, CpuOptions{});
+  EXPECT_FALSE(r.has_depth());
+  for (const uint32_t owner : r.owner) EXPECT_EQ(owner_draw(owner), 0u);
+}
+
+TEST(CpuRender, LaterPrimitivesOverwriteAndTheDepthTestDecides) {
+  Scene scene = small_scene();
+  scene.draws.push_back(full_screen(0.5f));
+  scene.draws.push_back(full_screen(0.7f));  // LESS against 0.5: fails everywhere
+  Draw closer = full_screen(0.25f);
+  scene.draws.push_back(closer);
+  const RenderResult r = render_cpu(scene, CpuOptions{});
+  for (size_t i = 0; i < r.owner.size(); ++i) {
+    EXPECT_EQ(owner_draw(r.owner[i]), 2u);
+    EXPECT_EQ(r.depth_raw[i], 0x3E800000u);  // 0.25
+  }
+}
+
+TEST(CpuRender, DepthTestOffWritesOwnersButNoDepth) {
+  Scene scene = small_scene();
+  scene.depth_clear = 0.125f;
+  Draw draw = full_screen(0.5f);
+  draw.state.depth.test_enable = false;  // Vulkan: no test, no write
+  scene.draws.push_back(draw);
+  const RenderResult r = render_cpu(scene, CpuOptions{});
+  for (size_t i = 0; i < r.owner.size(); ++i) {
+    EXPECT_EQ(owner_draw(r.owner[i]), 0u);
+    EXPECT_EQ(r.depth_raw[i], 0x3E000000u);  // still the clear value 0.125
+  }
+}
+
+TEST(CpuRender, NeverAndWriteDisabled) {
+  Scene scene = small_scene();
+  Draw never = full_screen(0.5f);
+  never.state.depth.compare_op = CompareOp::Never;
+  scene.draws.push_back(never);
+  Draw no_write = full_screen(0.25f);
+  no_write.state.depth.write_enable = false;
+  scene.draws.push_back(no_write);
+  const RenderResult r = render_cpu(scene, CpuOptions{});
+  for (size_t i = 0; i < r.owner.size(); ++i) {
+    EXPECT_EQ(owner_draw(r.owner[i]), 1u);
+    EXPECT_EQ(r.depth_raw[i], 0x3F800000u);
+  }
+}
+
+TEST(CpuRender, UnknownMethodsAreUsageErrors) {
+  Scene scene = small_scene();
+  scene.draws.push_back(full_screen(0.5f));
+  CpuOptions options;
+  options.methods = {{"snap", "truncate"}};
+  EXPECT_THROW(render_cpu(scene, options), UsageError);
+  options.methods = {{"shading", "gouraud"}};
+  EXPECT_THROW(render_cpu(scene, options), UsageError);
+  options.methods = {{"snap", "round_half_away"}, {"tie_break", "none"}};
+  EXPECT_NO_THROW(render_cpu(scene, options));
+  options.methods = {{"snap", "round_nearest_even"}, {"tie_break", "top_left"}};
+  EXPECT_NO_THROW(render_cpu(scene, options));
+}
+
+// The tie-break switch changes exactly the samples on edges: a pixel-aligned square's left and
+// top edges pass through no centre, but the diagonal shared by its two triangles does.
+TEST(CpuRender, TieBreakNoneDropsSamplesOnTheSharedDiagonal) {
+  Scene scene;
+  scene.width = scene.height = 4;
+  scene.draws.push_back(full_screen(0.5f));
+  CpuOptions options;
+  const RenderResult exact = render_cpu(scene, options);
+  options.methods = {{"tie_break", "none"}};
+  const RenderResult none = render_cpu(scene, options);
+  int dropped = 0;
+  for (size_t i = 0; i < exact.owner.size(); ++i) {
+    EXPECT_NE(exact.owner[i], kOwnerBackground);
+    dropped += none.owner[i] == kOwnerBackground;
+  }
+  EXPECT_EQ(dropped, 4);  // the centres with x + y = 3 on the diagonal x + y = 4
+}
+
+void expect_not_supported(const Draw& draw, const std::string& mentions) {
+  Scene scene = small_scene();
+  scene.draws.push_back(draw);
+  try {
+    render_cpu(scene, CpuOptions{});
+    ADD_FAILURE() << "expected NotSupportedError mentioning " << mentions;
+  } catch (const NotSupportedError& e) {
+    EXPECT_NE(std::string(e.what()).find(mentions), std::string::npos) << e.what();
+  }
+}
+
+TEST(CpuRender, StateTheProfileCannotReproduceIsNotSupported) {
+  Draw points = full_screen(0.5f);
+  points.topology = Topology::PointList;
+  expect_not_supported(points, "point_list");
+  Draw wire = full_screen(0.5f);
+  wire.state.polygon_mode = PolygonMode::Line;
+  expect_not_supported(wire, "polygon_mode");
+  Draw smooth = full_screen(0.5f);
+  smooth.topology = Topology::LineList;
+  smooth.state.line_mode = LineMode::RectangularSmooth;
+  expect_not_supported(smooth, "rectangular_smooth");
+}
+
+TEST(CpuRender, ScenesOutsideTheModelsPreconditionsAreInputErrors) {
+  Scene scene = small_scene();
+  scene.samples = 2;
+  EXPECT_THROW(render_cpu(scene, CpuOptions{}), InputError);
+  Scene bad_index = small_scene();
+  Draw draw = full_screen(0.5f);
+  draw.indices = {0, 1, 99};
+  bad_index.draws.push_back(draw);
+  EXPECT_THROW(render_cpu(bad_index, CpuOptions{}), InputError);
+}
+
+}  // namespace
+}  // namespace rastercmp

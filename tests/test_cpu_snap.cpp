@@ -1,0 +1,81 @@
+// Snapping to 24.8 fixed point (lavapipe-rules §2.2, §5.3), with answers worked out by hand.
+#include <cmath>
+#include <limits>
+
+#include <gtest/gtest.h>
+
+#include "cpu_raster/fixed_point.hpp"
+
+namespace rastercmp::cpu {
+namespace {
+
+constexpr float kHalf = 0.5f;  // single-sample pixel offset
+
+int32_t snap(float x, SnapRounding rounding, float offset = kHalf) {
+  const auto fixed = snap_vertex(x, offset, rounding);
+  EXPECT_TRUE(fixed.has_value()) << x;
+  return fixed ? fixed->raw : 0;
+}
+
+// fl(x - 0.5) * 256 lands exactly on k + 0.5 for x = 0.5 + (2k+1)/512: round-to-nearest-even
+// picks the even neighbour, round-half-away the one further from zero.
+TEST(CpuSnap, TiesAtOddMultiplesOfHalfASubpixelRoundToEven) {
+  EXPECT_EQ(snap(0.5f + 1.0f / 512, SnapRounding::NearestEven), 0);  // 0.5 -> 0
+  EXPECT_EQ(snap(0.5f + 3.0f / 512, SnapRounding::NearestEven), 2);  // 1.5 -> 2
+  EXPECT_EQ(snap(0.5f + 5.0f / 512, SnapRounding::NearestEven), 2);  // 2.5 -> 2
+  EXPECT_EQ(snap(0.5f - 1.0f / 512, SnapRounding::NearestEven), 0);  // -0.5 -> -0
+  EXPECT_EQ(snap(0.5f - 3.0f / 512, SnapRounding::NearestEven), -2);  // -1.5 -> -2
+}
+
+TEST(CpuSnap, RoundHalfAwayMovesTiesAwayFromZero) {
+  EXPECT_EQ(snap(0.5f + 1.0f / 512, SnapRounding::HalfAwayFromZero), 1);
+  EXPECT_EQ(snap(0.5f + 3.0f / 512, SnapRounding::HalfAwayFromZero), 2);
+  EXPECT_EQ(snap(0.5f + 5.0f / 512, SnapRounding::HalfAwayFromZero), 3);
+  EXPECT_EQ(snap(0.5f - 1.0f / 512, SnapRounding::HalfAwayFromZero), -1);
+  EXPECT_EQ(snap(0.5f - 3.0f / 512, SnapRounding::HalfAwayFromZero), -2);
+}
+
+TEST(CpuSnap, PixelCentreIsTheOriginOfTheSingleSampleFrame) {
+  EXPECT_EQ(snap(0.5f, SnapRounding::NearestEven), 0);
+  EXPECT_EQ(snap(3.5f, SnapRounding::NearestEven), 3 * 256);
+  EXPECT_EQ(snap(3.0f, SnapRounding::NearestEven), 3 * 256 - 128);
+  EXPECT_EQ(snap(3.0f + 1.0f / 256, SnapRounding::NearestEven), 3 * 256 - 127);
+}
+
+TEST(CpuSnap, MultisampleFrameHasNoHalfPixelOffset) {
+  EXPECT_EQ(snap(3.0f, SnapRounding::NearestEven, 0.0f), 3 * 256);
+  EXPECT_EQ(snap(1.0f / 512, SnapRounding::NearestEven, 0.0f), 0);
+  EXPECT_EQ(snap(3.0f / 512, SnapRounding::NearestEven, 0.0f), 2);
+}
+
+TEST(CpuSnap, NonFiniteAndOutOfRangeCoordinatesDoNotSnap) {
+  EXPECT_FALSE(snap_vertex(std::numeric_limits<float>::quiet_NaN(), kHalf, SnapRounding::NearestEven));
+  EXPECT_FALSE(snap_vertex(std::numeric_limits<float>::infinity(), kHalf, SnapRounding::NearestEven));
+  EXPECT_FALSE(snap_vertex(-1e30f, kHalf, SnapRounding::NearestEven));
+  // The bound is 2^25 fixed units = 131072 px; 49152 px (the far end of viewportBoundsRange plus
+  // the largest viewport) snaps.
+  EXPECT_TRUE(snap_vertex(49152.0f, kHalf, SnapRounding::NearestEven));
+  EXPECT_FALSE(snap_vertex(131073.0f, kHalf, SnapRounding::NearestEven));
+}
+
+// util_iround adds ±0.5 in float and truncates: 2.5 -> 3, -2.5 -> -3, and 0.49999997 (0.5 - 2^-25)
+// + 0.5 rounds to 1.0f, so it gives 1 where exact rounding gives 0.
+TEST(CpuSnap, UtilIroundRoundsHalfAwayAfterAFloatAdd) {
+  EXPECT_EQ(util_iround(2.5f), 3);
+  EXPECT_EQ(util_iround(-2.5f), -3);
+  EXPECT_EQ(util_iround(2.4f), 2);
+  EXPECT_EQ(util_iround(-2.4f), -2);
+  EXPECT_EQ(util_iround(std::nextafter(0.5f, 0.0f)), 1);
+  EXPECT_EQ(util_iround(std::nextafter(-0.5f, 0.0f)), -1);
+  EXPECT_FALSE(util_iround(std::numeric_limits<float>::quiet_NaN()));
+}
+
+TEST(CpuSnap, LineSnapScalesBy256First) {
+  EXPECT_EQ(line_snap(1.0f), 256);
+  EXPECT_EQ(line_snap(-0.5f), -128);
+  EXPECT_EQ(line_snap(1.0f / 512), 1);    // 0.5 -> 1 (half away)
+  EXPECT_EQ(line_snap(-1.0f / 512), -1);
+}
+
+}  // namespace
+}  // namespace rastercmp::cpu
