@@ -1,0 +1,135 @@
+#include "cpu_raster/classic/classic_front_end.hpp"
+
+#include "cpu_raster/assemble.hpp"
+#include "cpu_raster/classic/classic_clip.hpp"
+#include "cpu_raster/classic/classic_cull.hpp"
+#include "cpu_raster/clip_line.hpp"
+#include "cpu_raster/clip_test.hpp"
+#include "cpu_raster/line_setup.hpp"
+#include "cpu_raster/pipeline_cull.hpp"
+#include "model/render_result.hpp"
+
+namespace rastercmp::cpu::classic {
+namespace {
+
+// What one draw's primitives share.
+struct DrawContext {
+  const FrameContext* frame = nullptr;
+  const ClassicMethods* methods = nullptr;
+  const Draw* draw = nullptr;
+  SetupContext setup;
+  DepthTestState depth;
+  bool pipelined = false;  // some vertex needs clipping: lavapipe's float cull runs (§1.5, §2.6)
+};
+
+bool any_vertex_clipped(const Draw& draw, bool depth_clip) {
+  for (uint32_t k = 0; k < draw.vertex_count(); ++k) {
+    const uint32_t position = draw.indices.empty() ? k : draw.indices[k];
+    if (clip_mask(draw.positions_clip[position], depth_clip) != 0) return true;
+  }
+  return false;
+}
+
+template <size_t N>
+std::array<ClipVertex, N> clip_vertices(const DrawContext& dc, const AssembledPrimitive& prim) {
+  std::array<ClipVertex, N> vertices;
+  for (size_t k = 0; k < N; ++k)
+    vertices[k] = make_clip_vertex(dc.draw->positions_clip[prim.position[k]], dc.frame->viewport,
+                                   dc.draw->state.depth_clip_enabled(), dc.frame->fma);
+  return vertices;
+}
+
+ClassicPrimitive make_primitive(const DrawContext& dc, uint32_t primitive_index, bool is_line) {
+  ClassicPrimitive primitive;
+  primitive.draw_index = dc.setup.draw_index;
+  primitive.primitive_index = primitive_index;
+  primitive.is_line = is_line;
+  primitive.depth = dc.depth;
+  return primitive;
+}
+
+void run_triangle(const DrawContext& dc, const AssembledPrimitive& prim, std::vector<ClassicPrimitive>& out) {
+  const std::array<ClipVertex, 3> triangle = clip_vertices<3>(dc, prim);
+  const RasterState& state = dc.draw->state;
+  const bool nv_cull = dc.methods->cull == CullMethod::NormalDotView;
+  if (nv_cull && normal_dot_view_culls({triangle[0].pos_clip, triangle[1].pos_clip, triangle[2].pos_clip},
+                                       state.cull_mode, state.front_face))
+    return;
+  const bool depth_clip = state.depth_clip_enabled();
+  const std::vector<std::array<ClipVertex, 3>> pieces =
+      dc.methods->clip == ClipMethod::SutherlandHodgman
+          ? clip_triangle_sutherland_hodgman(triangle, dc.frame->viewport, depth_clip)
+          : clip_triangle(triangle, dc.frame->viewport).triangles;
+  const uint32_t owner = encode_owner(dc.setup.draw_index, prim.primitive_index);
+  for (const std::array<ClipVertex, 3>& piece : pieces) {
+    const std::array<WindowVertex, 3> window{piece[0].window, piece[1].window, piece[2].window};
+    if (!nv_cull && dc.pipelined && state.cull_mode != CullMode::None &&  // draw_pipe_cull.c (§2.6)
+        pipeline_cull_drops(pipeline_cull_determinant(window), state.cull_mode, state.front_face))
+      continue;
+    const TriangleSetup setup = setup_triangle(window, owner, dc.setup);
+    if (setup.fate != SetupFate::Rasterized) continue;
+    ClassicPrimitive primitive = make_primitive(dc, prim.primitive_index, false);
+    primitive.window = window;
+    primitive.w_clip = {piece[0].pos_clip.w, piece[1].pos_clip.w, piece[2].pos_clip.w};
+    primitive.raster = setup.raster;
+    out.push_back(primitive);
+  }
+}
+
+void run_line(const DrawContext& dc, const AssembledPrimitive& prim, std::vector<ClassicPrimitive>& out) {
+  const std::array<ClipVertex, 2> line = clip_vertices<2>(dc, prim);
+  std::array<ClipVertex, 2> clipped;
+  if (dc.methods->clip == ClipMethod::CohenSutherland3d || dc.methods->clip == ClipMethod::LiangBarsky) {
+    const LineClipper clipper =
+        dc.methods->clip == ClipMethod::LiangBarsky ? LineClipper::LiangBarsky : LineClipper::CohenSutherland3d;
+    const ClassicClippedLine result =
+        clip_line_classic(line, dc.frame->viewport, dc.draw->state.depth_clip_enabled(), clipper);
+    if (!result.visible) return;
+    clipped = result.line;
+  } else {
+    const ClippedLine result = clip_line(line, dc.frame->viewport);
+    if (result.fate == ClipFate::Outside || result.fate == ClipFate::Discarded) return;
+    clipped = result.line;
+  }
+  const LineSetup setup = setup_line({clipped[0].window, clipped[1].window},
+                                     encode_owner(dc.setup.draw_index, prim.primitive_index), dc.setup);
+  if (setup.fate != SetupFate::Rasterized) return;
+  ClassicPrimitive primitive = make_primitive(dc, prim.primitive_index, true);
+  primitive.window = {clipped[0].window, clipped[1].window, WindowVertex{}};
+  primitive.w_clip = {clipped[0].pos_clip.w, clipped[1].pos_clip.w, 1};
+  primitive.raster = setup.raster;
+  out.push_back(primitive);
+}
+
+}  // namespace
+
+void collect_primitives(const FrameContext& frame, uint32_t draw_index, const ClassicMethods& methods,
+                        std::vector<ClassicPrimitive>& out) {
+  const Draw& draw = frame.scene->draws[draw_index];
+  // normal_dot_view has culled before clipping; the set-up then culls nothing.
+  RasterState state = draw.state;
+  if (methods.cull == CullMethod::NormalDotView) state.cull_mode = CullMode::None;
+  DrawContext dc;
+  dc.frame = &frame;
+  dc.methods = &methods;
+  dc.draw = &draw;
+  dc.setup.framebuffer = frame.framebuffer;
+  dc.setup.region = frame.region;
+  dc.setup.multisample = frame.multisample;
+  dc.setup.fma = frame.fma;
+  dc.setup.methods = frame.methods;
+  dc.setup.depth_format = frame.scene->depth_format;
+  dc.setup.state = &state;
+  dc.setup.draw_index = draw_index;
+  dc.depth = make_depth_test_state(*frame.scene, draw, frame.viewport, frame.fma);
+  dc.pipelined = any_vertex_clipped(draw, draw.state.depth_clip_enabled());
+  const bool is_line = is_line_topology(draw.topology);
+  const uint32_t count = primitive_count(draw);
+  for (uint32_t i = 0; i < count; ++i) {
+    const AssembledPrimitive prim = assemble_primitive(draw, i);
+    if (is_line) run_line(dc, prim, out);
+    else run_triangle(dc, prim, out);
+  }
+}
+
+}  // namespace rastercmp::cpu::classic

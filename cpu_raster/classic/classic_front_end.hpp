@@ -1,0 +1,33 @@
+// The geometry half of the classic path, per draw: assemble → clip (exact or classic) → cull
+// (exact: lavapipe's float pipeline cull and fixed-point set-up cull; normal_dot_view: N·V in
+// clip space before clipping) → the exact set-up. The exact set-up still decides which
+// primitives survive (zero area, bounding box outside the draw region) and provides the edge
+// planes, the depth plane and the depth bias; the fill, line, depth and visibility stages decide
+// what to do with them (classic_fragments.hpp, render_classic.cpp).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "cpu_raster/classic/classic_methods.hpp"
+#include "cpu_raster/front_end.hpp"
+#include "cpu_raster/rasterize.hpp"
+
+namespace rastercmp::cpu::classic {
+
+struct ClassicPrimitive {
+  uint32_t draw_index = 0;
+  uint32_t primitive_index = 0;
+  bool is_line = false;
+  std::array<WindowVertex, 3> window{};  // after clipping, emit order (2 used for lines)
+  std::array<float, 3> w_clip{1, 1, 1};  // clip w of those vertices
+  RasterPrimitive raster;                // the exact set-up's result (rasterized)
+  DepthTestState depth;
+};
+
+// Appends the primitives of draw `draw_index` that reach rasterization, in primitive order.
+void collect_primitives(const FrameContext& frame, uint32_t draw_index, const ClassicMethods& methods,
+                        std::vector<ClassicPrimitive>& out);
+
+}  // namespace rastercmp::cpu::classic

@@ -1,0 +1,44 @@
+// The method chosen for each stage of the classic path (docs/methods.md "Selecting a method").
+// `exact` (or zbuffer) everywhere is the exact lavapipe path; any other name routes the stage
+// through the matching module of cpu_raster/methods/. The exact path's own ablations (snap,
+// tie_break) are passed through to its set-up (cpu_raster/setup_methods.hpp).
+#pragma once
+
+#include <vector>
+
+#include "cpu_raster/setup_methods.hpp"
+#include "model/scene.hpp"
+
+namespace rastercmp::cpu::classic {
+
+enum class ClipMethod { Exact, SutherlandHodgman, CohenSutherland3d, LiangBarsky };
+enum class FillMethod { Exact, Scanline, FloatEdge, EvenOdd, Winding };
+enum class LineMethod { Exact, Dda, Bresenham };
+enum class DepthMethod { Exact, NoFma, Bilinear, PerspectiveCorrect };
+enum class VisibilityMethod { ZBuffer, Painter, Bsp };
+enum class CullMethod { Exact, NormalDotView };
+
+struct ClassicMethods {
+  ClipMethod clip = ClipMethod::Exact;
+  FillMethod fill = FillMethod::Exact;
+  LineMethod line = LineMethod::Exact;
+  DepthMethod depth = DepthMethod::Exact;
+  VisibilityMethod visibility = VisibilityMethod::ZBuffer;
+  CullMethod cull = CullMethod::Exact;
+  SetupMethods setup;  // snap, tie_break
+
+  // Coverage or depth decided outside the exact rasterizer: one sample per pixel only.
+  bool per_pixel() const {
+    return fill != FillMethod::Exact || line != LineMethod::Exact || depth == DepthMethod::Bilinear ||
+           depth == DepthMethod::PerspectiveCorrect || visibility != VisibilityMethod::ZBuffer;
+  }
+};
+
+// The stages this path knows (clip, fill, line, depth, visibility, cull) and the exact path's
+// (snap, tie_break). Throws UsageError naming the valid stages or the valid names of the stage.
+ClassicMethods parse_classic_methods(const std::vector<MethodChoice>& choices);
+
+// True when a choice names one of the classic stages (anything but snap and tie_break).
+bool names_classic_stage(const std::vector<MethodChoice>& choices);
+
+}  // namespace rastercmp::cpu::classic

@@ -1,0 +1,93 @@
+#include "cpu_raster/classic/render_classic.hpp"
+
+#include <string>
+#include <vector>
+
+#include "cpu_raster/classic/classic_front_end.hpp"
+#include "cpu_raster/classic/classic_visibility.hpp"
+#include "cpu_raster/profile_support.hpp"
+#include "cpu_raster/render_targets.hpp"
+#include "model/errors.hpp"
+
+namespace rastercmp {
+namespace {
+
+using namespace cpu::classic;
+
+void check_classic_support(const Scene& scene, const CpuOptions& options, const ClassicMethods& chosen) {
+  if (options.profile != CpuProfile::Lavapipe)
+    throw NotSupportedError("classic methods (--method) run on the lavapipe profile only");
+  if (chosen.per_pixel() && scene.samples != 1)
+    throw NotSupportedError("the selected classic methods decide one sample per pixel; the scene has " +
+                            std::to_string(scene.samples) + " samples");
+  if (chosen.line == LineMethod::Exact) return;
+  for (size_t d = 0; d < scene.draws.size(); ++d)
+    if (is_line_topology(scene.draws[d].topology) && scene.draws[d].state.line_width != 1)
+      throw NotSupportedError("$.draws[" + std::to_string(d) + "]: line=dda and line=bresenham draw 1-pixel lines; "
+                              "line_width is " + std::to_string(scene.draws[d].state.line_width));
+}
+
+std::string describe_methods(const CpuOptions& options) {
+  std::string text = std::string(kLavapipeProfileDevice) + ", methods";
+  for (const MethodChoice& choice : options.methods) text += " " + choice.stage + "=" + choice.name;
+  return text;
+}
+
+void write_fragment(const Fragment& f, const ClassicPrimitive& p, bool test, cpu::RenderTargets& targets) {
+  const size_t i = targets.index(f.x, f.y, 0);
+  if (p.depth.active && test && !cpu::depth_test_passes(p.depth.op, p.depth.format, f.depth_raw, targets.depth_raw[i]))
+    return;
+  if (p.depth.write) targets.depth_raw[i] = f.depth_raw;
+  targets.owner[i] = p.raster.owner;
+}
+
+// visibility=zbuffer: primitives in order through the depth test (lavapipe-rules §3.6).
+void draw_with_zbuffer(const std::vector<ClassicPrimitive>& primitives, const ClassicMethods& chosen,
+                       const cpu::PixelRect& region, cpu::RenderTargets& targets) {
+  for (const ClassicPrimitive& p : primitives) {
+    if (!chosen.per_pixel()) {  // the exact rasterizer, with the depth evaluation fused or not
+      cpu::DepthTestState depth = p.depth;
+      if (chosen.depth == DepthMethod::NoFma) depth.fma = false;
+      cpu::rasterize_primitive(p.raster, depth, targets);
+      continue;
+    }
+    for_each_fragment(p, chosen, region, [&](const Fragment& f) { write_fragment(f, p, true, targets); });
+  }
+}
+
+RenderResult to_render_result(cpu::RenderTargets&& targets, const CpuOptions& options) {
+  RenderResult result;
+  result.backend = "cpu";
+  result.device = describe_methods(options);
+  result.fma = options.fma;
+  result.width = targets.width;
+  result.height = targets.height;
+  result.samples = targets.samples;
+  result.depth_format = targets.depth_format;
+  result.owner = std::move(targets.owner);
+  result.depth_raw = std::move(targets.depth_raw);
+  return result;
+}
+
+}  // namespace
+
+bool uses_classic_methods(const CpuOptions& options) { return names_classic_stage(options.methods); }
+
+RenderResult render_classic(const Scene& scene, const CpuOptions& options) {
+  const ClassicMethods chosen = parse_classic_methods(options.methods);
+  cpu::check_lavapipe_profile_support(scene);
+  check_classic_support(scene, options, chosen);
+  const cpu::FrameContext frame = cpu::make_frame_context(scene, options.fma, chosen.setup);
+  std::vector<ClassicPrimitive> primitives;
+  for (uint32_t d = 0; d < scene.draws.size(); ++d) collect_primitives(frame, d, chosen, primitives);
+  cpu::RenderTargets targets = cpu::make_render_targets(scene);
+  if (chosen.visibility == VisibilityMethod::ZBuffer) {
+    draw_with_zbuffer(primitives, chosen, frame.region, targets);
+  } else {
+    for (const PaintedFragment& painted : back_to_front_fragments(primitives, chosen, frame.region))
+      write_fragment(painted.fragment, primitives[painted.primitive], false, targets);
+  }
+  return to_render_result(std::move(targets), options);
+}
+
+}  // namespace rastercmp
