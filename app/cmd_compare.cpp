@@ -1,0 +1,117 @@
+// rastercmp compare SCENE.json... [--profile lavapipe|spec] [--json FILE] [--report DIR]
+// Renders each scene on the CPU (expected) and the Vulkan device (actual) and diffs them.
+// Exit: 0 every scene Pass / QualityWarning / NotSupported, 1 any Fail / ResourceError /
+// InternalError, 2 bad input, 3 no Vulkan (docs/compare.md).
+#include <fmt/core.h>
+
+#include <filesystem>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "app/commands.hpp"
+#include "app/options.hpp"
+#include "compare/case_judge.hpp"
+#include "compare/case_run.hpp"
+#include "compare/conformance.hpp"
+#include "compare/explain_text.hpp"
+#include "compare/report.hpp"
+#include "model/errors.hpp"
+#include "model/image_io.hpp"
+#include "model/scene_io.hpp"
+
+namespace rastercmp::app {
+namespace {
+
+struct CompareArgs {
+  std::vector<std::string> scene_paths;
+  std::string json_file;
+  std::string report_dir;
+  RenderOptions options;
+};
+
+std::string owner_text(uint32_t owner) {
+  if (owner == kOwnerBackground) return "background";
+  return fmt::format("draw {} primitive {}", owner_draw(owner), owner_primitive(owner));
+}
+
+void print_case(const CaseRecord& record) {
+  fmt::print("{}: {} ({})\n", record.name, to_string(record.verdict), record.message);
+  if (!record.diff) return;
+  for (const BadSample& b : record.diff->first_bad) {
+    std::string depth;
+    if (b.has_depth)
+      depth = fmt::format(", depth expected {:#x} actual {:#x}", b.expected_depth_raw, b.actual_depth_raw);
+    fmt::print("  ({}, {}) sample {}: {}: expected {}, actual {}{}\n", b.at.x, b.at.y, b.at.sample, b.kind,
+               owner_text(b.expected_owner), owner_text(b.actual_owner), depth);
+  }
+}
+
+void check_json_target(const std::string& file) {
+  const auto parent = std::filesystem::path(file).parent_path();
+  ensure_output_dir(parent.empty() ? "." : parent.string());
+}
+
+std::string compare_json(const RunInfo& info, const std::vector<CaseRecord>& records) {
+  nlohmann::ordered_json j;
+  j["profile"] = info.profile;
+  j["device"] = info.device;
+  j["driver"] = info.driver;
+  j["fma"] = info.fma;
+  nlohmann::ordered_json scenes = nlohmann::ordered_json::array();
+  for (const CaseRecord& record : records) scenes.push_back(case_to_json(record, false));
+  j["scenes"] = scenes;
+  return j.dump(2) + "\n";
+}
+
+int run_compare(const CompareArgs& args) {
+  const CompareProfile profile = args.options.profile == "spec" ? CompareProfile::Spec : CompareProfile::Lavapipe;
+  make_cpu_options(args.options);  // a bad --method is a usage error before any work
+  std::vector<SuiteCase> cases;
+  for (const std::string& path : args.scene_paths) {
+    Scene scene = load_scene_file(path);
+    std::string name = scene.name;
+    cases.push_back({std::move(name), path, std::move(scene)});
+  }
+  if (!args.json_file.empty()) check_json_target(args.json_file);
+  if (!args.report_dir.empty()) ensure_output_dir(args.report_dir);
+
+  CaseRunner runner(
+      profile, [&](const Scene& s) { return make_cpu_options(args.options, &s); }, make_vk_options(args.options));
+  const RunInfo info = run_info_for(runner);
+  std::vector<CaseRecord> records;
+  for (const SuiteCase& c : cases) {
+    const CaseResult result = runner.run(c.scene);
+    CaseRecord record = make_case_record(c, result, Expectations{});
+    if (!args.report_dir.empty()) {
+      record.images = write_case_images(args.report_dir, c.name, result);
+      record.explains =
+          write_case_explanations(args.report_dir, c.name, c.scene, runner.cpu_options(c.scene), result, profile);
+    }
+    print_case(record);
+    records.push_back(std::move(record));
+  }
+  if (!args.json_file.empty()) write_text_file_atomic(args.json_file, compare_json(info, records));
+  if (!args.report_dir.empty()) {
+    write_report_html(args.report_dir, info, records);
+    fmt::print("report: {}\n", (std::filesystem::path(args.report_dir) / "index.html").string());
+  }
+  const bool any_failure =
+      std::any_of(records.begin(), records.end(), [](const CaseRecord& r) { return is_failure(r.verdict); });
+  return any_failure ? kExitMismatch : kExitOk;
+}
+
+}  // namespace
+
+void add_compare_command(CLI::App& app, int& exit_code) {
+  auto args = std::make_shared<CompareArgs>();
+  CLI::App* cmd = app.add_subcommand("compare", "render scenes on the CPU and the Vulkan device and diff them");
+  cmd->add_option("scenes", args->scene_paths, "scene files (JSON)")->required();
+  cmd->add_option("--json", args->json_file, "write per-scene results as JSON to this file");
+  cmd->add_option("--report", args->report_dir, "write an HTML report (index.html and images) into this folder");
+  add_render_options(*cmd, args->options);
+  cmd->callback([args, &exit_code] { exit_code = run_compare(*args); });
+}
+
+}  // namespace rastercmp::app

@@ -1,0 +1,108 @@
+#include "compare/expectations.hpp"
+
+#include <fmt/core.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "model/errors.hpp"
+
+namespace rastercmp {
+namespace {
+
+std::string_view trim(std::string_view s) {
+  const auto first = s.find_first_not_of(" \t\r");
+  if (first == std::string_view::npos) return {};
+  const auto last = s.find_last_not_of(" \t\r");
+  return s.substr(first, last - first + 1);
+}
+
+// Calls `line_fn(line_number, line)` for every line that is neither blank nor a comment.
+template <typename Fn>
+void for_each_content_line(std::string_view text, Fn line_fn) {
+  size_t line_number = 0;
+  while (!text.empty()) {
+    const auto end = text.find('\n');
+    const std::string_view line = trim(text.substr(0, end));
+    text = end == std::string_view::npos ? std::string_view{} : text.substr(end + 1);
+    ++line_number;
+    if (line.empty() || line.front() == '#') continue;
+    line_fn(line_number, line);
+  }
+}
+
+std::string line_path(size_t line_number) { return fmt::format("line {}", line_number); }
+
+}  // namespace
+
+Verdict Expectations::expected(const std::string& name) const {
+  const auto it = baseline.find(name);
+  return it == baseline.end() ? Verdict::Pass : it->second;
+}
+
+std::map<std::string, Verdict> parse_baseline(std::string_view text, const std::string& file) {
+  std::map<std::string, Verdict> baseline;
+  for_each_content_line(text, [&](size_t n, std::string_view line) {
+    const auto comma = line.rfind(',');  // the status never holds a comma; a name might
+    if (comma == std::string_view::npos)
+      throw InputError(file, line_path(n), "expected `name,Status`, found `" + std::string(line) + "`");
+    const std::string name(trim(line.substr(0, comma)));
+    const std::string status(trim(line.substr(comma + 1)));
+    const auto verdict = parse_verdict(status);
+    if (name.empty() || !verdict)
+      throw InputError(file, line_path(n),
+                       "expected `name,Status` with Status one of Pass, Fail, QualityWarning, NotSupported, "
+                       "ResourceError, InternalError; found `" +
+                           std::string(line) + "`");
+    if (!baseline.emplace(name, *verdict).second)
+      throw InputError(file, line_path(n), "expected each case once; `" + name + "` is listed again");
+  });
+  return baseline;
+}
+
+std::vector<Pattern> parse_patterns(std::string_view text, const std::string& file) {
+  std::vector<Pattern> patterns;
+  for_each_content_line(text, [&](size_t n, std::string_view line) {
+    try {
+      patterns.push_back({std::string(line), std::regex(std::string(line), std::regex::ECMAScript)});
+    } catch (const std::regex_error& e) {
+      throw InputError(file, line_path(n),
+                       "expected a regular expression, found `" + std::string(line) + "` (" + e.what() + ")");
+    }
+  });
+  return patterns;
+}
+
+std::string read_text_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, "", "expected a readable file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+Expectations load_expectations(const std::string& baseline_file, const std::string& flakes_file,
+                               const std::string& skips_file) {
+  Expectations e;
+  if (!baseline_file.empty()) e.baseline = parse_baseline(read_text_file(baseline_file), baseline_file);
+  if (!flakes_file.empty()) e.flakes = parse_patterns(read_text_file(flakes_file), flakes_file);
+  if (!skips_file.empty()) e.skips = parse_patterns(read_text_file(skips_file), skips_file);
+  return e;
+}
+
+bool matches_any(const std::vector<Pattern>& patterns, const std::string& name) {
+  for (const Pattern& p : patterns)
+    if (std::regex_search(name, p.regex)) return true;
+  return false;
+}
+
+Outcome judge_outcome(const std::string& name, Verdict result, const Expectations& expectations) {
+  const Verdict expected = expectations.expected(name);
+  if (result == expected) return {is_failure(result) ? "ExpectedFail" : to_string(result), false};
+  if (matches_any(expectations.flakes, name)) return {"KnownFlake", false};
+  if (is_failure(expected) && !is_failure(result))
+    return {fmt::format("UnexpectedImprovement({})", to_string(result)), true};
+  return {to_string(result), is_failure(result)};
+}
+
+}  // namespace rastercmp

@@ -1,0 +1,74 @@
+#include "compare/explain_text.hpp"
+
+#include <fmt/core.h>
+
+#include <filesystem>
+
+#include "compare/report.hpp"
+#include "cpu_raster/explain.hpp"
+#include "model/image_io.hpp"
+
+namespace rastercmp {
+namespace {
+
+std::string owner_text(uint32_t owner) {
+  if (owner == kOwnerBackground) return "background";
+  return fmt::format("draw {} primitive {} (id {:#010x})", owner_draw(owner), owner_primitive(owner), owner);
+}
+
+// The final value of a sample in a render: owner + raw depth (and its value).
+std::string value_text(const RenderResult& r, size_t index) {
+  std::string text = "owner " + owner_text(r.owner[index]);
+  if (!r.has_depth()) return text + (r.depth_format == DepthFormat::None ? "" : ", no depth read back");
+  const uint32_t raw = r.depth_raw[index];
+  return text + fmt::format(", depth raw {:#x} = {:.9g}", raw, depth_raw_to_value(r.depth_format, raw));
+}
+
+std::string tail_text(const RenderResult& expected, const RenderResult& actual, CompareProfile profile, uint32_t x,
+                      uint32_t y, uint32_t sample) {
+  const size_t i = expected.index(x, y, sample);
+  return fmt::format("CPU (expected):  {}\nVulkan (actual): {}\nclassification:  {}\n", value_text(expected, i),
+                     value_text(actual, i), describe_sample(expected, actual, profile, x, y, sample));
+}
+
+std::string header_text(const Scene& scene, CompareProfile profile, uint32_t x, uint32_t y, uint32_t sample) {
+  return fmt::format(
+      "{}: pixel ({}, {}) sample {}, {} profile\nCPU history (every primitive that reached the pixel, "
+      "in submission order):\n",
+      scene.name, x, y, sample, to_string(profile));
+}
+
+}  // namespace
+
+std::string explain_sample_text(const Scene& scene, const CpuOptions& cpu_options, const RenderResult& expected,
+                                const RenderResult& actual, CompareProfile profile, uint32_t x, uint32_t y,
+                                uint32_t sample) {
+  const std::vector<FragmentRecord> history = explain_pixel(scene, cpu_options, x, y, sample);
+  return header_text(scene, profile, x, y, sample) + format_explanation(history) +
+         tail_text(expected, actual, profile, x, y, sample);
+}
+
+std::vector<ExplainLink> write_case_explanations(const std::string& report_dir, const std::string& case_name,
+                                                 const Scene& scene, const CpuOptions& cpu_options,
+                                                 const CaseResult& result, CompareProfile profile) {
+  std::vector<ExplainLink> links;
+  if (!result.diff || !result.expected || !result.actual) return links;
+  const auto& bad = result.diff->summary.first_bad;
+  for (size_t k = 0; k < bad.size() && k < kMaxExplainsPerCase; ++k) {
+    const SampleLocation at = bad[k].at;
+    std::string text;
+    try {
+      text = explain_sample_text(scene, cpu_options, *result.expected, *result.actual, profile, at.x, at.y, at.sample);
+    } catch (const std::exception& e) {  // the history is missing, the values still explain something
+      text = header_text(scene, profile, at.x, at.y, at.sample) + fmt::format("  (not available: {})\n", e.what()) +
+             tail_text(*result.expected, *result.actual, profile, at.x, at.y, at.sample);
+    }
+    const std::string file = fmt::format("{}/explain_{}_{}_s{}.txt", case_folder(case_name), at.x, at.y, at.sample);
+    ensure_output_dir((std::filesystem::path(report_dir) / case_folder(case_name)).string());
+    write_text_file_atomic((std::filesystem::path(report_dir) / file).string(), text);
+    links.push_back({at, file});
+  }
+  return links;
+}
+
+}  // namespace rastercmp

@@ -1,0 +1,25 @@
+// `rastercmp merge OUT_DIR SHARD_DIR...`: joins the outputs of conformance runs over disjoint
+// case sets (shards of one suite, or a run and its resumption) into one folder, as if one run
+// had produced them: results.csv, failures.csv, junit.xml, summary.json and the report (the
+// cases' image folders are copied). Cases are ordered by name, as a whole run orders them.
+#pragma once
+
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "compare/run_outputs.hpp"
+
+namespace rastercmp {
+
+struct MergeResult {
+  RunInfo info;
+  std::vector<CaseRecord> records;
+  int exit_code = 0;  // 0 when the merged run passes, 1 when not
+};
+
+// Throws InputError for a missing or malformed shard output, shards run with a different
+// profile or device, or a case present in two shards; InputError for an unwritable OUT_DIR.
+MergeResult merge_conformance_outputs(const std::string& out_dir, const std::vector<std::string>& shard_dirs);
+
+}  // namespace rastercmp

@@ -1,0 +1,152 @@
+// The report's per-case images (compare/report.hpp).
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+#include <fmt/core.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+
+#include "compare/report.hpp"
+#include "model/errors.hpp"
+#include "model/image_io.hpp"
+
+namespace rastercmp {
+namespace fs = std::filesystem;
+namespace {
+
+// Written to a temporary name in the same folder, then renamed: a reader never sees half a PNG.
+void write_png_atomic(const OIIO::ImageBuf& image, const fs::path& path) {
+  const fs::path tmp = path.parent_path() / fmt::format(".{}.tmp{}.png", path.stem().string(), getpid());
+  if (!image.write(tmp.string(), OIIO::TypeDesc::UINT8, "png")) {
+    std::error_code ec;
+    fs::remove(tmp, ec);
+    throw InputError(path.string(), "", "could not write the image: " + image.geterror());
+  }
+  std::error_code ec;
+  fs::rename(tmp, path, ec);
+  if (ec) throw InputError(path.string(), "", "could not write the image: " + ec.message());
+}
+
+OIIO::ImageBuf rgb_image(uint32_t width, uint32_t height, const std::vector<uint8_t>& rgb) {
+  OIIO::ImageBuf image(OIIO::ImageSpec(int(width), int(height), 3, OIIO::TypeDesc::UINT8));
+  image.set_pixels(OIIO::ROI::All(), OIIO::TypeDesc::UINT8, rgb.data());
+  return image;
+}
+
+// Sample 0 of each pixel in the owners' false colours (model/image_io.hpp).
+OIIO::ImageBuf owner_image(const RenderResult& r) {
+  std::vector<uint8_t> rgb(size_t(r.width) * r.height * 3);
+  for (uint32_t y = 0; y < r.height; ++y)
+    for (uint32_t x = 0; x < r.width; ++x)
+      owner_false_colour(r.owner[r.index(x, y, 0)], &rgb[(size_t(y) * r.width + x) * 3]);
+  return rgb_image(r.width, r.height, rgb);
+}
+
+OIIO::ImageBuf mask_image(const SceneDiff& diff) {
+  const DiffSummary& s = diff.summary;
+  std::vector<uint8_t> rgb(size_t(s.width) * s.height * 3);
+  for (uint32_t y = 0; y < s.height; ++y)
+    for (uint32_t x = 0; x < s.width; ++x) {
+      const Rgb c = mask_colour(pixel_class(diff, x, y));
+      std::copy(c.begin(), c.end(), rgb.begin() + std::ptrdiff_t((size_t(y) * s.width + x) * 3));
+    }
+  return rgb_image(s.width, s.height, rgb);
+}
+
+// |diff| in r, the largest of the pixel's samples, normalised to the case's maximum, through
+// OIIO's "inferno" colour map (black = no difference).
+OIIO::ImageBuf depth_heatmap(const SceneDiff& diff) {
+  const DiffSummary& s = diff.summary;
+  std::vector<float> level(size_t(s.width) * s.height, 0.0f);
+  for (size_t p = 0; p < level.size(); ++p)
+    for (uint32_t sample = 0; sample < s.samples; ++sample)
+      level[p] = std::max(level[p], diff.depth_diff_r[p * s.samples + sample]);
+  const float scale = level.empty() ? 0.0f : *std::max_element(level.begin(), level.end());
+  if (scale > 0)
+    for (float& v : level) v /= scale;
+  OIIO::ImageBuf normalised(OIIO::ImageSpec(int(s.width), int(s.height), 1, OIIO::TypeDesc::FLOAT));
+  normalised.set_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, level.data());
+  OIIO::ImageBuf coloured = OIIO::ImageBufAlgo::color_map(normalised, 0, "inferno");
+  if (coloured.has_error()) throw std::runtime_error("color_map inferno: " + coloured.geterror());
+  return coloured;
+}
+
+int class_rank(SampleClass c) {
+  switch (c) {
+    case SampleClass::Missing:
+      return 5;
+    case SampleClass::Unexpected:
+      return 4;
+    case SampleClass::WrongOwner:
+      return 3;
+    case SampleClass::Allowed:
+      return 2;
+    case SampleClass::Correct:
+      return 1;
+    case SampleClass::Background:
+      return 0;
+  }
+  return 0;
+}
+
+}  // namespace
+
+Rgb mask_colour(SampleClass c) {
+  switch (c) {
+    case SampleClass::Missing:
+      return kMaskMissing;
+    case SampleClass::Unexpected:
+      return kMaskUnexpected;
+    case SampleClass::WrongOwner:
+      return kMaskWrongOwner;
+    case SampleClass::Allowed:
+      return kMaskAllowed;
+    case SampleClass::Correct:
+      return kMaskCorrect;
+    case SampleClass::Background:
+      return kMaskBackground;
+  }
+  return kMaskBackground;
+}
+
+SampleClass pixel_class(const SceneDiff& diff, uint32_t x, uint32_t y) {
+  const DiffSummary& s = diff.summary;
+  SampleClass worst = SampleClass::Background;
+  for (uint32_t sample = 0; sample < s.samples; ++sample) {
+    const SampleClass c = diff.sample_class[(size_t(y) * s.width + x) * s.samples + sample];
+    if (class_rank(c) > class_rank(worst)) worst = c;
+  }
+  return worst;
+}
+
+std::string case_folder(const std::string& case_name) {
+  std::string folder = case_name;
+  for (char& ch : folder) {
+    const bool keep = (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9') || ch == '.' ||
+                      ch == '_' || ch == '-';
+    if (!keep) ch = '_';
+  }
+  if (folder.empty() || folder == "." || folder == "..") folder = "_" + folder;
+  return "cases/" + folder;
+}
+
+CaseImages write_case_images(const std::string& report_dir, const std::string& case_name, const CaseResult& result) {
+  CaseImages images;
+  if (!result.expected && !result.actual) return images;
+  const std::string folder = case_folder(case_name);
+  ensure_output_dir((fs::path(report_dir) / folder).string());
+  auto write = [&](const OIIO::ImageBuf& image, const char* file, std::string& relative) {
+    relative = folder + "/" + file;
+    write_png_atomic(image, fs::path(report_dir) / relative);
+  };
+  if (result.expected) write(owner_image(*result.expected), "cpu.png", images.cpu);
+  if (result.actual) write(owner_image(*result.actual), "vulkan.png", images.vulkan);
+  if (result.diff) {
+    write(mask_image(*result.diff), "mask.png", images.mask);
+    if (!result.diff->depth_diff_r.empty()) write(depth_heatmap(*result.diff), "depth.png", images.depth_heatmap);
+  }
+  return images;
+}
+
+}  // namespace rastercmp

@@ -1,0 +1,95 @@
+#include "compare/verdict.hpp"
+
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "compare/depth_units.hpp"
+
+namespace rastercmp {
+namespace {
+
+constexpr Verdict kAllVerdicts[] = {Verdict::Pass,         Verdict::Fail,          Verdict::QualityWarning,
+                                    Verdict::NotSupported, Verdict::ResourceError, Verdict::InternalError};
+
+// Spec "Depth Bias": interpolation precision is implementation-dependent; 2 r is one UNORM
+// conversion step either way plus one more, and one float binade step either way.
+constexpr double kSpecDepthBaseToleranceR = 2.0;
+
+std::string coverage_counts(const DiffSummary& d) {
+  return fmt::format("{} missing, {} unexpected, {} wrong owner", d.missing, d.unexpected, d.wrong_owner);
+}
+
+std::string depth_counts(const DiffSummary& d) {
+  return fmt::format("{} depth mismatches, max {} {} ({:.6g} r) at ({}, {}) sample {}", d.depth.mismatches,
+                     d.depth.max_raw, depth_unit_name(d.depth_format), d.depth.max_r, d.depth.max_at.x,
+                     d.depth.max_at.y, d.depth.max_at.sample);
+}
+
+VerdictDecision decide_lavapipe(const DiffSummary& d) {
+  // The lavapipe profile claims bit-exactness: any difference fails (lavapipe-rules "Tolerances").
+  if (d.coverage_mismatches() == 0 && d.depth.mismatches == 0) return {Verdict::Pass, "bit-exact"};
+  std::string why = coverage_counts(d);
+  if (d.depth.mismatches != 0) why += "; " + depth_counts(d);
+  return {Verdict::Fail, why};
+}
+
+VerdictDecision decide_spec(const DiffSummary& d, double tolerance_r) {
+  const std::string allowed = fmt::format("{} allowed (may)", d.allowed);
+  if (d.missing + d.unexpected != 0) return {Verdict::Fail, coverage_counts(d) + ", " + allowed};
+  if (d.wrong_owner != 0)
+    return {Verdict::QualityWarning, coverage_counts(d) + " (the spec does not fix which primitive wins), " + allowed};
+  if (d.depth.max_r > tolerance_r)
+    return {Verdict::QualityWarning, fmt::format("{} (tolerance {:.6g} r), {}", depth_counts(d), tolerance_r, allowed)};
+  return {Verdict::Pass, fmt::format("within the spec: {}, {} depth differences within {:.6g} r", allowed,
+                                     d.depth.mismatches, tolerance_r)};
+}
+
+}  // namespace
+
+const char* to_string(Verdict v) {
+  switch (v) {
+    case Verdict::Pass:
+      return "Pass";
+    case Verdict::Fail:
+      return "Fail";
+    case Verdict::QualityWarning:
+      return "QualityWarning";
+    case Verdict::NotSupported:
+      return "NotSupported";
+    case Verdict::ResourceError:
+      return "ResourceError";
+    case Verdict::InternalError:
+      return "InternalError";
+  }
+  return "?";
+}
+
+std::optional<Verdict> parse_verdict(std::string_view name) {
+  for (Verdict v : kAllVerdicts)
+    if (name == to_string(v)) return v;
+  return std::nullopt;
+}
+
+bool is_failure(Verdict v) { return v == Verdict::Fail || v == Verdict::ResourceError || v == Verdict::InternalError; }
+
+double spec_depth_tolerance_r(const Scene& scene) {
+  double largest_constant = 0;
+  for (const Draw& draw : scene.draws)
+    if (draw.state.depth_bias.enable)
+      largest_constant = std::max(largest_constant, std::fabs(double(draw.state.depth_bias.constant_factor)));
+  // UNORM r ranges over [2^-n, 2 * 2^-n]; in units of lavapipe's r = 2/(2^n - 1) that span is 1/2.
+  const bool unorm = scene.depth_format == DepthFormat::D16Unorm || scene.depth_format == DepthFormat::X8D24Unorm;
+  return kSpecDepthBaseToleranceR + (unorm ? 0.5 * largest_constant : 0.0);
+}
+
+VerdictDecision decide_verdict(const DiffSummary& diff, double depth_tolerance_r) {
+  VerdictDecision decision =
+      diff.profile == CompareProfile::Lavapipe ? decide_lavapipe(diff) : decide_spec(diff, depth_tolerance_r);
+  if (diff.depth_format != DepthFormat::None && !diff.depth_compared)
+    decision.message += "; depth not compared (one render carries none, e.g. multisampled depth on Vulkan)";
+  return decision;
+}
+
+}  // namespace rastercmp

@@ -1,0 +1,177 @@
+// Baseline logic (expected fail, unexpected improvement, flakes, skips), case selection and
+// interleaved sharding of compare/expectations + compare/case_select.
+#include <gtest/gtest.h>
+#include <rapidcheck/gtest.h>
+
+#include <cstdlib>
+#include <set>
+
+#include "compare/case_select.hpp"
+#include "compare/expectations.hpp"
+#include "model/errors.hpp"
+
+namespace rastercmp {
+namespace {
+
+Expectations mesa_style() {
+  Expectations e;
+  e.baseline = parse_baseline(
+      "# known differences, one reason per line\n"
+      "rastercmp.depth.bias.d16,Fail\n"
+      "\n"
+      "rastercmp.msaa.depth,InternalError\n"
+      "rastercmp.line.wide,QualityWarning\n",
+      "fails.txt");
+  e.flakes = parse_patterns("# flaky\nrastercmp\\.flaky\\..*\n", "flakes.txt");
+  e.skips = parse_patterns("^rastercmp\\.slow\\.\n", "skips.txt");
+  return e;
+}
+
+TEST(Baseline, ParsesNamesStatusesAndComments) {
+  const Expectations e = mesa_style();
+  EXPECT_EQ(e.baseline.size(), 3u);
+  EXPECT_EQ(e.expected("rastercmp.depth.bias.d16"), Verdict::Fail);
+  EXPECT_EQ(e.expected("rastercmp.msaa.depth"), Verdict::InternalError);
+  EXPECT_EQ(e.expected("rastercmp.not.listed"), Verdict::Pass);
+}
+
+TEST(Baseline, MalformedLinesNameTheFileAndLine) {
+  try {
+    parse_baseline("a,Fail\nb Fail\n", "fails.txt");
+    FAIL() << "a line without a comma was accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), "fails.txt");
+    EXPECT_EQ(e.json_path(), "line 2");
+  }
+  EXPECT_THROW(parse_baseline("a,Crashed\n", "fails.txt"), InputError);
+  EXPECT_THROW(parse_baseline("a,Fail\na,Fail\n", "fails.txt"), InputError);
+  EXPECT_THROW(parse_patterns("ok\n(unclosed\n", "flakes.txt"), InputError);
+}
+
+TEST(Outcome, PassAndExpectedFailDoNotFailTheRun) {
+  const Expectations e = mesa_style();
+  const Outcome pass = judge_outcome("rastercmp.fill.a", Verdict::Pass, e);
+  EXPECT_EQ(pass.status, "Pass");
+  EXPECT_FALSE(pass.fails_run);
+  const Outcome expected_fail = judge_outcome("rastercmp.depth.bias.d16", Verdict::Fail, e);
+  EXPECT_EQ(expected_fail.status, "ExpectedFail");
+  EXPECT_FALSE(expected_fail.fails_run);
+  const Outcome expected_error = judge_outcome("rastercmp.msaa.depth", Verdict::InternalError, e);
+  EXPECT_EQ(expected_error.status, "ExpectedFail");
+  EXPECT_FALSE(expected_error.fails_run);
+}
+
+TEST(Outcome, NewFailuresFailTheRun) {
+  const Expectations e = mesa_style();
+  const Outcome fail = judge_outcome("rastercmp.fill.a", Verdict::Fail, e);
+  EXPECT_EQ(fail.status, "Fail");
+  EXPECT_TRUE(fail.fails_run);
+  // A different failure than the baseline's is still a failure.
+  const Outcome other = judge_outcome("rastercmp.depth.bias.d16", Verdict::ResourceError, e);
+  EXPECT_EQ(other.status, "ResourceError");
+  EXPECT_TRUE(other.fails_run);
+}
+
+TEST(Outcome, NewlyPassingExpectedFailureIsAnUnexpectedImprovementThatFails) {
+  const Expectations e = mesa_style();
+  const Outcome improved = judge_outcome("rastercmp.depth.bias.d16", Verdict::Pass, e);
+  EXPECT_EQ(improved.status, "UnexpectedImprovement(Pass)");
+  EXPECT_TRUE(improved.fails_run);
+  const Outcome warned = judge_outcome("rastercmp.msaa.depth", Verdict::QualityWarning, e);
+  EXPECT_EQ(warned.status, "UnexpectedImprovement(QualityWarning)");
+  EXPECT_TRUE(warned.fails_run);
+}
+
+TEST(Outcome, WarningsAndUnsupportedAreNotFailures) {
+  const Expectations e = mesa_style();
+  EXPECT_FALSE(judge_outcome("rastercmp.fill.a", Verdict::QualityWarning, e).fails_run);
+  EXPECT_FALSE(judge_outcome("rastercmp.fill.a", Verdict::NotSupported, e).fails_run);
+  const Outcome better = judge_outcome("rastercmp.line.wide", Verdict::Pass, e);
+  EXPECT_EQ(better.status, "Pass");
+  EXPECT_FALSE(better.fails_run);
+}
+
+TEST(Outcome, FlakesNeverFailTheRun) {
+  const Expectations e = mesa_style();
+  const Outcome flake = judge_outcome("rastercmp.flaky.one", Verdict::Fail, e);
+  EXPECT_EQ(flake.status, "KnownFlake");
+  EXPECT_FALSE(flake.fails_run);
+  EXPECT_EQ(judge_outcome("rastercmp.flaky.one", Verdict::Pass, e).status, "Pass");
+  // The pattern matches anywhere in the name (deqp-runner's regex is_match).
+  EXPECT_TRUE(matches_any(e.flakes, "x.rastercmp.flaky.y"));
+  EXPECT_FALSE(matches_any(e.flakes, "rastercmp.flakyness"));
+}
+
+SuiteCase named(const std::string& name) { return SuiteCase{name, name + ".json", Scene{}}; }
+
+std::vector<std::string> names_of(const std::vector<SuiteCase>& cases) {
+  std::vector<std::string> names;
+  for (const SuiteCase& c : cases) names.push_back(c.name);
+  return names;
+}
+
+TEST(Selection, CaselistGlobsAndSkipsNarrowTheSuiteInOrder) {
+  const std::vector<SuiteCase> suite = {named("rastercmp.fill.a"), named("rastercmp.fill.b"), named("rastercmp.line.a"),
+                                        named("rastercmp.slow.big")};
+  const Expectations e = mesa_style();
+  EXPECT_EQ(names_of(select_cases(suite, CaseFilter{{}, {}, e.skips}, "")),
+            (std::vector<std::string>{"rastercmp.fill.a", "rastercmp.fill.b", "rastercmp.line.a"}));
+  EXPECT_EQ(names_of(select_cases(suite, CaseFilter{{}, {"*.a", "rastercmp.slow.*"}, e.skips}, "")),
+            (std::vector<std::string>{"rastercmp.fill.a", "rastercmp.line.a"}));
+  const auto list = parse_caselist("# resume\nrastercmp.line.a\n\n  rastercmp.fill.b \n");
+  EXPECT_EQ(names_of(select_cases(suite, CaseFilter{list, {}, {}}, "list.txt")),
+            (std::vector<std::string>{"rastercmp.fill.b", "rastercmp.line.a"}));
+  EXPECT_THROW(select_cases(suite, CaseFilter{{"rastercmp.nope"}, {}, {}}, "list.txt"), InputError);
+}
+
+TEST(Selection, GlobIsShellStyle) {
+  EXPECT_TRUE(glob_match("rastercmp.fill.*", "rastercmp.fill.top_left.shared_edge"));
+  EXPECT_TRUE(glob_match("*.shared_?dge", "rastercmp.fill.shared_edge"));
+  EXPECT_FALSE(glob_match("rastercmp.line.*", "rastercmp.fill.a"));
+}
+
+TEST(Shard, InterleavesCases) {
+  EXPECT_EQ(shard_positions(10, Shard{0, 3}), (std::vector<size_t>{0, 3, 6, 9}));
+  EXPECT_EQ(shard_positions(10, Shard{1, 3}), (std::vector<size_t>{1, 4, 7}));
+  EXPECT_EQ(shard_positions(10, Shard{2, 3}), (std::vector<size_t>{2, 5, 8}));
+  EXPECT_TRUE(shard_positions(2, Shard{2, 3}).empty());
+  const std::vector<SuiteCase> suite = {named("a"), named("b"), named("c"), named("d"), named("e")};
+  EXPECT_EQ(names_of(take_shard(suite, Shard{1, 2})), (std::vector<std::string>{"b", "d"}));
+}
+
+TEST(Shard, ParsesIOfNAndRejectsTheRest) {
+  EXPECT_EQ(parse_shard("0/1"), (Shard{0, 1}));
+  EXPECT_EQ(parse_shard("3/4"), (Shard{3, 4}));
+  for (const char* bad : {"4/4", "1/0", "1", "a/2", "-1/2", "1/2/3", "", "1/"})
+    EXPECT_THROW(parse_shard(bad), UsageError) << bad;
+}
+
+TEST(Shard, ComesFromTheGoogleTestEnvironment) {
+  unsetenv("GTEST_SHARD_INDEX");
+  unsetenv("GTEST_TOTAL_SHARDS");
+  EXPECT_FALSE(shard_from_environment().has_value());
+  setenv("GTEST_SHARD_INDEX", "2", 1);
+  setenv("GTEST_TOTAL_SHARDS", "5", 1);
+  EXPECT_EQ(shard_from_environment(), (Shard{2, 5}));
+  setenv("GTEST_SHARD_INDEX", "5", 1);
+  EXPECT_THROW(shard_from_environment(), UsageError);
+  unsetenv("GTEST_SHARD_INDEX");
+  unsetenv("GTEST_TOTAL_SHARDS");
+}
+
+// The shards of any split are disjoint and together hold every case once.
+RC_GTEST_PROP(ShardProperty, ShardsPartitionTheCases, ()) {
+  const size_t n = *rc::gen::inRange<size_t>(0, 200);
+  const uint32_t count = *rc::gen::inRange<uint32_t>(1, 17);
+  std::multiset<size_t> seen;
+  for (uint32_t index = 0; index < count; ++index)
+    for (size_t p : shard_positions(n, Shard{index, count})) {
+      RC_ASSERT(p % count == index);
+      seen.insert(p);
+    }
+  RC_ASSERT(seen.size() == n);
+  for (size_t p = 0; p < n; ++p) RC_ASSERT(seen.count(p) == 1u);
+}
+
+}  // namespace
+}  // namespace rastercmp
