@@ -19,6 +19,9 @@ int main(int argc, char** argv) {
   app::add_explain_command(app, exit_code);
   app::add_conformance_command(app, exit_code);
   app::add_merge_command(app, exit_code);
+  app::add_bench_command(app, exit_code);
+  app::add_sweep_command(app, exit_code);
+  app::add_chart_command(app, exit_code);
 
   try {
     app.parse(argc, argv);

@@ -1,0 +1,254 @@
+// rastercmp bench [--json FILE] [--reps N] [--scene NAME]... [--suite DIR] [--threads N]
+// Times, in one run and interleaved rep by rep, the exact CPU path (threads = 0), the fast CPU path
+// (threads = N, default 2) and lavapipe (submit to fence; instance, pipeline and resource creation
+// and read-back excluded; LP_NUM_THREADS=2 unless set) on the benchmark scenes of
+// cpu_raster/fast/bench_scenes.hpp and on the whole built-in suite (docs/performance.md).
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <functional>
+#include <fstream>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <fmt/core.h>
+#include <nlohmann/json.hpp>
+
+#include "app/commands.hpp"
+#include "cpu_raster/cpu_raster.hpp"
+#include "cpu_raster/fast/bench_scenes.hpp"
+#include "cpu_raster/fast/bench_stats.hpp"
+#include "cpu_raster/fast/render_fast.hpp"
+#include "model/errors.hpp"
+#include "model/host.hpp"
+#include "vk_reference/vk_reference.hpp"
+
+namespace rastercmp::app {
+namespace {
+
+using bench::TimingStats;
+
+struct BenchArgs {
+  std::string json_path;
+  unsigned reps = 21;
+  unsigned exact_reps = 3;  // the exact path takes seconds on the big scenes
+  unsigned threads = 2;
+  std::vector<std::string> scenes;  // empty: all standard scenes and the suite
+  std::string suite_dir = "scenes";
+};
+
+// One row of the table: one scene, or the whole suite rendered once per rep.
+struct BenchCase {
+  std::string name;
+  std::vector<Scene> scenes;
+};
+
+struct Target {
+  const char* scene;
+  double must, aim;  // lavapipe time / fast CPU time
+};
+constexpr Target kTargets[] = {{"fill_b2f", 4, 9}, {"fill_f2b", 8, 15}, {"grid_180k", 15, 25}, {"tiny_1m", 15, 25}};
+
+struct CaseReport {
+  std::string name;
+  uint64_t triangles = 0, fragments = 0, pixels = 0;
+  // Seconds per rep, the case's scenes summed. fast: into the previous rep's buffers (as lavapipe
+  // draws into attachments made by prepare); fast_alloc: into new buffers each time.
+  std::vector<double> exact, fast, fast_alloc, lavapipe;
+  uint64_t memory_exact = 0, memory_fast = 0, memory_lavapipe = 0;
+  bool fast_equals_exact = true, fast_equals_lavapipe = true;
+  std::vector<RenderResult> fast_results;  // one per scene, from the warm-up
+};
+
+double seconds_of(const std::function<void()>& run) {
+  const auto start = std::chrono::steady_clock::now();
+  run();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+bool same_bytes(const RenderResult& a, const RenderResult& b, bool compare_depth) {
+  return a.owner == b.owner && (!compare_depth || a.depth_raw == b.depth_raw);
+}
+
+std::vector<BenchCase> make_cases(const BenchArgs& args) {
+  std::vector<std::string> names = args.scenes;
+  if (names.empty()) {
+    names = bench::standard_bench_scene_names();
+    names.push_back("suite");
+  }
+  std::vector<BenchCase> cases;
+  for (const std::string& name : names) {
+    if (name == "suite") cases.push_back({name, bench::load_scene_suite(args.suite_dir)});
+    else cases.push_back({name, {bench::standard_bench_scene(name).scene}});
+  }
+  return cases;
+}
+
+// Renders every scene once on each side (shader JIT, caches, the comparisons) and drops the scenes
+// the CPU profile or the Vulkan device does not reproduce (NotSupported). Peak memory: the largest
+// of the scenes' (fast path: one render, its result included; lavapipe: prepare and one submit).
+std::vector<std::unique_ptr<VulkanRenderer::Prepared>> warm_up(BenchCase& c, VulkanRenderer& vulkan,
+                                                               const CpuOptions& fast, CaseReport& report) {
+  std::vector<std::unique_ptr<VulkanRenderer::Prepared>> prepared;
+  std::vector<Scene> kept;
+  for (Scene& scene : c.scenes) {
+    try {
+      RenderResult result;
+      report.memory_fast = std::max(report.memory_fast,
+                                    bench::peak_memory_delta([&] { result = render_cpu_fast(scene, fast); }));
+      std::unique_ptr<VulkanRenderer::Prepared> p;
+      report.memory_lavapipe = std::max(report.memory_lavapipe, bench::peak_memory_delta([&] {
+                                          p = vulkan.prepare(scene);
+                                          vulkan.submit_and_wait_seconds(*p);  // the JIT builds its variants
+                                        }));
+      report.fast_equals_lavapipe &= same_bytes(vulkan.read_back(*p), result, scene.samples == 1);
+      prepared.push_back(std::move(p));
+      report.fast_results.push_back(std::move(result));
+      kept.push_back(std::move(scene));
+    } catch (const NotSupportedError&) {
+    }
+  }
+  c.scenes = std::move(kept);
+  return prepared;
+}
+
+CaseReport run_case(BenchCase& c, VulkanRenderer& vulkan, const BenchArgs& args, bool fma) {
+  CpuOptions exact_options, fast_options;
+  exact_options.fma = fast_options.fma = fma;
+  fast_options.threads = args.threads;
+  CaseReport report;
+  report.name = c.name;
+  std::vector<std::unique_ptr<VulkanRenderer::Prepared>> prepared = warm_up(c, vulkan, fast_options, report);
+  const std::vector<RenderResult>& fast_results = report.fast_results;
+  for (const Scene& scene : c.scenes) {
+    report.triangles += bench::triangle_count(scene);
+    report.fragments += bench::covered_samples(scene, fma);
+    report.pixels += uint64_t(scene.width) * scene.height * scene.samples;
+  }
+  for (unsigned rep = 0; rep < args.reps; ++rep) {
+    double fast = 0, fast_alloc = 0, lavapipe = 0, exact = 0;
+    const auto time_fast = [&] {
+      for (size_t i = 0; i < c.scenes.size(); ++i) {
+        fast += seconds_of([&] { render_cpu_fast_into(c.scenes[i], fast_options, report.fast_results[i]); });
+        fast_alloc += seconds_of([&] { render_cpu_fast(c.scenes[i], fast_options); });
+      }
+    };
+    const auto time_lavapipe = [&] {
+      for (auto& p : prepared) lavapipe += vulkan.submit_and_wait_seconds(*p);
+    };
+    if (rep % 2 == 0) time_fast(), time_lavapipe();  // alternate the order: neither always goes first
+    else time_lavapipe(), time_fast();
+    report.fast.push_back(fast);
+    report.fast_alloc.push_back(fast_alloc);
+    report.lavapipe.push_back(lavapipe);
+    if (rep >= args.exact_reps) continue;
+    const auto time_exact = [&] {
+      for (size_t i = 0; i < c.scenes.size(); ++i) {
+        RenderResult result;
+        exact += seconds_of([&] { result = render_cpu(c.scenes[i], exact_options); });
+        if (rep == 0) report.fast_equals_exact &= same_bytes(result, fast_results[i], true);
+      }
+    };
+    if (rep == 0) report.memory_exact = bench::peak_memory_delta(time_exact);
+    else time_exact();
+    report.exact.push_back(exact);
+  }
+  return report;
+}
+
+std::string ms(const TimingStats& s) { return s.count ? fmt::format("{:.2f} [{:.2f}-{:.2f}]", s.median * 1e3, s.min * 1e3, s.max * 1e3) : "-"; }
+double rate(uint64_t count, const TimingStats& s) { return s.median > 0 ? double(count) / s.median * 1e-6 : 0; }
+double mib(uint64_t bytes) { return double(bytes) / (1024.0 * 1024.0); }
+
+void print_table(const std::vector<CaseReport>& reports, const BenchArgs& args, const bench::LoadMonitor& load) {
+  fmt::print("\nmedian ms [min-max] over {} reps ({} for the exact path); fast CPU path: {} thread(s); lavapipe: "
+             "LP_NUM_THREADS={}\n\n",
+             args.reps, args.exact_reps, args.threads, std::getenv("LP_NUM_THREADS"));
+  fmt::print("| scene | tris | frags | exact ms | fast ms | fast+alloc ms | lavapipe ms | lvp/fast | lvp/exact | fast "
+             "Mtri/s | fast Mpix/s | lvp Mtri/s | lvp Mpix/s | peak MiB exact/fast/lvp | same bytes exact/lvp |\n");
+  fmt::print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
+  for (const CaseReport& r : reports) {
+    const TimingStats e = bench::summarize(r.exact), f = bench::summarize(r.fast), l = bench::summarize(r.lavapipe);
+    fmt::print("| {} | {} | {} | {} | {} | {} | {} | {:.1f}x | {:.2f}x | {:.1f} | {:.1f} | {:.1f} | {:.1f} | {:.0f}/{:.0f}/{:.0f} | {}/{} |\n",
+               r.name, r.triangles, r.fragments, ms(e), ms(f), ms(bench::summarize(r.fast_alloc)), ms(l), l.median / f.median,
+               e.median > 0 ? l.median / e.median : 0, rate(r.triangles, f), rate(r.fragments, f), rate(r.triangles, l),
+               rate(r.fragments, l), mib(r.memory_exact), mib(r.memory_fast), mib(r.memory_lavapipe),
+               r.fast_equals_exact ? "yes" : "NO", r.fast_equals_lavapipe ? "yes" : "NO");
+  }
+  fmt::print("\nload: other processes kept {:.2f} of the cores busy on average (1-min load average {:.2f}), this run "
+             "{:.2f}, over {:.1f} s\n\n",
+             load.other_cores(), load.load_average_1min(), load.own_cores(), load.wall_seconds());
+  for (const Target& t : kTargets) {
+    for (const CaseReport& r : reports) {
+      if (r.name != t.scene) continue;
+      const double ratio = bench::summarize(r.lavapipe).median / bench::summarize(r.fast).median;
+      fmt::print("target {:<10} lavapipe/fast {:6.1f}x   must reach {:4.0f}x: {}   aim {:4.0f}x: {}\n", t.scene, ratio,
+                 t.must, ratio >= t.must ? "reached" : "NOT REACHED", t.aim, ratio >= t.aim ? "reached" : "not yet");
+    }
+  }
+}
+
+nlohmann::ordered_json stats_json(const std::vector<double>& samples) {
+  const TimingStats s = bench::summarize(samples);
+  std::vector<double> samples_ms;
+  for (double x : samples) samples_ms.push_back(x * 1e3);
+  return {{"reps", s.count}, {"median_ms", s.median * 1e3}, {"q1_ms", s.q1 * 1e3}, {"q3_ms", s.q3 * 1e3},
+          {"min_ms", s.min * 1e3}, {"max_ms", s.max * 1e3}, {"samples_ms", samples_ms}};
+}
+
+void write_json(const std::string& path, const std::vector<CaseReport>& reports, const BenchArgs& args,
+                const bench::LoadMonitor& load) {
+  nlohmann::ordered_json j;
+  j["fast_threads"] = args.threads;
+  j["lp_num_threads"] = std::getenv("LP_NUM_THREADS");
+  j["load"] = {{"other_cores", load.other_cores()}, {"own_cores", load.own_cores()},
+               {"loadavg_1min", load.load_average_1min()}, {"wall_s", load.wall_seconds()}};
+  for (const CaseReport& r : reports) {
+    j["scenes"].push_back({{"name", r.name}, {"triangles", r.triangles}, {"fragments", r.fragments},
+                           {"pixels", r.pixels}, {"exact", stats_json(r.exact)}, {"fast", stats_json(r.fast)}, {"fast_new_buffers", stats_json(r.fast_alloc)},
+                           {"lavapipe", stats_json(r.lavapipe)},
+                           {"peak_bytes", {{"exact", r.memory_exact}, {"fast", r.memory_fast}, {"lavapipe", r.memory_lavapipe}}},
+                           {"fast_equals_exact", r.fast_equals_exact}, {"fast_equals_lavapipe", r.fast_equals_lavapipe}});
+  }
+  std::ofstream out(path);
+  if (!out) throw UsageError("--json " + path + ": cannot write the file");
+  out << j.dump(2) << "\n";
+}
+
+int run_bench(const BenchArgs& args) {
+  setenv("LP_NUM_THREADS", "2", 0);  // before the device exists; an explicit setting wins
+  std::vector<BenchCase> cases = make_cases(args);
+  VulkanRenderer vulkan(VkOptions{});
+  const bool fma = vulkan.device().is_lavapipe ? vulkan.device().fma : lavapipe_fuses_on_this_host();
+  bench::LoadMonitor load;
+  load.start();
+  std::vector<CaseReport> reports;
+  for (BenchCase& c : cases) {
+    fmt::print(stderr, "bench: {} ...\n", c.name);
+    reports.push_back(run_case(c, vulkan, args, fma));
+  }
+  load.stop();
+  print_table(reports, args, load);
+  if (!args.json_path.empty()) write_json(args.json_path, reports, args, load);
+  for (const CaseReport& r : reports)
+    if (!r.fast_equals_exact || !r.fast_equals_lavapipe) return kExitMismatch;
+  return kExitOk;
+}
+
+}  // namespace
+
+void add_bench_command(CLI::App& app, int& exit_code) {
+  auto args = std::make_shared<BenchArgs>();
+  CLI::App* cmd = app.add_subcommand("bench", "time the exact CPU path, the fast CPU path and lavapipe, interleaved");
+  cmd->add_option("--json", args->json_path, "also write every sample and summary to this JSON file");
+  cmd->add_option("--reps", args->reps, "timed repetitions per scene (fast path and lavapipe)")->check(CLI::Range(1, 1000));
+  cmd->add_option("--exact-reps", args->exact_reps, "timed repetitions of the exact path (at most --reps)");
+  cmd->add_option("--scene", args->scenes, "fill_b2f, fill_f2b, grid_180k, tiny_1m, perspective or suite (repeatable)");
+  cmd->add_option("--suite", args->suite_dir, "folder of the built-in scenes (default: scenes)");
+  cmd->add_option("--threads", args->threads, "threads of the fast CPU path")->check(CLI::Range(1, 64));
+  cmd->callback([args, &exit_code] { exit_code = run_bench(*args); });
+}
+
+}  // namespace rastercmp::app

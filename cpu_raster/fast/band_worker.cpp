@@ -1,0 +1,324 @@
+#include "cpu_raster/fast/band_worker.hpp"
+
+#include <algorithm>
+
+#include "cpu_raster/assemble.hpp"
+#include "cpu_raster/clip_triangle.hpp"
+#include "cpu_raster/clip_vertex.hpp"
+#include "cpu_raster/depth_plane.hpp"
+#include "cpu_raster/pipeline_cull.hpp"
+#include "cpu_raster/triangle_setup.hpp"
+#include "model/render_result.hpp"
+
+namespace rastercmp::cpu::fast {
+namespace {
+
+bool face_culled(bool front_facing, CullMode cull) {
+  switch (cull) {
+    case CullMode::None: return false;
+    case CullMode::Front: return front_facing;
+    case CullMode::Back: return !front_facing;
+    case CullMode::FrontAndBack: return true;
+  }
+  return false;
+}
+
+// The draw's vertex numbers of primitive i (assemble.hpp, provoking vertex first).
+template <Topology T>
+std::array<uint32_t, 3> vertex_numbers(uint32_t i) {
+  if constexpr (T == Topology::TriangleList) return {3 * i, 3 * i + 1, 3 * i + 2};
+  if constexpr (T == Topology::TriangleStrip)
+    return (i & 1) == 0 ? std::array<uint32_t, 3>{i, i + 1, i + 2} : std::array<uint32_t, 3>{i, i + 2, i + 1};
+  return {i + 1, i + 2, 0};  // fan
+}
+
+WindowVertex window_of(const FastVertex& v) { return WindowVertex{v.x, v.y, v.z}; }
+
+FastTriangle from_raster_primitive(const RasterPrimitive& p, const PixelRect& region) {
+  FastTriangle t;
+  for (int k = 0; k < 3; ++k) {
+    t.x_fixed[k] = p.vertex_fixed[k].x.raw;
+    t.y_fixed[k] = p.vertex_fixed[k].y.raw;
+  }
+  t.rect = intersect(p.bbox, region);  // coverage lies in the bounding box (§2.5)
+  if (p.has_depth) {
+    t.a0 = p.depth.a0;
+    t.dzdx = p.depth.dzdx;
+    t.dzdy = p.depth.dzdy;
+    t.offset = p.offset.offset;
+  }
+  t.owner = p.owner;
+  return t;
+}
+
+}  // namespace
+
+BandWorker::BandWorker(FastFrame& frame, uint32_t index) : frame_(frame), index_(index), workers_(frame.workers) {
+  batch_.reserve(kBatchSize);
+  owned_rows_.resize(size_t(std::max(frame.raster.tiles_y, 0)));
+  for (size_t r = 0; r < owned_rows_.size(); ++r) owned_rows_[r] = r % workers_ == index_;
+}
+
+void BandWorker::run() {
+  for (uint32_t d = 0; d < frame_.draws.size(); ++d) {
+    if (frame_.draws[d].fast) walk_fast(d);
+    else walk_exact(d);
+    flush(frame_.draws[d].raster);
+  }
+  for (int32_t ty = int32_t(index_); ty < frame_.raster.tiles_y; ty += int32_t(workers_))
+    for (int32_t tx = 0; tx < frame_.raster.tiles_x; ++tx)
+      if (!frame_.raster.tile(tx, ty).cleared) clear_tile(tx, ty, frame_.raster);
+}
+
+bool BandWorker::owns_rows(int32_t y0, int32_t y1) const {
+  const int32_t t0 = y0 >> kTileOrder, t1 = y1 >> kTileOrder;
+  if (uint32_t(t1 - t0 + 1) >= workers_) return true;
+  for (int32_t t = t0; t <= t1; ++t)
+    if (owns_tile_row(t)) return true;
+  return false;
+}
+
+void BandWorker::walk_fast(uint32_t d) {
+  const Draw& draw = frame_.scene->draws[d];
+  const bool indexed = !draw.indices.empty();
+  switch (draw.topology) {
+    case Topology::TriangleList:
+      indexed ? walk_triangles<Topology::TriangleList, true>(d) : walk_triangles<Topology::TriangleList, false>(d);
+      break;
+    case Topology::TriangleStrip:
+      indexed ? walk_triangles<Topology::TriangleStrip, true>(d) : walk_triangles<Topology::TriangleStrip, false>(d);
+      break;
+    case Topology::TriangleFan:
+      indexed ? walk_triangles<Topology::TriangleFan, true>(d) : walk_triangles<Topology::TriangleFan, false>(d);
+      break;
+    default: break;  // not a fast draw (render_fast.cpp)
+  }
+}
+
+template <Topology T, bool Indexed>
+void BandWorker::walk_triangles(uint32_t d) {
+  const Draw& draw = frame_.scene->draws[d];
+  if (frame_.draws[d].pipeline) return walk_small_blocks<T, Indexed>(d);
+  const uint32_t* indices = draw.indices.data();
+  const uint32_t count = primitive_count(draw);
+  for (uint32_t i = 0; i < count; ++i) {
+    const std::array<uint32_t, 3> n = vertex_numbers<T>(i);
+    if constexpr (Indexed) triangle(d, i, indices[n[0]], indices[n[1]], indices[n[2]]);
+    else triangle(d, i, n[0], n[1], n[2]);
+  }
+}
+
+// Draws the published blocks in order; in between, sets up the next unclaimed block.
+template <Topology T, bool Indexed>
+void BandWorker::walk_small_blocks(uint32_t d) {
+  BlockPipeline& pipeline = *frame_.draws[d].pipeline;
+  uint32_t next = 0, rounds = 0;
+  while (next < pipeline.blocks()) {
+    bool progress = false;
+    while (next < pipeline.blocks() && pipeline.ready(next)) {
+      draw_block(d, pipeline.slot(next));
+      pipeline.consumed(index_, ++next);
+      progress = true;
+    }
+    const int64_t block = pipeline.claim();
+    if (block >= 0) {
+      set_up_block<T, Indexed>(d, uint32_t(block), pipeline.slot(uint32_t(block)));
+      pipeline.publish(uint32_t(block));
+      progress = true;
+    }
+    if (progress) rounds = 0;
+    else wait_for_other_worker(rounds);
+  }
+}
+
+template <Topology T, bool Indexed>
+void BandWorker::set_up_block(uint32_t d, uint32_t block, SmallBlock& slot) {
+  const Draw& draw = frame_.scene->draws[d];
+  const FastDraw& fd = frame_.draws[d];
+  const uint32_t* indices = draw.indices.data();
+  const uint32_t count = primitive_count(draw);
+  SmallBlockInput& in = slot.in;
+  slot.first = block * 8;
+  in.vertices = fd.vertices;
+  in.region = frame_.exact.region;
+  in.front_ccw = draw.state.front_face == FrontFace::CounterClockwise;
+  in.cull = draw.state.cull_mode;
+  in.depth = fd.raster.kernel;
+  in.count = std::min(count - slot.first, 8u);
+  for (uint32_t l = 0; l < 8; ++l) {
+    const std::array<uint32_t, 3> n = vertex_numbers<T>(slot.first + (l < in.count ? l : 0));
+    if constexpr (Indexed) in.a[l] = indices[n[0]], in.b[l] = indices[n[1]], in.c[l] = indices[n[2]];
+    else in.a[l] = n[0], in.b[l] = n[1], in.c[l] = n[2];
+  }
+  setup_small_block_avx2(in, slot.out);
+}
+
+// One block, lane by lane in primitive order, into this worker's rows.
+void BandWorker::draw_block(uint32_t d, const SmallBlock& block) {
+  const SmallBlockOutput& out = block.out;
+  const DrawRaster& raster = frame_.draws[d].raster;
+  for (uint32_t l = 0; l < block.in.count; ++l) {
+    const uint32_t bit = 1u << l;
+    if (out.scalar_mask & bit) triangle(d, block.first + l, block.in.a[l], block.in.b[l], block.in.c[l]);
+    else if ((out.grid_mask | out.job_mask) & bit) draw_small(out, int(l), encode_owner(d, block.first + l), raster);
+  }
+}
+
+// A small triangle inside one tile: straight to the kernel (no depth bounds: the tile's become unknown).
+void BandWorker::draw_small(const SmallBlockOutput& block, int lane, uint32_t owner, const DrawRaster& raster) {
+  const int32_t ty = block.y0[lane] >> kTileOrder;
+  if (!owns_tile_row(ty)) return;
+  if (!batch_.empty()) flush(raster);  // keep submission order: earlier batched triangles first
+  const int32_t tx = block.x0[lane] >> kTileOrder;
+  TileState& tile = frame_.raster.tile(tx, ty);
+  if (!tile.cleared) {
+    clear_tile(tx, ty, frame_.raster);
+    tile.cleared = true;
+  }
+  const bool wrote = (block.grid_mask >> lane) & 1u
+                         ? raster.grid_fn(block, lane, owner, raster.kernel.write, frame_.raster.target)
+                         : raster.small_fn(block, lane, owner, raster.kernel, frame_.raster.target);
+  if (wrote && raster.depth.write) tile.bounds.state = BoundsState::Unknown;
+}
+
+// Set-up of an unclipped triangle: triangle_setup.cpp step by step (lavapipe-rules §2.2-§2.5,
+// §3.2, §4.3), with the snap already done per vertex and the rows test first.
+void BandWorker::triangle(uint32_t d, uint32_t primitive, uint32_t a, uint32_t b, uint32_t c) {
+  const FastDraw& fd = frame_.draws[d];
+  const FastVertex& v0 = fd.vertices[a];
+  const FastVertex& v1 = fd.vertices[b];
+  const FastVertex& v2 = fd.vertices[c];
+  const uint32_t flags = v0.flags | v1.flags | v2.flags;
+  if (flags & kVertexClipBits) return clipped_triangle(d, primitive, a, b, c);
+  if (flags & kVertexSnapFailed) return;  // SetupFate::NonFinite
+  const PixelRect& region = frame_.exact.region;
+  // triangle_bbox (x0 = min >> 8, x1 = (max - 1) >> 8) ∩ draw region; coverage lies inside it.
+  const int32_t y0 = std::max(std::min({v0.y_fixed, v1.y_fixed, v2.y_fixed}) >> kFixedOrder, region.y0);
+  const int32_t y1 = std::min((std::max({v0.y_fixed, v1.y_fixed, v2.y_fixed}) - 1) >> kFixedOrder, region.y1);
+  if (y0 > y1 || !owns_rows(y0, y1)) return;
+  const int32_t x0 = std::max(std::min({v0.x_fixed, v1.x_fixed, v2.x_fixed}) >> kFixedOrder, region.x0);
+  const int32_t x1 = std::min((std::max({v0.x_fixed, v1.x_fixed, v2.x_fixed}) - 1) >> kFixedOrder, region.x1);
+  if (x0 > x1) return;
+  // area = dx01*dy20 - dx20*dy01 (§2.3), int64
+  const int64_t area = int64_t(v0.x_fixed - v1.x_fixed) * int64_t(v2.y_fixed - v0.y_fixed) -
+                       int64_t(v2.x_fixed - v0.x_fixed) * int64_t(v0.y_fixed - v1.y_fixed);
+  if (area == 0) return;  // always dropped
+  const RasterState& state = frame_.scene->draws[d].state;
+  if (face_culled((area > 0) == (state.front_face == FrontFace::CounterClockwise), state.cull_mode)) return;
+  if (fd.pipelined && state.cull_mode != CullMode::None &&  // draw_pipe_cull.c (§2.6)
+      pipeline_cull_drops(pipeline_cull_determinant({window_of(v0), window_of(v1), window_of(v2)}), state.cull_mode,
+                          state.front_face))
+    return;
+  const FastVertex& w1 = area < 0 ? v2 : v1;  // rotate_fixed_position_12: (v0, v2, v1)
+  const FastVertex& w2 = area < 0 ? v1 : v2;
+  FastTriangle t;
+  t.x_fixed[0] = v0.x_fixed, t.x_fixed[1] = w1.x_fixed, t.x_fixed[2] = w2.x_fixed;
+  t.y_fixed[0] = v0.y_fixed, t.y_fixed[1] = w1.y_fixed, t.y_fixed[2] = w2.y_fixed;
+  t.rect = PixelRect{x0, y0, x1, y1};
+  t.owner = encode_owner(d, primitive);
+  if (fd.setup.depth_active()) {
+    const std::array<WindowVertex, 3> window{window_of(v0), window_of(w1), window_of(w2)};
+    const DepthPlane plane = triangle_depth_plane(window, 0.5f);
+    t.a0 = plane.a0;
+    t.dzdx = plane.dzdx;
+    t.dzdy = plane.dzdy;
+    if (state.depth_bias.enable) t.offset = triangle_depth_offset(window, state.depth_bias, fd.setup.depth_format).offset;
+  }
+  submit(t, fd.raster);
+}
+
+// The exact path's clipper and set-up (front_end.cpp run_triangle) for a triangle that needs clipping.
+void BandWorker::clipped_triangle(uint32_t d, uint32_t primitive, uint32_t a, uint32_t b, uint32_t c) {
+  const Draw& draw = frame_.scene->draws[d];
+  const FastDraw& fd = frame_.draws[d];
+  const FrameContext& exact = frame_.exact;
+  const bool depth_clip = draw.state.depth_clip_enabled();
+  std::array<ClipVertex, 3> corners;
+  const uint32_t positions[3] = {a, b, c};
+  for (int k = 0; k < 3; ++k)
+    corners[k] = make_clip_vertex(draw.positions_clip[positions[k]], exact.viewport, depth_clip, exact.fma);
+  const ClippedTriangles clipped = clip_triangle(corners, exact.viewport);
+  for (const auto& piece : clipped.triangles) {
+    const std::array<WindowVertex, 3> window{piece[0].window, piece[1].window, piece[2].window};
+    if (fd.pipelined && draw.state.cull_mode != CullMode::None &&
+        pipeline_cull_drops(pipeline_cull_determinant(window), draw.state.cull_mode, draw.state.front_face))
+      continue;
+    const TriangleSetup setup = setup_triangle(window, encode_owner(d, primitive), fd.setup);
+    if (setup.fate != SetupFate::Rasterized) continue;
+    const FastTriangle t = from_raster_primitive(setup.raster, exact.region);
+    if (t.rect.empty() || !owns_rows(t.rect.y0, t.rect.y1)) continue;
+    submit(t, fd.raster);
+  }
+}
+
+void BandWorker::submit(const FastTriangle& t, const DrawRaster& raster) {
+  const bool one_tile = (t.rect.x0 >> kTileOrder) == (t.rect.x1 >> kTileOrder) &&
+                        (t.rect.y0 >> kTileOrder) == (t.rect.y1 >> kTileOrder);
+  if (one_tile) {
+    if (!batch_.empty()) flush(raster);  // keep submission order: earlier batched triangles first
+    raster_all_tiles(t, raster);
+    return;
+  }
+  batch_.push_back(t);
+  if (batch_.size() == kBatchSize) flush(raster);
+}
+
+void BandWorker::raster_all_tiles(const FastTriangle& t, const DrawRaster& raster) {
+  for (int32_t ty = t.rect.y0 >> kTileOrder; ty <= t.rect.y1 >> kTileOrder; ++ty) {
+    if (!owns_tile_row(ty)) continue;
+    for (int32_t tx = t.rect.x0 >> kTileOrder; tx <= t.rect.x1 >> kTileOrder; ++tx)
+      raster_in_tile(t, intersect(t.rect, tile_rect(tx, ty, frame_.raster.target)), tx, ty, raster, frame_.raster);
+  }
+}
+
+// Tile by tile over the batch's union, each tile's triangles in submission order.
+void BandWorker::flush(const DrawRaster& raster) {
+  if (batch_.empty()) return;
+  PixelRect all = batch_.front().rect;
+  for (const FastTriangle& t : batch_)
+    all = PixelRect{std::min(all.x0, t.rect.x0), std::min(all.y0, t.rect.y0), std::max(all.x1, t.rect.x1),
+                    std::max(all.y1, t.rect.y1)};
+  for (int32_t ty = all.y0 >> kTileOrder; ty <= all.y1 >> kTileOrder; ++ty) {
+    if (!owns_tile_row(ty)) continue;
+    for (int32_t tx = all.x0 >> kTileOrder; tx <= all.x1 >> kTileOrder; ++tx) {
+      const PixelRect tile = tile_rect(tx, ty, frame_.raster.target);
+      for (const FastTriangle& t : batch_) {
+        const PixelRect r = intersect(t.rect, tile);
+        if (!r.empty()) raster_in_tile(t, r, tx, ty, raster, frame_.raster);
+      }
+    }
+  }
+  batch_.clear();
+}
+
+// Draws the fast path does not handle: the exact front end, each primitive's visit rectangle cut
+// to this worker's tile rows, and the exact rasterizer on the same targets.
+void BandWorker::walk_exact(uint32_t d) {
+  const DepthTestState& depth = frame_.draws[d].raster.depth;
+  run_front_end(frame_.exact, d, [&](const PrimitiveOutcome& outcome) {
+    if (!outcome.rasterized() || outcome.raster.visit.empty()) return;
+    const PixelRect& visit = outcome.raster.visit;
+    for (int32_t ty = visit.y0 >> kTileOrder; ty <= visit.y1 >> kTileOrder; ++ty) {
+      if (!owns_tile_row(ty)) continue;
+      RasterPrimitive band = outcome.raster;
+      band.visit.y0 = std::max(visit.y0, ty * kTileSize);
+      band.visit.y1 = std::min(visit.y1, ty * kTileSize + kTileSize - 1);
+      prepare_tiles(band.visit, depth.write);
+      rasterize_primitive(band, depth, frame_.targets);
+    }
+  });
+}
+
+// Before the exact rasterizer writes into r: its tiles cleared, their bounds dropped if depth is written.
+void BandWorker::prepare_tiles(const PixelRect& r, bool depth_write) {
+  for (int32_t ty = r.y0 >> kTileOrder; ty <= r.y1 >> kTileOrder; ++ty) {
+    for (int32_t tx = r.x0 >> kTileOrder; tx <= r.x1 >> kTileOrder; ++tx) {
+      TileState& tile = frame_.raster.tile(tx, ty);
+      if (!tile.cleared) clear_tile(tx, ty, frame_.raster);
+      tile.cleared = true;
+      if (depth_write) tile.bounds.state = BoundsState::Unknown;
+    }
+  }
+}
+
+}  // namespace rastercmp::cpu::fast

@@ -1,0 +1,55 @@
+// One worker of a fast render: it walks every draw in submission order and rasterizes into the
+// tile rows it owns (row r belongs to worker r % workers), so each pixel sees its primitives in
+// order, whatever the number of threads (lavapipe-rules §2.7: deterministic by construction).
+// Per primitive: assemble → clip-mask test (clipped triangles go through the exact path's clipper
+// and set-up) → rows test → fixed-point area, cull, swap → depth plane → tiles. Triangles that
+// span several tiles are collected (up to kBatchSize) and drawn tile by tile, so that a tile stays
+// in cache while all of them are drawn into it.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "cpu_raster/fast/fast_frame.hpp"
+#include "cpu_raster/fast/small_triangles.hpp"
+
+namespace rastercmp::cpu::fast {
+
+class BandWorker {
+ public:
+  BandWorker(FastFrame& frame, uint32_t index);
+  void run();
+
+  static constexpr size_t kBatchSize = 64;
+
+ private:
+  bool owns_tile_row(int32_t tile_y) const { return owned_rows_[size_t(tile_y)] != 0; }
+  bool owns_rows(int32_t y0, int32_t y1) const;
+
+  template <Topology T, bool Indexed>
+  void walk_triangles(uint32_t draw_index);
+  void walk_fast(uint32_t draw_index);
+  void walk_exact(uint32_t draw_index);
+
+  template <Topology T, bool Indexed>
+  void walk_small_blocks(uint32_t draw_index);
+  template <Topology T, bool Indexed>
+  void set_up_block(uint32_t draw_index, uint32_t block, SmallBlock& slot);
+  void draw_block(uint32_t draw_index, const SmallBlock& block);
+  void draw_small(const SmallBlockOutput& block, int lane, uint32_t owner, const DrawRaster& raster);
+  void triangle(uint32_t draw_index, uint32_t primitive, uint32_t a, uint32_t b, uint32_t c);
+  void clipped_triangle(uint32_t draw_index, uint32_t primitive, uint32_t a, uint32_t b, uint32_t c);
+
+  void submit(const FastTriangle& t, const DrawRaster& raster);
+  void raster_all_tiles(const FastTriangle& t, const DrawRaster& raster);
+  void flush(const DrawRaster& raster);
+  void prepare_tiles(const PixelRect& r, bool depth_write);
+
+  FastFrame& frame_;
+  uint32_t index_, workers_;
+  std::vector<FastTriangle> batch_;
+  std::vector<uint8_t> owned_rows_;  // per tile row: 1 when this worker draws it
+};
+
+}  // namespace rastercmp::cpu::fast

@@ -1,0 +1,45 @@
+// The benchmark scenes of docs/performance.md, built in code (shared by `rastercmp bench`, the
+// Google Benchmark binary in bench/ and the fast path's tests, which use smaller sizes):
+//  - fill: 16 overlapping near-full-screen layers (a tilted quad of 2 triangles each), D32,
+//    LESS, writes on, drawn back to front (every layer passes) or front to back;
+//  - grid: cells x cells quads of 2 triangles over the whole framebuffer, interior vertices
+//    jittered by up to 1/4 cell, z = 0.5 + 0.2 sin(3x) cos(2y): 300 cells give 180,000 triangles
+//    of about 5.8 px at 1024x1024, 724 cells 1,048,352 triangles of about 1 px;
+//  - perspective: a rolling terrain seen by a perspective camera, cut by the near, far and side
+//    planes of the view volume.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "model/scene.hpp"
+
+namespace rastercmp::bench {
+
+Scene fill_layers_scene(bool back_to_front, uint32_t size = 1024, uint32_t layers = 16);
+Scene grid_scene(uint32_t cells, uint32_t size = 1024, uint64_t seed = 1);
+Scene perspective_scene(uint32_t cells = 200, uint32_t size = 1024);
+
+struct BenchScene {
+  std::string name;  // short id for tables and --scene
+  Scene scene;
+};
+
+// fill_b2f, fill_f2b, grid_180k, tiny_1m, perspective (names as in docs/performance.md).
+std::vector<BenchScene> standard_bench_scenes();
+std::vector<std::string> standard_bench_scene_names();
+// One of the standard scenes by name; throws UsageError naming the known ones.
+BenchScene standard_bench_scene(const std::string& name);
+
+// Every scenes/**/*.json under `root`, sorted by path (loader errors propagate).
+std::vector<Scene> load_scene_suite(const std::string& root);
+
+// Triangles the scene's draws form (its primitives, for Mtri/s).
+uint64_t triangle_count(const Scene& scene);
+
+// Samples covered by some primitive, summed over primitives (fragments before the depth test,
+// for Mpix/s), from the exact path's front end and coverage test.
+uint64_t covered_samples(const Scene& scene, bool fma);
+
+}  // namespace rastercmp::bench

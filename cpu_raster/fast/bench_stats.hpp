@@ -1,0 +1,41 @@
+// Measurement helpers of the benchmarks (docs/performance.md "Method"): robust summaries of
+// repeated timings, per-run peak memory and the machine's load during a run.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+namespace rastercmp::bench {
+
+struct TimingStats {
+  size_t count = 0;
+  double median = 0, q1 = 0, q3 = 0, min = 0, max = 0;  // seconds
+};
+
+// Quartiles by linear interpolation between order statistics; all zero for no samples.
+TimingStats summarize(std::vector<double> seconds);
+
+// Peak resident memory a call adds above what the process held when it started, in bytes.
+// Uses Linux's resettable high-water mark (/proc/self/clear_refs "5", VmHWM); where that is not
+// available, the growth of getrusage ru_maxrss (0 when an earlier peak was higher).
+uint64_t peak_memory_delta(const std::function<void()>& run);
+
+// CPU time of the whole machine against this process's own, between start() and stop():
+// `other_cores` is how many cores other processes kept busy on average (the noise).
+class LoadMonitor {
+ public:
+  void start();
+  void stop();
+  double wall_seconds() const { return wall_; }
+  double own_cores() const { return own_; }
+  double other_cores() const { return other_; }
+  double load_average_1min() const { return load1_; }
+
+ private:
+  uint64_t busy_ticks_ = 0;
+  double own_cpu_ = 0, start_wall_ = 0;
+  double wall_ = 0, own_ = 0, other_ = 0, load1_ = 0;
+};
+
+}  // namespace rastercmp::bench

@@ -1,0 +1,13 @@
+#include "cpu_raster/fast/cpu_features.hpp"
+
+namespace rastercmp::cpu::fast {
+
+bool host_has_avx2_fma() {
+  static const bool has = [] {
+    __builtin_cpu_init();
+    return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+  }();
+  return has;
+}
+
+}  // namespace rastercmp::cpu::fast

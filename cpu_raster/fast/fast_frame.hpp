@@ -1,0 +1,39 @@
+// Everything a fast render shares between its phases and workers (render_fast.cpp):
+// the exact path's frame context and targets, the per-draw vertex arrays and raster state, and
+// the tiles' depth bounds.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "cpu_raster/fast/block_pipeline.hpp"
+#include "cpu_raster/fast/fast_vertices.hpp"
+#include "cpu_raster/fast/tile_raster.hpp"
+#include "cpu_raster/front_end.hpp"
+#include "cpu_raster/render_targets.hpp"
+
+namespace rastercmp::cpu::fast {
+
+struct FastDraw {
+  // Triangles of a single-sample frame take the fast walk; anything else (lines, 4x) the exact
+  // front end and rasterizer, restricted to each worker's rows.
+  bool fast = false;
+  FastVertex* vertices = nullptr;           // fast draws: one per position (VertexScratch)
+  bool pipelined = false;                  // lavapipe-rules §1.5 chunk flag
+  SetupContext setup;                      // for the exact set-up of clipped triangles
+  DrawRaster raster;
+  std::unique_ptr<BlockPipeline> pipeline;  // small-triangle blocks (AVX2 hosts, draws it models)
+};
+
+struct FastFrame {
+  const Scene* scene = nullptr;
+  FrameContext exact;     // cpu::make_frame_context: viewport, region, methods
+  RenderTargets targets;  // the attachments, written in place (cleared tile by tile)
+  FrameRaster raster;     // pointers into targets, tiles, dispatch
+  std::vector<TileState> tiles;
+  std::vector<FastDraw> draws;
+  uint32_t workers = 1;
+};
+
+}  // namespace rastercmp::cpu::fast

@@ -1,0 +1,30 @@
+#include "cpu_raster/fast/fast_vertices.hpp"
+
+#include "cpu_raster/clip_test.hpp"
+#include "cpu_raster/fixed_point.hpp"
+
+namespace rastercmp::cpu::fast {
+
+void transform_vertices_scalar(const VertexJob& job, size_t begin, size_t end, FastVertex* out) {
+  for (size_t k = begin; k < end; ++k) {
+    const glm::vec4& p = job.pos_clip[k];
+    const WindowVertex w = window_from_clip_jit(p, job.viewport, job.fma);  // §1.3
+    FastVertex& v = out[k];
+    v.x = w.x;
+    v.y = w.y;
+    v.z = w.z;
+    v.flags = clip_mask(p, job.depth_clip);
+    v.unused[0] = v.unused[1] = 0;
+    const auto x = snap_vertex(w.x, 0.5f, SnapRounding::NearestEven);  // §2.2, single sample
+    const auto y = snap_vertex(w.y, 0.5f, SnapRounding::NearestEven);
+    if (!x || !y) {
+      v.flags |= kVertexSnapFailed;
+      v.x_fixed = v.y_fixed = 0;
+    } else {
+      v.x_fixed = x->raw;
+      v.y_fixed = y->raw;
+    }
+  }
+}
+
+}  // namespace rastercmp::cpu::fast

@@ -1,0 +1,86 @@
+// AVX2 twin of transform_vertices_scalar: 8 positions at a time, the same IEEE operations in the
+// same order (1/w, x*(1/w), then fused or separate *scale + translate; §1.3), the same unordered
+// clip compares and the same round-to-nearest-even snap (§2.2).
+#include <immintrin.h>
+
+#include "cpu_raster/fast/cpu_features.hpp"
+#include "cpu_raster/fast/fast_vertices.hpp"
+#include "cpu_raster/fixed_point.hpp"
+
+namespace rastercmp::cpu::fast {
+namespace {
+
+struct Columns {
+  __m256 x, y, z, w;
+};
+
+RASTERCMP_AVX2 inline __m256 load_pair(const float* p, int a, int b) {
+  return _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(p + 4 * a)), _mm_loadu_ps(p + 4 * b), 1);
+}
+
+// Eight glm::vec4 (x, y, z, w contiguous) → one register per component.
+RASTERCMP_AVX2 inline Columns load_columns(const float* p) {
+  const __m256 a0 = load_pair(p, 0, 4), a1 = load_pair(p, 1, 5), a2 = load_pair(p, 2, 6), a3 = load_pair(p, 3, 7);
+  const __m256 t0 = _mm256_unpacklo_ps(a0, a1), t1 = _mm256_unpackhi_ps(a0, a1);
+  const __m256 t2 = _mm256_unpacklo_ps(a2, a3), t3 = _mm256_unpackhi_ps(a2, a3);
+  return Columns{_mm256_shuffle_ps(t0, t2, 0x44), _mm256_shuffle_ps(t0, t2, 0xEE), _mm256_shuffle_ps(t1, t3, 0x44),
+                 _mm256_shuffle_ps(t1, t3, 0xEE)};
+}
+
+// cpu::window_from_clip_jit for one component.
+RASTERCMP_AVX2 inline __m256 to_window(__m256 c, __m256 oow, float scale, float translate, bool fma) {
+  const __m256 ndc = _mm256_mul_ps(c, oow);
+  if (fma) return _mm256_fmadd_ps(ndc, _mm256_set1_ps(scale), _mm256_set1_ps(translate));
+  return _mm256_add_ps(_mm256_mul_ps(ndc, _mm256_set1_ps(scale)), _mm256_set1_ps(translate));
+}
+
+// unordered_greater(a, b) = !(a <= b), one bit of the clip mask.
+RASTERCMP_AVX2 inline __m256i clip_bit(__m256 a, __m256 b, int bit) {
+  return _mm256_and_si256(_mm256_castps_si256(_mm256_cmp_ps(a, b, _CMP_NLE_UQ)), _mm256_set1_epi32(1 << bit));
+}
+
+RASTERCMP_AVX2 inline __m256i clip_mask8(const Columns& p, bool depth_clip) {
+  const __m256 zero = _mm256_setzero_ps();
+  __m256i mask = _mm256_or_si256(clip_bit(p.x, p.w, 0), clip_bit(zero, _mm256_add_ps(p.x, p.w), 1));
+  mask = _mm256_or_si256(mask, _mm256_or_si256(clip_bit(p.y, p.w, 2), clip_bit(zero, _mm256_add_ps(p.y, p.w), 3)));
+  if (depth_clip) mask = _mm256_or_si256(mask, _mm256_or_si256(clip_bit(zero, p.z, 4), clip_bit(p.z, p.w, 5)));
+  return mask;
+}
+
+// snap_vertex: rne(fl(x - 0.5) * 256); `ok` is false for NaN or |value| > kMaxMagnitude.
+RASTERCMP_AVX2 inline __m256i snap8(__m256 window, __m256& ok) {
+  const __m256 scaled = _mm256_mul_ps(_mm256_sub_ps(window, _mm256_set1_ps(0.5f)), _mm256_set1_ps(float(kFixedOne)));
+  const __m256 rounded = _mm256_round_ps(scaled, _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC);
+  const __m256 magnitude = _mm256_andnot_ps(_mm256_set1_ps(-0.0f), rounded);
+  ok = _mm256_cmp_ps(magnitude, _mm256_set1_ps(float(Fixed24_8::kMaxMagnitude)), _CMP_LE_OQ);
+  return _mm256_and_si256(_mm256_cvtps_epi32(_mm256_and_ps(rounded, ok)), _mm256_castps_si256(ok));
+}
+
+}  // namespace
+
+RASTERCMP_AVX2 void transform_vertices_avx2(const VertexJob& job, size_t begin, size_t end, FastVertex* out) {
+  const ViewportTransform& vp = job.viewport;
+  size_t k = begin;
+  alignas(32) float wx[8], wy[8], wz[8];
+  alignas(32) int32_t fx[8], fy[8], flags[8];
+  for (; k + 8 <= end; k += 8) {
+    const Columns p = load_columns(&job.pos_clip[k].x);
+    const __m256 oow = _mm256_div_ps(_mm256_set1_ps(1.0f), p.w);
+    const __m256 x = to_window(p.x, oow, vp.scale[0], vp.translate[0], job.fma);
+    const __m256 y = to_window(p.y, oow, vp.scale[1], vp.translate[1], job.fma);
+    const __m256 z = to_window(p.z, oow, vp.scale[2], vp.translate[2], job.fma);
+    __m256 ok_x, ok_y;
+    _mm256_store_si256(reinterpret_cast<__m256i*>(fx), snap8(x, ok_x));
+    _mm256_store_si256(reinterpret_cast<__m256i*>(fy), snap8(y, ok_y));
+    const __m256i failed = _mm256_andnot_si256(_mm256_castps_si256(_mm256_and_ps(ok_x, ok_y)),
+                                               _mm256_set1_epi32(int(kVertexSnapFailed)));
+    _mm256_store_si256(reinterpret_cast<__m256i*>(flags), _mm256_or_si256(clip_mask8(p, job.depth_clip), failed));
+    _mm256_store_ps(wx, x);
+    _mm256_store_ps(wy, y);
+    _mm256_store_ps(wz, z);
+    for (int i = 0; i < 8; ++i) out[k + i] = FastVertex{fx[i], fy[i], wx[i], wy[i], wz[i], uint32_t(flags[i]), {0, 0}};
+  }
+  transform_vertices_scalar(job, k, end, out);
+}
+
+}  // namespace rastercmp::cpu::fast

@@ -1,0 +1,43 @@
+#include "cpu_raster/fast/frame_memory.hpp"
+
+#include <sys/mman.h>
+
+namespace rastercmp::cpu::fast {
+
+void advise_huge_pages(void* data, size_t bytes) {
+#ifdef MADV_HUGEPAGE
+  constexpr uintptr_t kHuge = uintptr_t(2) << 20;
+  const uintptr_t begin = (reinterpret_cast<uintptr_t>(data) + kHuge - 1) & ~(kHuge - 1);
+  const uintptr_t end = (reinterpret_cast<uintptr_t>(data) + bytes) & ~(kHuge - 1);
+  if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);  // a hint: errors ignored
+#else
+  (void)data;
+  (void)bytes;
+#endif
+}
+
+void size_buffer(std::vector<uint32_t>& buffer, size_t count) {
+  if (buffer.capacity() < count) {
+    std::vector<uint32_t> fresh;
+    fresh.reserve(count);  // not yet touched: the hint still applies to every page
+    advise_huge_pages(fresh.data(), count * sizeof(uint32_t));
+    buffer = std::move(fresh);
+  }
+  buffer.resize(count);
+}
+
+FastVertex* VertexScratch::acquire(size_t count) {
+  if (count > capacity_) {
+    data_ = std::make_unique_for_overwrite<FastVertex[]>(count);
+    capacity_ = count;
+    advise_huge_pages(data_.get(), count * sizeof(FastVertex));
+  }
+  return data_.get();
+}
+
+VertexScratch& thread_vertex_scratch() {
+  thread_local VertexScratch scratch;
+  return scratch;
+}
+
+}  // namespace rastercmp::cpu::fast

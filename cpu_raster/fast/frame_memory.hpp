@@ -1,0 +1,36 @@
+// Memory of a fast render (docs/performance.md "Allocation"): the result buffers are sized
+// without a separate clear pass (tiles are cleared by their workers), large fresh buffers ask for
+// transparent huge pages (one fault per 2 MiB instead of 512), and the per-vertex arrays live in a
+// per-thread scratch buffer that is kept between renders (its size: 24 bytes per position of the
+// largest scene drawn so far on that thread).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "cpu_raster/fast/fast_vertices.hpp"
+
+namespace rastercmp::cpu::fast {
+
+// Gives `buffer` exactly `count` elements, reusing its memory when it is large enough; the
+// contents are unspecified (the caller writes every element).
+void size_buffer(std::vector<uint32_t>& buffer, size_t count);
+
+// madvise(MADV_HUGEPAGE) over the 2 MiB-aligned part of [data, data + bytes), where supported.
+void advise_huge_pages(void* data, size_t bytes);
+
+class VertexScratch {
+ public:
+  FastVertex* acquire(size_t count);  // valid until the next acquire on this object
+
+ private:
+  std::unique_ptr<FastVertex[]> data_;
+  size_t capacity_ = 0;
+};
+
+// The calling thread's scratch.
+VertexScratch& thread_vertex_scratch();
+
+}  // namespace rastercmp::cpu::fast

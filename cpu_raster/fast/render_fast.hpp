@@ -1,0 +1,30 @@
+// The fast CPU path: the same bits as the exact path (cpu_raster/render_cpu.cpp), faster
+// (docs/performance.md). render_cpu() dispatches here when options.threads >= 1.
+#pragma once
+
+#include <cstdint>
+
+#include "cpu_raster/cpu_raster.hpp"
+
+namespace rastercmp {
+
+// options.threads worker threads (0 is taken as 1). A profile, method override or feature the
+// fast path does not model is handed to the exact path (same result, exact speed).
+RenderResult render_cpu_fast(const Scene& scene, const CpuOptions& options);
+
+// The same into `result`, reusing its owner and depth buffers when they are large enough (as a
+// Vulkan application reuses its attachments from frame to frame).
+void render_cpu_fast_into(const Scene& scene, const CpuOptions& options, RenderResult& result);
+
+namespace cpu::fast {
+
+// Knobs for tests and benchmarks; the defaults are what render_cpu_fast uses.
+struct FastConfig {
+  bool allow_avx2 = true;  // false: the scalar kernels even on an AVX2 host
+};
+
+void render_fast_into(const Scene& scene, const CpuOptions& options, const FastConfig& config, RenderResult& result);
+RenderResult render_fast(const Scene& scene, const CpuOptions& options, const FastConfig& config);
+
+}  // namespace cpu::fast
+}  // namespace rastercmp

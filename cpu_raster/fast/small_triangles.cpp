@@ -1,0 +1,89 @@
+#include "cpu_raster/fast/small_triangles.hpp"
+
+#include <array>
+#include <bit>
+#include <cmath>
+#include <utility>
+
+namespace rastercmp::cpu::fast {
+namespace {
+
+// depth_test_passes (depth_sample.cpp, lavapipe-rules §3.6), inlined for one op.
+template <CompareOp Op, class T>
+bool ordered(T a, T b) {
+  if constexpr (Op == CompareOp::Never) return false;
+  if constexpr (Op == CompareOp::Less) return a < b;
+  if constexpr (Op == CompareOp::Equal) return a == b;
+  if constexpr (Op == CompareOp::LessOrEqual) return a <= b;
+  if constexpr (Op == CompareOp::Greater) return a > b;
+  if constexpr (Op == CompareOp::NotEqual) return a != b;
+  if constexpr (Op == CompareOp::GreaterOrEqual) return a >= b;
+  return true;
+}
+
+template <DepthFormat F, CompareOp Op>
+bool passes(uint32_t fragment, uint32_t stored) {
+  if constexpr (F == DepthFormat::D32Sfloat) {
+    if constexpr (Op == CompareOp::Never) return false;
+    const float a = std::bit_cast<float>(fragment), b = std::bit_cast<float>(stored);
+    if (std::isnan(a) || std::isnan(b)) return true;  // unordered predicates
+    return ordered<Op>(a, b);
+  } else {
+    return ordered<Op>(fragment, stored);
+  }
+}
+
+template <DepthFormat F, CompareOp Op>
+bool scatter(const SmallBlockOutput& b, int l, uint32_t owner, bool depth_write, const TileTarget& t) {
+  bool wrote = false;
+  for (uint32_t bits = b.grid_bits[l]; bits != 0; bits &= bits - 1) {
+    const int p = std::countr_zero(bits);
+    const size_t i = size_t(b.y0[l] + p / kGridSide) * size_t(t.width) + size_t(b.x0[l] + p % kGridSide);
+    if constexpr (F != DepthFormat::None) {
+      const uint32_t raw = b.grid_raw[p][l];
+      if (!passes<F, Op>(raw, t.depth[i])) continue;
+      if (depth_write) t.depth[i] = raw;
+    }
+    t.owner[i] = owner;
+    wrote = true;
+  }
+  return wrote;
+}
+
+template <DepthFormat F, size_t... I>
+constexpr std::array<GridScatterFn, 8> scatters_for(std::index_sequence<I...>) {
+  return {&scatter<F, CompareOp(I)>...};
+}
+
+constexpr std::array<std::array<GridScatterFn, 8>, 4> kScatters = {
+    scatters_for<DepthFormat::None>(std::make_index_sequence<8>{}),
+    scatters_for<DepthFormat::D16Unorm>(std::make_index_sequence<8>{}),
+    scatters_for<DepthFormat::X8D24Unorm>(std::make_index_sequence<8>{}),
+    scatters_for<DepthFormat::D32Sfloat>(std::make_index_sequence<8>{}),
+};
+
+}  // namespace
+
+KernelJob SmallBlockOutput::job(int lane, uint32_t owner, CompareOp op) const {
+  KernelJob j;
+  j.rect = PixelRect{x0[lane], y0[lane], x1[lane], y1[lane]};
+  j.origin_x = origin_x[lane];
+  for (int i = 0; i < 3; ++i) {
+    j.g_minus_1[i] = g_minus_1[i][lane];
+    j.gx[i] = gx[i][lane];
+    j.gy[i] = gy[i][lane];
+  }
+  j.a0 = a0[lane];
+  j.dzdx = dzdx[lane];
+  j.dzdy = dzdy[lane];
+  j.offset = 0.0f;
+  j.owner = owner;
+  j.op = op;
+  return j;
+}
+
+GridScatterFn select_grid_scatter(DepthFormat format, CompareOp op) {
+  return kScatters[size_t(format)][format == DepthFormat::None ? size_t(CompareOp::Always) : size_t(op)];
+}
+
+}  // namespace rastercmp::cpu::fast

@@ -1,0 +1,64 @@
+// Set-up of small triangles eight at a time (AVX2), for meshes whose triangles cover a few
+// pixels: per lane the same integer and float operations as the scalar set-up
+// (BandWorker::triangle, lavapipe-rules §2.2-§3.2). Then, by size:
+//  - "grid" lanes (rectangle at most kGridSide x kGridSide pixels): coverage and raw depth of
+//    every candidate pixel are computed for the eight triangles at once (triangles in lanes, one
+//    pixel position per step); the depth test and the writes are then done triangle by triangle,
+//    in order, by scatter_grid_lane;
+//  - other small lanes (at most kSmallWidth x kSmallHeight): one kernel call per triangle with
+//    edge values relative to the triangle's own corner (the 256-scaled E of edge_plane.hpp);
+//  - the rest (larger, clipped, non-finite) goes back to the scalar set-up.
+//
+// 32-bit bound: a small lane's unclipped bounding box spans at most kSmallWidth x kSmallHeight
+// pixels, so |X_i - X_j| <= 256*(kSmallWidth + 1) < 2^12 and |Y_i - Y_j| <= 256*(kSmallHeight + 1)
+// <= 2^13; the doubled area is below 2^26 and every edge value formed within 8 columns and
+// kSmallHeight rows of the corner below 2^27.
+#pragma once
+
+#include <cstdint>
+
+#include "cpu_raster/draw_region.hpp"
+#include "cpu_raster/fast/fast_triangle.hpp"
+#include "cpu_raster/fast/fast_vertices.hpp"
+#include "cpu_raster/fast/tile_kernel.hpp"
+#include "model/scene.hpp"
+
+namespace rastercmp::cpu::fast {
+
+inline constexpr int32_t kSmallWidth = 8;    // pixels: one 8-lane span per row
+inline constexpr int32_t kSmallHeight = 16;  // rows
+inline constexpr int32_t kGridSide = 4;      // candidate pixels per side of a grid lane
+
+struct SmallBlockInput {
+  const FastVertex* vertices = nullptr;
+  uint32_t a[8], b[8], c[8];  // vertex (position) numbers, already through the index buffer
+  uint32_t count = 0;         // lanes in use (the others repeat a valid vertex)
+  PixelRect region;
+  bool front_ccw = true;
+  CullMode cull = CullMode::None;
+  KernelDepth depth;  // format None: no depth test
+};
+
+struct SmallBlockOutput {
+  uint32_t scalar_mask = 0;  // lanes for the scalar set-up
+  uint32_t job_mask = 0;     // lanes for a per-triangle kernel call
+  uint32_t grid_mask = 0;    // lanes whose pixels are in grid_bits / grid_raw
+  alignas(32) int32_t x0[8], y0[8], x1[8], y1[8], origin_x[8];
+  alignas(32) int32_t g_minus_1[3][8], gx[3][8], gy[3][8];
+  alignas(32) float a0[8], dzdx[8], dzdy[8];
+  // Grid lanes: bit dy*kGridSide + dx is set when pixel (x0 + dx, y0 + dy) is covered; its raw
+  // depth is grid_raw[dy*kGridSide + dx][lane].
+  alignas(32) uint32_t grid_bits[8];
+  alignas(32) uint32_t grid_raw[kGridSide * kGridSide][8];
+
+  // The lane's job (offset 0: draws with depth bias take the scalar set-up).
+  KernelJob job(int lane, uint32_t owner, CompareOp op) const;
+};
+
+void setup_small_block_avx2(const SmallBlockInput& in, SmallBlockOutput& out);
+
+// Depth test and writes of one grid lane, in raster order; returns whether any pixel was written.
+using GridScatterFn = bool (*)(const SmallBlockOutput&, int lane, uint32_t owner, bool depth_write, const TileTarget&);
+GridScatterFn select_grid_scatter(DepthFormat format, CompareOp op);
+
+}  // namespace rastercmp::cpu::fast

@@ -1,0 +1,57 @@
+// The innermost loop of the fast path: one triangle over a rectangle of one tile, 8 pixels of a
+// row per step (AVX2), with coverage from 32-bit edge values and depth per pixel from the exact
+// formula (lavapipe-rules §3.3-§3.6):
+//   z = fl(FMA?(dzdy, py, FMA?(dzdx, px, a0)) + o), clamped to [0,1] (and zmin..zmax), converted,
+//   compared against the stored value, then depth (when writes are on) and owner written.
+// Never incremental depth stepping: every pixel evaluates the plane itself.
+#pragma once
+
+#include <cstdint>
+
+#include "cpu_raster/draw_region.hpp"
+#include "model/scene.hpp"
+
+namespace rastercmp::cpu::fast {
+
+// The attachments, single sample, row-major.
+struct TileTarget {
+  uint32_t* owner = nullptr;
+  uint32_t* depth = nullptr;  // null without a depth attachment
+  int32_t width = 0, height = 0;
+};
+
+// A draw's depth state as the kernels use it; format None: no depth test (and no depth writes).
+struct KernelDepth {
+  DepthFormat format = DepthFormat::None;
+  CompareOp op = CompareOp::Always;
+  bool write = false;
+  bool clamp = false;  // depth clamp to [zmin, zmax] after the [0,1] clamp
+  float zmin = 0, zmax = 1;
+  bool fma = true;
+};
+
+// Coverage of one edge in a tile, in "G" form (tile_edges.hpp): a pixel is covered iff G > 0, and
+// G(x, y) = g + gx*(x - origin_x) + gy*(y - origin_y). Stored as G - 1 so the test is a sign bit.
+struct KernelJob {
+  PixelRect rect;                 // pixels to visit, inside one tile and the framebuffer
+  int32_t origin_x = 0;           // rect.x0 rounded down to a multiple of 8; origin_y = rect.y0
+  int32_t g_minus_1[3] = {0, 0, 0};
+  int32_t gx[3] = {0, 0, 0}, gy[3] = {0, 0, 0};
+  float a0 = 0, dzdx = 0, dzdy = 0, offset = 0;
+  uint32_t owner = 0;
+  CompareOp op = CompareOp::Always;  // the draw's op, or Always once hi-z proved that all pass
+};
+
+// Returns whether any pixel passed (and was written).
+using KernelFn = bool (*)(const KernelJob&, const KernelDepth&, const TileTarget&);
+
+struct SmallBlockOutput;
+// The kernel for one lane of a block of small triangles (small_triangles.hpp).
+using SmallKernelFn = bool (*)(const SmallBlockOutput&, int lane, uint32_t owner, const KernelDepth&, const TileTarget&);
+SmallKernelFn select_small_kernel_avx2(DepthFormat format, CompareOp op);
+
+// The AVX2 kernel for a depth format (None: coverage only) and compare op. Call only when
+// host_has_avx2_fma().
+KernelFn select_kernel_avx2(DepthFormat format, CompareOp op);
+
+}  // namespace rastercmp::cpu::fast

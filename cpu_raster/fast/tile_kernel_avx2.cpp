@@ -1,0 +1,293 @@
+// AVX2 kernels of tile_kernel.hpp, one per depth format and compare op. Each lane does exactly
+// the scalar exact path's IEEE operations (depth_sample.cpp), so the bits agree lane by lane:
+// _mm256_min_ps / _mm256_max_ps return their second operand on NaN, as sse_min / sse_max do;
+// the float compares use the unordered predicates of lavapipe-rules §3.6; UNORM depth stays
+// below 2^24, so a signed 32-bit compare orders it as the unsigned one does.
+#include <immintrin.h>
+
+#include <array>
+#include <utility>
+
+#include <algorithm>
+
+#include "cpu_raster/fast/avx2_depth.hpp"
+#include "cpu_raster/fast/cpu_features.hpp"
+#include "cpu_raster/fast/small_triangles.hpp"
+#include "cpu_raster/fast/tile_depth_bounds.hpp"
+#include "cpu_raster/fast/tile_kernel.hpp"
+
+namespace rastercmp::cpu::fast {
+namespace {
+
+template <CompareOp Op>
+constexpr int unordered_predicate() {  // depth_test_passes for D32: true whenever NaN is involved
+  switch (Op) {
+    case CompareOp::Less: return _CMP_NGE_UQ;
+    case CompareOp::Equal: return _CMP_EQ_UQ;
+    case CompareOp::LessOrEqual: return _CMP_NGT_UQ;
+    case CompareOp::Greater: return _CMP_NLE_UQ;
+    case CompareOp::NotEqual: return _CMP_NEQ_UQ;
+    case CompareOp::GreaterOrEqual: return _CMP_NLT_UQ;
+    default: return _CMP_TRUE_UQ;
+  }
+}
+
+// depth_test_passes(op, format, fragment, stored) per lane (Never and Always never get here).
+template <DepthFormat F, CompareOp Op>
+RASTERCMP_AVX2 inline __m256i depth_passes(__m256 z, __m256i raw, __m256i stored) {
+  if constexpr (F == DepthFormat::D32Sfloat) {
+    return _mm256_castps_si256(_mm256_cmp_ps(z, _mm256_castsi256_ps(stored), unordered_predicate<Op>()));
+  } else {
+    const __m256i ones = _mm256_set1_epi32(-1);
+    if constexpr (Op == CompareOp::Less) return _mm256_cmpgt_epi32(stored, raw);
+    if constexpr (Op == CompareOp::Equal) return _mm256_cmpeq_epi32(raw, stored);
+    if constexpr (Op == CompareOp::LessOrEqual) return _mm256_xor_si256(_mm256_cmpgt_epi32(raw, stored), ones);
+    if constexpr (Op == CompareOp::Greater) return _mm256_cmpgt_epi32(raw, stored);
+    if constexpr (Op == CompareOp::NotEqual) return _mm256_xor_si256(_mm256_cmpeq_epi32(raw, stored), ones);
+    if constexpr (Op == CompareOp::GreaterOrEqual) return _mm256_xor_si256(_mm256_cmpgt_epi32(stored, raw), ones);
+    return ones;
+  }
+}
+
+RASTERCMP_AVX2 inline __m256i load_lanes(const uint32_t* p, __m256i in_row, bool row_end) {
+  if (row_end) return _mm256_maskload_epi32(reinterpret_cast<const int*>(p), in_row);
+  return _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p));
+}
+
+// Writes `value` where `pass` is set. Lanes past the row's end are never touched (maskstore); the
+// others belong to this tile, which only this thread writes, so a blended full store is safe.
+RASTERCMP_AVX2 inline void store_lanes(uint32_t* p, __m256i value, __m256i old, __m256i pass, bool row_end) {
+  if (row_end) {
+    _mm256_maskstore_epi32(reinterpret_cast<int*>(p), pass, value);
+  } else {
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(p), _mm256_blendv_epi8(old, value, pass));
+  }
+}
+
+RASTERCMP_AVX2 inline bool all_lanes(__m256i mask) { return _mm256_movemask_ps(_mm256_castsi256_ps(mask)) == 0xFF; }
+
+// z = fl(FMA?(dzdy, py, FMA?(dzdx, px, a0)) + o), then min(z, 1), max(z, 0) and the depth clamp.
+RASTERCMP_AVX2 inline __m256 fragment_depth(const KernelJob& j, const KernelDepth& d, __m256 px, __m256 py) {
+  const __m256 a0 = _mm256_set1_ps(j.a0), dzdx = _mm256_set1_ps(j.dzdx), dzdy = _mm256_set1_ps(j.dzdy);
+  return finish_depth8(mul_add8(dzdy, py, mul_add8(dzdx, px, a0, d.fma), d.fma), _mm256_set1_ps(j.offset), d);
+}
+
+// Depth test and writes of one span; returns the lanes that passed.
+template <DepthFormat F, CompareOp Op>
+RASTERCMP_AVX2 inline __m256i depth_span(const KernelJob& j, const KernelDepth& d, uint32_t* depth_row, __m256i xv,
+                                         __m256 py, __m256i covered, __m256i in_row, bool row_end) {
+  const __m256 z = fragment_depth(j, d, _mm256_cvtepi32_ps(xv), py);
+  const __m256i raw = to_raw<F>(z);
+  __m256i pass = covered;
+  const bool full = !row_end && all_lanes(covered);
+  if constexpr (Op == CompareOp::Always) {
+    if (!d.write) return pass;
+    if (full) {
+      _mm256_storeu_si256(reinterpret_cast<__m256i*>(depth_row), raw);
+      return pass;
+    }
+    store_lanes(depth_row, raw, load_lanes(depth_row, in_row, row_end), pass, row_end);
+  } else {
+    const __m256i stored = load_lanes(depth_row, in_row, row_end);
+    pass = _mm256_and_si256(pass, depth_passes<F, Op>(z, raw, stored));
+    if (d.write && !_mm256_testz_si256(pass, pass)) store_lanes(depth_row, raw, stored, pass, row_end);
+  }
+  return pass;
+}
+
+template <DepthFormat F, CompareOp Op>
+RASTERCMP_AVX2 bool kernel(const KernelJob& j, const KernelDepth& d, const TileTarget& t) {
+  if constexpr (Op == CompareOp::Never && F != DepthFormat::None) return false;
+  const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+  __m256i lane_g[3], span_step[3];
+  for (int i = 0; i < 3; ++i) {
+    lane_g[i] = _mm256_mullo_epi32(lane, _mm256_set1_epi32(j.gx[i]));
+    span_step[i] = _mm256_set1_epi32(8 * j.gx[i]);
+  }
+  const __m256i x_lo = _mm256_set1_epi32(j.rect.x0 - 1), x_hi = _mm256_set1_epi32(j.rect.x1 + 1);
+  const __m256i row_width = _mm256_set1_epi32(t.width);
+  const __m256i owner = _mm256_set1_epi32(int32_t(j.owner));
+  int32_t row_g[3] = {j.g_minus_1[0], j.g_minus_1[1], j.g_minus_1[2]};
+  bool any = false;
+  for (int32_t y = j.rect.y0; y <= j.rect.y1; ++y) {
+    __m256i e0 = _mm256_add_epi32(_mm256_set1_epi32(row_g[0]), lane_g[0]);
+    __m256i e1 = _mm256_add_epi32(_mm256_set1_epi32(row_g[1]), lane_g[1]);
+    __m256i e2 = _mm256_add_epi32(_mm256_set1_epi32(row_g[2]), lane_g[2]);
+    for (int i = 0; i < 3; ++i) row_g[i] += j.gy[i];
+    const __m256 py = _mm256_set1_ps(float(y));
+    const size_t row = size_t(y) * size_t(t.width);
+    for (int32_t x = j.origin_x; x <= j.rect.x1; x += 8) {
+      const __m256i xv = _mm256_add_epi32(_mm256_set1_epi32(x), lane);
+      __m256i covered = _mm256_and_si256(_mm256_cmpgt_epi32(xv, x_lo), _mm256_cmpgt_epi32(x_hi, xv));
+      covered = _mm256_andnot_si256(_mm256_srai_epi32(_mm256_or_si256(_mm256_or_si256(e0, e1), e2), 31), covered);
+      e0 = _mm256_add_epi32(e0, span_step[0]);
+      e1 = _mm256_add_epi32(e1, span_step[1]);
+      e2 = _mm256_add_epi32(e2, span_step[2]);
+      if (_mm256_testz_si256(covered, covered)) continue;
+      const bool row_end = x > t.width - 8;  // the span reaches past the row: masked loads and stores
+      const __m256i in_row = _mm256_cmpgt_epi32(row_width, xv);
+      __m256i pass = covered;
+      if constexpr (F != DepthFormat::None) {
+        pass = depth_span<F, Op>(j, d, t.depth + row + x, xv, py, covered, in_row, row_end);
+        if (_mm256_testz_si256(pass, pass)) continue;
+      }
+      uint32_t* owner_row = t.owner + row + x;
+      if (!row_end && all_lanes(pass)) {
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(owner_row), owner);
+      } else {
+        store_lanes(owner_row, owner, load_lanes(owner_row, in_row, row_end), pass, row_end);
+      }
+      any = true;
+    }
+  }
+  return any;
+}
+
+// ---- small triangles (small_triangles.hpp): one lane of a SmallBlockOutput, everything that
+// does not change from row to row hoisted out of the loop (edge steps, the x mask, the inner FMA
+// of the depth plane, which depends on px only).
+
+// z of a group of lanes whose inner FMA?(dzdx, px, a0) is already known; then the depth test.
+template <DepthFormat F, CompareOp Op>
+RASTERCMP_AVX2 inline __m256i small_depth(const KernelDepth& d, __m256 inner, __m256 py, __m256 dzdy, __m256i covered,
+                                          __m256i stored, __m256i& raw) {
+  // + o with o = 0 (draws with depth bias take the scalar set-up); the add turns -0 into +0
+  const __m256 z = finish_depth8(mul_add8(dzdy, py, inner, d.fma), _mm256_setzero_ps(), d);
+  raw = to_raw<F>(z);
+  if constexpr (Op == CompareOp::Always) return covered;
+  else return _mm256_and_si256(covered, depth_passes<F, Op>(z, raw, stored));
+}
+
+// A 4x2 group: row y in lanes 0-3, row y+1 in lanes 4-7 (when `two_rows`).
+RASTERCMP_AVX2 inline __m256i load_4x2(const uint32_t* row0, const uint32_t* row1, bool two_rows) {
+  const __m128i lo = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row0));
+  const __m128i hi = two_rows ? _mm_loadu_si128(reinterpret_cast<const __m128i*>(row1)) : _mm_setzero_si128();
+  return _mm256_inserti128_si256(_mm256_castsi128_si256(lo), hi, 1);
+}
+
+RASTERCMP_AVX2 inline void store_4x2(uint32_t* row0, uint32_t* row1, bool two_rows, __m256i value) {
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(row0), _mm256_castsi256_si128(value));
+  if (two_rows) _mm_storeu_si128(reinterpret_cast<__m128i*>(row1), _mm256_extracti128_si256(value, 1));
+}
+
+// A triangle whose rectangle is at most 4 pixels wide, 4x2 pixels per step; the 4 columns from
+// ox lie inside the tile and the framebuffer (small_kernel checks the latter).
+template <DepthFormat F, CompareOp Op>
+RASTERCMP_AVX2 bool small_4x2(const SmallBlockOutput& b, int l, int32_t ox, uint32_t owner_id, const KernelDepth& d,
+                              const TileTarget& t) {
+  const int32_t x0 = b.x0[l], x1 = b.x1[l], y1 = b.y1[l];
+  const int32_t shift = ox - b.origin_x[l];  // the block's edge values are given at origin_x
+  const __m256i lx = _mm256_setr_epi32(0, 1, 2, 3, 0, 1, 2, 3), ly = _mm256_setr_epi32(0, 0, 0, 0, 1, 1, 1, 1);
+  __m256i e[3], step[3];
+  for (int i = 0; i < 3; ++i) {
+    const __m256i gx = _mm256_set1_epi32(b.gx[i][l]), gy = _mm256_set1_epi32(b.gy[i][l]);
+    e[i] = _mm256_add_epi32(_mm256_set1_epi32(b.g_minus_1[i][l] + shift * b.gx[i][l]),
+                            _mm256_add_epi32(_mm256_mullo_epi32(lx, gx), _mm256_mullo_epi32(ly, gy)));
+    step[i] = _mm256_slli_epi32(gy, 1);
+  }
+  const __m256i xv = _mm256_add_epi32(_mm256_set1_epi32(ox), lx);
+  const __m256i in_x = _mm256_and_si256(_mm256_cmpgt_epi32(xv, _mm256_set1_epi32(x0 - 1)),
+                                        _mm256_cmpgt_epi32(_mm256_set1_epi32(x1 + 1), xv));
+  const __m256 a0 = _mm256_set1_ps(b.a0[l]), dzdx = _mm256_set1_ps(b.dzdx[l]), dzdy = _mm256_set1_ps(b.dzdy[l]);
+  const __m256 px = _mm256_cvtepi32_ps(xv);
+  const __m256 inner = mul_add8(dzdx, px, a0, d.fma);
+  const __m256 lyf = _mm256_cvtepi32_ps(ly);
+  const __m256i owner = _mm256_set1_epi32(int32_t(owner_id));
+  const __m256i low_row = _mm256_setr_epi32(-1, -1, -1, -1, 0, 0, 0, 0);
+  bool any = false;
+  for (int32_t y = b.y0[l]; y <= y1; y += 2) {
+    const bool two_rows = y < y1;
+    __m256i covered = _mm256_andnot_si256(_mm256_srai_epi32(_mm256_or_si256(_mm256_or_si256(e[0], e[1]), e[2]), 31), in_x);
+    for (int i = 0; i < 3; ++i) e[i] = _mm256_add_epi32(e[i], step[i]);
+    if (!two_rows) covered = _mm256_and_si256(covered, low_row);
+    if (_mm256_testz_si256(covered, covered)) continue;
+    const size_t row0 = size_t(y) * size_t(t.width) + size_t(ox), row1 = row0 + size_t(t.width);
+    __m256i pass = covered;
+    if constexpr (F != DepthFormat::None) {
+      const __m256i stored = load_4x2(t.depth + row0, t.depth + row1, two_rows);
+      __m256i raw;
+      pass = small_depth<F, Op>(d, inner, _mm256_add_ps(_mm256_set1_ps(float(y)), lyf), dzdy, covered, stored, raw);
+      if (_mm256_testz_si256(pass, pass)) continue;
+      if (d.write) store_4x2(t.depth + row0, t.depth + row1, two_rows, _mm256_blendv_epi8(stored, raw, pass));
+    }
+    const __m256i old = load_4x2(t.owner + row0, t.owner + row1, two_rows);
+    store_4x2(t.owner + row0, t.owner + row1, two_rows, _mm256_blendv_epi8(old, owner, pass));
+    any = true;
+  }
+  return any;
+}
+
+template <DepthFormat F, CompareOp Op>
+RASTERCMP_AVX2 bool small_kernel(const SmallBlockOutput& b, int l, uint32_t owner, const KernelDepth& d,
+                                 const TileTarget& t) {
+  if constexpr (Op == CompareOp::Never && F != DepthFormat::None) return false;
+  if (b.x1[l] - b.x0[l] < 4) {
+    const int32_t ox = std::min(b.x0[l], (b.x0[l] & ~(kTileSize - 1)) + kTileSize - 4);
+    if (ox + 4 <= t.width) return small_4x2<F, Op>(b, l, ox, owner, d, t);
+  }
+  return kernel<F, Op>(b.job(l, owner, Op), d, t);
+}
+
+template <DepthFormat F, size_t... I>
+constexpr std::array<SmallKernelFn, 8> small_kernels_for(std::index_sequence<I...>) {
+  return {&small_kernel<F, CompareOp(I)>...};
+}
+
+constexpr std::array<std::array<SmallKernelFn, 8>, 4> kSmallKernels = {
+    small_kernels_for<DepthFormat::None>(std::make_index_sequence<8>{}),
+    small_kernels_for<DepthFormat::D16Unorm>(std::make_index_sequence<8>{}),
+    small_kernels_for<DepthFormat::X8D24Unorm>(std::make_index_sequence<8>{}),
+    small_kernels_for<DepthFormat::D32Sfloat>(std::make_index_sequence<8>{}),
+};
+
+template <DepthFormat F, size_t... I>
+constexpr std::array<KernelFn, 8> kernels_for(std::index_sequence<I...>) {
+  return {&kernel<F, CompareOp(I)>...};
+}
+
+constexpr std::array<std::array<KernelFn, 8>, 4> kKernels = {
+    kernels_for<DepthFormat::None>(std::make_index_sequence<8>{}),
+    kernels_for<DepthFormat::D16Unorm>(std::make_index_sequence<8>{}),
+    kernels_for<DepthFormat::X8D24Unorm>(std::make_index_sequence<8>{}),
+    kernels_for<DepthFormat::D32Sfloat>(std::make_index_sequence<8>{}),
+};
+
+}  // namespace
+
+KernelFn select_kernel_avx2(DepthFormat format, CompareOp op) {
+  return kKernels[size_t(format)][format == DepthFormat::None ? size_t(CompareOp::Always) : size_t(op)];
+}
+
+SmallKernelFn select_small_kernel_avx2(DepthFormat format, CompareOp op) {
+  return kSmallKernels[size_t(format)][format == DepthFormat::None ? size_t(CompareOp::Always) : size_t(op)];
+}
+
+RASTERCMP_AVX2 void measure_bounds_avx2(const uint32_t* depth, int32_t width, const PixelRect& r, uint32_t& lo,
+                                        uint32_t& hi) {
+  __m256i vlo = _mm256_set1_epi32(-1), vhi = _mm256_setzero_si256();
+  uint32_t slo = UINT32_MAX, shi = 0;
+  for (int32_t y = r.y0; y <= r.y1; ++y) {
+    const uint32_t* row = depth + size_t(y) * size_t(width);
+    int32_t x = r.x0;
+    for (; x + 8 <= r.x1 + 1; x += 8) {
+      const __m256i v = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(row + x));
+      vlo = _mm256_min_epu32(vlo, v);
+      vhi = _mm256_max_epu32(vhi, v);
+    }
+    for (; x <= r.x1; ++x) {
+      slo = row[x] < slo ? row[x] : slo;
+      shi = row[x] > shi ? row[x] : shi;
+    }
+  }
+  alignas(32) uint32_t lanes_lo[8], lanes_hi[8];
+  _mm256_store_si256(reinterpret_cast<__m256i*>(lanes_lo), vlo);
+  _mm256_store_si256(reinterpret_cast<__m256i*>(lanes_hi), vhi);
+  for (int i = 0; i < 8; ++i) {
+    slo = lanes_lo[i] < slo ? lanes_lo[i] : slo;
+    shi = lanes_hi[i] > shi ? lanes_hi[i] : shi;
+  }
+  lo = slo;
+  hi = shi;
+}
+
+}  // namespace rastercmp::cpu::fast

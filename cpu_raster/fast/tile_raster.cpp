@@ -1,0 +1,133 @@
+#include "cpu_raster/fast/tile_raster.hpp"
+
+#include <algorithm>
+
+#include "cpu_raster/depth_sample.hpp"
+#include "model/render_result.hpp"
+#include "cpu_raster/fast/tile_edges.hpp"
+
+namespace rastercmp::cpu::fast {
+namespace {
+
+// Below these areas the bounds cost more than they save (docs/performance.md).
+constexpr int64_t kBoundsMinArea = 256;        // classify a triangle against the tile's bounds
+constexpr int64_t kMeasureMinArea = 2048;      // re-measure a tile whose bounds are not exact
+
+int64_t area(const PixelRect& r) { return int64_t(r.x1 - r.x0 + 1) * (r.y1 - r.y0 + 1); }
+
+bool same_rect(const PixelRect& a, const PixelRect& b) {
+  return a.x0 == b.x0 && a.y0 == b.y0 && a.x1 == b.x1 && a.y1 == b.y1;
+}
+
+// The tile's bounds after the triangle wrote depth over r.
+void update_bounds(TileBounds& tile, bool ranged, const FragmentRange& f, DepthVerdict verdict, bool covers_tile) {
+  if (!ranged || tile.state == BoundsState::Unknown) {
+    tile.state = BoundsState::Unknown;
+  } else if (verdict == DepthVerdict::AllPass && covers_tile) {
+    tile = TileBounds{f.lo, f.hi, BoundsState::Exact};  // every stored value was replaced
+  } else {
+    tile = TileBounds{std::min(tile.zmin, f.lo), std::max(tile.zmax, f.hi), BoundsState::Loose};
+  }
+}
+
+}  // namespace
+
+DrawRaster make_draw_raster(const DepthTestState& depth, bool frame_bounds, bool avx2) {
+  DrawRaster draw;
+  draw.depth = depth;
+  draw.kernel = KernelDepth{depth.active ? depth.format : DepthFormat::None, depth.op, depth.write,
+                            depth.range.clamp, depth.range.zmin, depth.range.zmax, depth.fma};
+  const bool unorm = depth.format == DepthFormat::D16Unorm || depth.format == DepthFormat::X8D24Unorm;
+  draw.vector_ok = !(depth.active && unorm && depth.range.clamp && !(depth.range.zmin >= 0.0f));
+  draw.bounds = frame_bounds && depth.active && depth_values_ordered(depth);
+  if (avx2) {
+    draw.kernel_fn = select_kernel_avx2(draw.kernel.format, depth.op);
+    draw.small_fn = select_small_kernel_avx2(draw.kernel.format, depth.op);
+    draw.grid_fn = select_grid_scatter(draw.kernel.format, depth.op);
+  }
+  return draw;
+}
+
+void raster_in_tile(const FastTriangle& t, const PixelRect& r, int32_t tile_x, int32_t tile_y,
+                    const DrawRaster& draw, const FrameRaster& frame) {
+  KernelJob job;
+  const EdgeSetup edges = setup_tile_edges(t, r, job);
+  if (edges.fit == EdgeFit::None) return;
+  job.a0 = t.a0;
+  job.dzdx = t.dzdx;
+  job.dzdy = t.dzdy;
+  job.offset = t.offset;
+  job.owner = t.owner;
+  job.op = draw.depth.op;
+  TileState& state = frame.tile(tile_x, tile_y);
+  TileBounds& tile = state.bounds;
+  const PixelRect whole_tile = tile_rect(tile_x, tile_y, frame.target);
+  FragmentRange fragment;
+  bool ranged = false;
+  DepthVerdict verdict = DepthVerdict::PerPixel;
+  if (draw.bounds && area(r) >= kBoundsMinArea) {
+    if (tile.state != BoundsState::Exact && area(r) >= kMeasureMinArea)
+      measure_bounds(frame.target.depth, frame.target.width, whole_tile, frame.avx2, tile);
+    if (tile.state != BoundsState::Unknown && fragment_range(t, r, draw.depth, fragment)) {
+      ranged = true;
+      verdict = classify_depth(draw.depth.op, fragment, tile);
+      if (verdict == DepthVerdict::AllFail) return;
+      if (verdict == DepthVerdict::AllPass) job.op = CompareOp::Always;
+    }
+  }
+  const bool covers_tile = edges.all_in && same_rect(r, whole_tile);
+  if (!state.cleared) {
+    // Fast clear: skipped when this triangle replaces every owner and depth value of the tile.
+    const bool overwrites = covers_tile && (frame.target.depth == nullptr ||
+                                            (draw.depth.write && verdict == DepthVerdict::AllPass));
+    if (!overwrites) clear_tile(tile_x, tile_y, frame);
+    state.cleared = true;
+  }
+  bool wrote;
+  if (frame.avx2 && draw.vector_ok && edges.fit == EdgeFit::Vector) {
+    wrote = select_kernel_avx2(draw.kernel.format, job.op)(job, draw.kernel, frame.target);
+  } else {
+    DepthTestState depth = draw.depth;
+    depth.op = job.op;  // Always when the bounds proved every sample passes (and the tile may hold no clear values yet)
+    wrote = raster_scalar(t, r, depth, frame.target);
+  }
+  if (wrote && draw.depth.write && frame.bounds)
+    update_bounds(tile, ranged, fragment, verdict, covers_tile);
+}
+
+void clear_tile(int32_t tile_x, int32_t tile_y, const FrameRaster& frame) {
+  const PixelRect r = tile_rect(tile_x, tile_y, frame.target);
+  const size_t width = size_t(frame.target.width), count = size_t(r.x1 - r.x0 + 1);
+  for (int32_t y = r.y0; y <= r.y1; ++y) {
+    const size_t row = size_t(y) * width + size_t(r.x0);
+    std::fill_n(frame.target.owner + row, count, kOwnerBackground);
+    if (frame.target.depth) std::fill_n(frame.target.depth + row, count, frame.depth_clear_raw);
+  }
+}
+
+bool raster_scalar(const FastTriangle& t, const PixelRect& r, const DepthTestState& depth, const TileTarget& target) {
+  PlaneSet edges;
+  for (int i = 0; i < 3; ++i) {
+    const int j = i == 2 ? 0 : i + 1;
+    edges.push(make_edge(FixedPoint{Fixed24_8{t.x_fixed[i]}, Fixed24_8{t.y_fixed[i]}},
+                         FixedPoint{Fixed24_8{t.x_fixed[j]}, Fixed24_8{t.y_fixed[j]}}, TieBreak::TopLeft));
+  }
+  const DepthPlane plane{t.a0, t.dzdx, t.dzdy};
+  bool wrote = false;
+  for (int32_t py = r.y0; py <= r.y1; ++py) {
+    for (int32_t px = r.x0; px <= r.x1; ++px) {
+      if (first_failing_plane(edges, int64_t(px) * kFixedOne, int64_t(py) * kFixedOne) >= 0) continue;
+      const size_t i = size_t(py) * size_t(target.width) + size_t(px);
+      if (depth.active) {
+        const SampleDepth d = sample_depth(plane, t.offset, float(px), float(py), depth.range, depth.format, depth.fma);
+        if (!depth_test_passes(depth.op, depth.format, d.raw, target.depth[i])) continue;
+        if (depth.write) target.depth[i] = d.raw;
+      }
+      target.owner[i] = t.owner;
+      wrote = true;
+    }
+  }
+  return wrote;
+}
+
+}  // namespace rastercmp::cpu::fast

@@ -1,0 +1,61 @@
+// One triangle over one rectangle of one tile: edge set-up (tile_edges.hpp), the tile's depth
+// bounds (tile_depth_bounds.hpp), then the AVX2 kernel or its scalar twin, which evaluates each
+// pixel with the exact path's own functions (edge_value, sample_depth, depth_test_passes).
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+
+#include "cpu_raster/fast/fast_triangle.hpp"
+#include "cpu_raster/fast/small_triangles.hpp"
+#include "cpu_raster/fast/tile_depth_bounds.hpp"
+#include "cpu_raster/fast/tile_kernel.hpp"
+#include "cpu_raster/rasterize.hpp"
+
+namespace rastercmp::cpu::fast {
+
+// What rasterizing a draw needs.
+struct DrawRaster {
+  DepthTestState depth;    // the exact path's (cpu::make_depth_test_state)
+  KernelDepth kernel;      // the same, for the AVX2 kernels
+  bool vector_ok = true;   // the AVX2 kernels reproduce this state (UNORM depth stays below 2^24)
+  bool bounds = false;     // tile depth bounds are used and kept for this draw
+  KernelFn kernel_fn = nullptr;  // the AVX2 kernels of this depth state (set when the host has AVX2)
+  SmallKernelFn small_fn = nullptr;
+  GridScatterFn grid_fn = nullptr;
+};
+
+// Shared by the workers of a frame; a tile (and its bounds) is only touched by the worker that
+// owns its row, so nothing here needs a lock.
+struct FrameRaster {
+  TileTarget target;
+  int32_t tiles_x = 0, tiles_y = 0;
+  TileState* tiles = nullptr;  // tiles_x * tiles_y, row-major
+  bool avx2 = false;
+  bool bounds = false;  // depth bounds usable in this frame (tile_depth_bounds.hpp)
+  uint32_t depth_clear_raw = 0;  // clear_depth_raw of the scene's clear value
+
+  TileState& tile(int32_t tile_x, int32_t tile_y) const {
+    return tiles[size_t(tile_y) * size_t(tiles_x) + size_t(tile_x)];
+  }
+};
+
+DrawRaster make_draw_raster(const DepthTestState& depth, bool frame_bounds, bool avx2);
+
+// Rectangle r lies inside tile (tile_x, tile_y) and inside the triangle's rect.
+void raster_in_tile(const FastTriangle& t, const PixelRect& r, int32_t tile_x, int32_t tile_y,
+                    const DrawRaster& draw, const FrameRaster& frame);
+
+// Writes the clear values (kOwnerBackground, the packed depth clear) into a tile's pixels.
+void clear_tile(int32_t tile_x, int32_t tile_y, const FrameRaster& frame);
+
+// The scalar kernel: the exact path's per-pixel functions; returns whether any pixel was written.
+bool raster_scalar(const FastTriangle& t, const PixelRect& r, const DepthTestState& depth, const TileTarget& target);
+
+// Pixel rectangle of a tile, clipped to the framebuffer.
+inline PixelRect tile_rect(int32_t tile_x, int32_t tile_y, const TileTarget& target) {
+  return PixelRect{tile_x * kTileSize, tile_y * kTileSize, std::min(tile_x * kTileSize + kTileSize, target.width) - 1,
+                   std::min(tile_y * kTileSize + kTileSize, target.height) - 1};
+}
+
+}  // namespace rastercmp::cpu::fast

@@ -1,0 +1,76 @@
+#include "cpu_raster/fast/worker_pool.hpp"
+
+#include <map>
+#include <memory>
+
+namespace rastercmp::cpu::fast {
+
+WorkerPool::WorkerPool(uint32_t workers) {
+  for (uint32_t i = 1; i < workers; ++i) threads_.emplace_back([this, i] { thread_loop(i); });
+}
+
+WorkerPool::~WorkerPool() {
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    stop_ = true;
+  }
+  start_.notify_all();
+  for (std::thread& t : threads_) t.join();
+}
+
+void WorkerPool::call(const std::function<void(uint32_t)>& job, uint32_t index) {
+  try {
+    job(index);
+  } catch (...) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (!error_) error_ = std::current_exception();
+  }
+}
+
+void WorkerPool::run(const std::function<void(uint32_t)>& job) {
+  const std::lock_guard<std::mutex> serial(run_mutex_);
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    job_ = &job;
+    pending_ = uint32_t(threads_.size());
+    error_ = nullptr;
+    ++generation_;
+  }
+  start_.notify_all();
+  call(job, 0);
+  std::unique_lock<std::mutex> lock(mutex_);
+  done_.wait(lock, [this] { return pending_ == 0; });
+  job_ = nullptr;
+  if (error_) std::rethrow_exception(error_);
+}
+
+void WorkerPool::thread_loop(uint32_t index) {
+  uint64_t seen = 0;
+  for (;;) {
+    const std::function<void(uint32_t)>* job = nullptr;
+    {
+      std::unique_lock<std::mutex> lock(mutex_);
+      start_.wait(lock, [&] { return stop_ || generation_ != seen; });
+      if (stop_) return;
+      seen = generation_;
+      job = job_;
+    }
+    call(*job, index);
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      --pending_;
+    }
+    done_.notify_one();
+  }
+}
+
+WorkerPool& worker_pool(uint32_t workers) {
+  static std::mutex mutex;
+  static std::map<uint32_t, std::unique_ptr<WorkerPool>> pools;
+  const std::lock_guard<std::mutex> lock(mutex);
+  std::unique_ptr<WorkerPool>& pool = pools[workers];
+  if (!pool) pool = std::make_unique<WorkerPool>(workers);
+  return *pool;
+}
+
+}  // namespace rastercmp::cpu::fast

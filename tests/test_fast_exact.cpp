@@ -1,0 +1,88 @@
+// The fast CPU path against the exact path: identical owner and depth bytes, at 1 and 2 threads,
+// with the AVX2 kernels and with their scalar twins, on seeded random scenes, on every built-in
+// scene and on small versions of the benchmark scenes (docs/performance.md).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "cpu_raster/fast/bench_scenes.hpp"
+#include "model/errors.hpp"
+#include "model/scene_io.hpp"
+#include "tests/test_fast_support.hpp"
+
+namespace rastercmp {
+namespace {
+
+using fast_test::render_exact;
+using fast_test::render_fast;
+using fast_test::same_bytes;
+
+// Every fast variant against the exact result.
+void expect_fast_matches(const Scene& scene, bool fma) {
+  const RenderResult exact = render_exact(scene, fma);
+  for (const uint32_t threads : {1u, 2u}) {
+    for (const bool avx2 : {true, false}) {
+      SCOPED_TRACE(scene.name + " threads=" + std::to_string(threads) + (avx2 ? " avx2" : " scalar") +
+                   (fma ? " fma" : " no-fma"));
+      EXPECT_TRUE(same_bytes(exact, render_fast(scene, fma, threads, avx2)));
+    }
+  }
+}
+
+class FastRandomScenes : public ::testing::TestWithParam<uint64_t> {};
+
+TEST_P(FastRandomScenes, MatchExactPath) {
+  const Scene scene = fast_test::random_scene(GetParam());
+  expect_fast_matches(scene, /*fma=*/GetParam() % 5 != 0);
+}
+
+INSTANTIATE_TEST_SUITE_P(Seeds, FastRandomScenes, ::testing::Range<uint64_t>(1, 121),
+                         [](const ::testing::TestParamInfo<uint64_t>& info) { return "seed_" + std::to_string(info.param); });
+
+// Many small triangles in one big draw: the batching and tile-row split at real sizes.
+TEST(FastDenseScenes, ManyTrianglesAcrossTileRows) {
+  for (uint64_t seed = 200; seed < 206; ++seed) {
+    fast_test::RandomSceneSpec spec;
+    spec.allow_multisample = false;
+    spec.allow_lines = false;
+    spec.max_side = 300;
+    spec.max_primitives = 400;
+    expect_fast_matches(fast_test::random_scene(seed, spec), true);
+  }
+}
+
+TEST(FastBenchScenes, SmallVersionsMatchExactPath) {
+  expect_fast_matches(bench::fill_layers_scene(true, 200, 6), true);
+  expect_fast_matches(bench::fill_layers_scene(false, 200, 6), true);
+  expect_fast_matches(bench::fill_layers_scene(false, 200, 6), false);
+  expect_fast_matches(bench::grid_scene(60, 256), true);
+  expect_fast_matches(bench::grid_scene(181, 256), true);  // about 1 px triangles
+  expect_fast_matches(bench::perspective_scene(40, 192), true);
+}
+
+TEST(FastBuiltinScenes, EverySupportedSceneMatchesExactPath) {
+  const std::string root = std::string(RASTERCMP_SOURCE_DIR) + "/scenes";
+  const std::vector<Scene> scenes = bench::load_scene_suite(root);
+  ASSERT_FALSE(scenes.empty());
+  size_t compared = 0;
+  for (const Scene& scene : scenes) {
+    try {
+      render_exact(scene, true);
+    } catch (const NotSupportedError&) {
+      continue;  // the exact path reports it; the fast path must do the same
+    }
+    expect_fast_matches(scene, true);
+    ++compared;
+  }
+  EXPECT_GT(compared, scenes.size() / 2);
+}
+
+TEST(FastBuiltinScenes, NotSupportedStaysNotSupported) {
+  const Scene scene = load_scene_file(std::string(RASTERCMP_SOURCE_DIR) + "/scenes/not_supported/point_list.json");
+  EXPECT_THROW(render_fast(scene, true, 2, true), NotSupportedError);
+}
+
+}  // namespace
+}  // namespace rastercmp

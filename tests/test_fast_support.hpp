@@ -1,0 +1,160 @@
+// Shared by tests/test_fast_*.cpp: seeded random scenes that exercise every state the fast path
+// touches, and a byte-for-byte comparison of two results that names the first differing sample.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <random>
+#include <string>
+
+#include "cpu_raster/cpu_raster.hpp"
+#include "cpu_raster/fast/render_fast.hpp"
+#include "model/render_result.hpp"
+#include "model/scene.hpp"
+
+namespace rastercmp::fast_test {
+
+struct RandomSceneSpec {
+  bool allow_multisample = true;
+  bool allow_lines = true;
+  uint32_t max_side = 160;
+  uint32_t max_primitives = 40;  // per draw
+};
+
+class Random {
+ public:
+  explicit Random(uint64_t seed) : rng_(seed) {}
+  double unit() { return double(rng_() >> 11) * 0x1.0p-53; }  // [0, 1), library-independent
+  double range(double lo, double hi) { return lo + (hi - lo) * unit(); }
+  uint32_t below(uint32_t n) { return uint32_t(rng_() % n); }
+  bool chance(double p) { return unit() < p; }
+
+ private:
+  std::mt19937_64 rng_;
+};
+
+inline glm::vec4 random_vertex(Random& r, int kind) {
+  switch (kind) {
+    case 0: {  // anywhere on screen, w = 1
+      return {float(r.range(-1.1, 1.1)), float(r.range(-1.1, 1.1)), float(r.range(-0.1, 1.1)), 1.0f};
+    }
+    case 1: {  // perspective: w away from 1, some vertices outside the volume (clipping)
+      const float w = float(r.range(0.2, 3.0));
+      return {float(r.range(-1.6, 1.6)) * w, float(r.range(-1.6, 1.6)) * w, float(r.range(-0.3, 1.3)) * w, w};
+    }
+    default: {  // a snapped-grid-ish position: exact pixel centres and edges
+      const float x = float(int(r.below(33)) - 16) / 16.0f, y = float(int(r.below(33)) - 16) / 16.0f;
+      return {x, y, float(r.below(5)) / 4.0f, 1.0f};
+    }
+  }
+}
+
+inline Draw random_draw(Random& r, const RandomSceneSpec& spec) {
+  Draw draw;
+  const uint32_t topo = r.below(spec.allow_lines ? 6 : 4);
+  draw.topology = topo == 0 || topo == 3 ? Topology::TriangleList
+                  : topo == 1            ? Topology::TriangleStrip
+                  : topo == 2            ? Topology::TriangleFan
+                  : topo == 4            ? Topology::LineList
+                                         : Topology::LineStrip;
+  const int kind = int(r.below(3));
+  const uint32_t primitives = 1 + r.below(spec.max_primitives);
+  const bool tiny = r.chance(0.3);
+  for (uint32_t p = 0; p < primitives + 2; ++p) {
+    glm::vec4 v = random_vertex(r, kind);
+    if (tiny && !draw.positions_clip.empty()) {  // triangles of a few pixels around the last vertex
+      const glm::vec4& last = draw.positions_clip.back();
+      v = glm::vec4(last.x + float(r.range(-0.05, 0.05)) * last.w, last.y + float(r.range(-0.05, 0.05)) * last.w,
+                    last.z, last.w);
+    }
+    draw.positions_clip.push_back(v);
+  }
+  if (draw.topology == Topology::TriangleList) {
+    while (draw.positions_clip.size() % 3) draw.positions_clip.pop_back();
+  }
+  if (r.chance(0.4)) {  // indexed: reuse vertices in a shuffled order
+    const uint32_t n = uint32_t(draw.positions_clip.size());
+    for (uint32_t k = 0; k < n + 3 * r.below(4); ++k) draw.indices.push_back(r.below(n));
+    if (draw.topology == Topology::TriangleList) draw.indices.resize(draw.indices.size() / 3 * 3);
+  }
+  RasterState& s = draw.state;
+  s.cull_mode = CullMode(r.below(4));
+  s.front_face = FrontFace(r.below(2));
+  s.line_width = float(1 + r.below(3));
+  s.line_mode = r.chance(0.3) ? LineMode::Bresenham : LineMode::Default;
+  s.depth.test_enable = !r.chance(0.1);
+  s.depth.write_enable = !r.chance(0.2);
+  s.depth.compare_op = r.chance(0.5) ? CompareOp::Less : CompareOp(r.below(8));
+  if (r.chance(0.3)) {
+    s.depth_bias = DepthBias{true, float(r.range(-4, 4)), float(r.range(-2, 2)), r.chance(0.5) ? float(r.range(-0.01, 0.01)) : 0.0f};
+  }
+  s.depth_clamp = r.chance(0.2);
+  if (r.chance(0.2)) s.depth_clip = r.chance(0.5);
+  return draw;
+}
+
+inline Scene random_scene(uint64_t seed, const RandomSceneSpec& spec = {}) {
+  Random r(seed);
+  Scene scene;
+  scene.name = "test.fast.random." + std::to_string(seed);
+  scene.width = 16 + r.below(spec.max_side - 15);
+  scene.height = 16 + r.below(spec.max_side - 15);
+  scene.depth_format = DepthFormat(r.below(4));
+  scene.depth_clear = r.chance(0.5) ? 1.0f : float(r.range(0.3, 1.0));
+  scene.samples = spec.allow_multisample && r.chance(0.15) ? 4 : 1;
+  if (r.chance(0.4)) {
+    const float w = float(r.range(8, scene.width * 1.2)), h = float(r.range(8, scene.height * 1.2));
+    const float mn = float(r.range(0, 0.5)), mx = float(r.range(0.5, 1));
+    scene.viewport = Viewport{float(r.range(-10, scene.width * 0.5)), float(r.range(-10, scene.height * 0.5)), w,
+                              r.chance(0.2) ? -h : h, r.chance(0.2) ? mx : mn, r.chance(0.2) ? mn : mx};
+    if (scene.viewport->height < 0) scene.viewport->y += h;
+  }
+  if (r.chance(0.3)) {
+    scene.scissor = Rect2D{int32_t(r.below(scene.width / 2)), int32_t(r.below(scene.height / 2)),
+                           1 + r.below(scene.width), 1 + r.below(scene.height)};
+  }
+  const uint32_t draws = 1 + r.below(4);
+  for (uint32_t d = 0; d < draws; ++d) scene.draws.push_back(random_draw(r, spec));
+  return scene;
+}
+
+// Renders with the exact path (threads = 0).
+inline RenderResult render_exact(const Scene& scene, bool fma) {
+  CpuOptions options;
+  options.fma = fma;
+  options.threads = 0;
+  return render_cpu(scene, options);
+}
+
+inline RenderResult render_fast(const Scene& scene, bool fma, uint32_t threads, bool avx2) {
+  CpuOptions options;
+  options.fma = fma;
+  options.threads = threads;
+  return cpu::fast::render_fast(scene, options, cpu::fast::FastConfig{avx2});
+}
+
+// Identical owner and depth bytes; on failure names the first differing sample.
+inline ::testing::AssertionResult same_bytes(const RenderResult& expected, const RenderResult& actual) {
+  if (expected.width != actual.width || expected.height != actual.height || expected.samples != actual.samples)
+    return ::testing::AssertionFailure() << "size differs";
+  const auto first_difference = [&](const std::vector<uint32_t>& a, const std::vector<uint32_t>& b,
+                                    const char* what) -> ::testing::AssertionResult {
+    if (a.size() != b.size()) return ::testing::AssertionFailure() << what << " sizes differ";
+    size_t count = 0, first = a.size();
+    for (size_t i = 0; i < a.size(); ++i)
+      if (a[i] != b[i]) {
+        if (count++ == 0) first = i;
+      }
+    if (count == 0) return ::testing::AssertionSuccess();
+    const size_t pixel = first / expected.samples;
+    return ::testing::AssertionFailure() << count << " " << what << " samples differ; first at x=" << pixel % expected.width
+                                         << " y=" << pixel / expected.width << " sample " << first % expected.samples
+                                         << ": expected 0x" << std::hex << a[first] << ", got 0x" << b[first];
+  };
+  ::testing::AssertionResult owner = first_difference(expected.owner, actual.owner, "owner");
+  if (!owner) return owner;
+  return first_difference(expected.depth_raw, actual.depth_raw, "depth");
+}
+
+}  // namespace rastercmp::fast_test
