@@ -2,7 +2,6 @@
 
 #include <array>
 #include <bit>
-#include <cmath>
 #include <utility>
 
 namespace rastercmp::cpu::fast {
@@ -23,20 +22,31 @@ bool ordered(T a, T b) {
 
 template <DepthFormat F, CompareOp Op>
 bool passes(uint32_t fragment, uint32_t stored) {
-  if constexpr (F == DepthFormat::D32Sfloat) {
-    if constexpr (Op == CompareOp::Never) return false;
+  if constexpr (F == DepthFormat::D32Sfloat) {  // unordered predicates: true whenever NaN is involved
     const float a = std::bit_cast<float>(fragment), b = std::bit_cast<float>(stored);
-    if (std::isnan(a) || std::isnan(b)) return true;  // unordered predicates
-    return ordered<Op>(a, b);
+    if constexpr (Op == CompareOp::Never) return false;
+    if constexpr (Op == CompareOp::Less) return !(a >= b);
+    if constexpr (Op == CompareOp::Equal) return !(a < b) && !(a > b);
+    if constexpr (Op == CompareOp::LessOrEqual) return !(a > b);
+    if constexpr (Op == CompareOp::Greater) return !(a <= b);
+    if constexpr (Op == CompareOp::NotEqual) return a != b;
+    if constexpr (Op == CompareOp::GreaterOrEqual) return !(a < b);
+    return true;
   } else {
     return ordered<Op>(fragment, stored);
   }
 }
 
 template <DepthFormat F, CompareOp Op>
-bool scatter(const SmallBlockOutput& b, int l, uint32_t owner, bool depth_write, const TileTarget& t) {
+bool scatter(const SmallBlockOutput& b, int l, uint32_t owner, int32_t row_lo, int32_t row_hi, bool depth_write,
+             const TileTarget& t) {
+  // Rows outside [row_lo, row_hi] belong to another worker: their bits are dropped up front.
+  uint32_t bits = b.grid_bits[l];
+  const int32_t first_row = row_lo - b.y0[l], last_row = row_hi - b.y0[l];
+  if (first_row > 0) bits &= ~0u << (first_row * kGridSide);
+  if (last_row < kGridSide - 1) bits &= (1u << ((last_row + 1) * kGridSide)) - 1u;
   bool wrote = false;
-  for (uint32_t bits = b.grid_bits[l]; bits != 0; bits &= bits - 1) {
+  for (; bits != 0; bits &= bits - 1) {
     const int p = std::countr_zero(bits);
     const size_t i = size_t(b.y0[l] + p / kGridSide) * size_t(t.width) + size_t(b.x0[l] + p % kGridSide);
     if constexpr (F != DepthFormat::None) {

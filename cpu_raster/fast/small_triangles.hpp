@@ -1,11 +1,12 @@
 // Set-up of small triangles eight at a time (AVX2), for meshes whose triangles cover a few
 // pixels: per lane the same integer and float operations as the scalar set-up
 // (BandWorker::triangle, lavapipe-rules §2.2-§3.2). Then, by size:
-//  - "grid" lanes (rectangle at most kGridSide x kGridSide pixels): coverage and raw depth of
+//  - "grid" lanes (rectangle at most kGridSide x kGridSide pixels, possibly across tile borders:
+//    the writes are per pixel): coverage and raw depth of
 //    every candidate pixel are computed for the eight triangles at once (triangles in lanes, one
 //    pixel position per step); the depth test and the writes are then done triangle by triangle,
 //    in order, by scatter_grid_lane;
-//  - other small lanes (at most kSmallWidth x kSmallHeight): one kernel call per triangle with
+//  - other small lanes (at most kSmallWidth x kSmallHeight, inside one tile): one kernel call with
 //    edge values relative to the triangle's own corner (the 256-scaled E of edge_plane.hpp);
 //  - the rest (larger, clipped, non-finite) goes back to the scalar set-up.
 //
@@ -57,8 +58,10 @@ struct SmallBlockOutput {
 
 void setup_small_block_avx2(const SmallBlockInput& in, SmallBlockOutput& out);
 
-// Depth test and writes of one grid lane, in raster order; returns whether any pixel was written.
-using GridScatterFn = bool (*)(const SmallBlockOutput&, int lane, uint32_t owner, bool depth_write, const TileTarget&);
+// Depth test and writes of one grid lane's pixels in rows [row_lo, row_hi], in raster order;
+// returns whether any pixel was written.
+using GridScatterFn = bool (*)(const SmallBlockOutput&, int lane, uint32_t owner, int32_t row_lo, int32_t row_hi,
+                               bool depth_write, const TileTarget&);
 GridScatterFn select_grid_scatter(DepthFormat format, CompareOp op);
 
 }  // namespace rastercmp::cpu::fast

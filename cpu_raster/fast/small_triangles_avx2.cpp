@@ -194,7 +194,7 @@ RASTERCMP_AVX2 void setup_small_block_avx2(const SmallBlockInput& in, SmallBlock
   const __m256i one_tile =
       _mm256_and_si256(_mm256_cmpeq_epi32(_mm256_srai_epi32(x0, kTileOrder), _mm256_srai_epi32(x1, kTileOrder)),
                        _mm256_cmpeq_epi32(_mm256_srai_epi32(y0, kTileOrder), _mm256_srai_epi32(y1, kTileOrder)));
-  const __m256i simple = _mm256_and_si256(_mm256_cmpeq_epi32(special, zero), _mm256_and_si256(small, one_tile));
+  const __m256i simple = _mm256_and_si256(_mm256_cmpeq_epi32(special, zero), small);
   const __m256i empty = _mm256_or_si256(_mm256_cmpgt_epi32(x0, x1), _mm256_cmpgt_epi32(y0, y1));
   // area = dx01*dy20 - dx20*dy01 (§2.3), exact in 32 bits for small lanes
   const __m256i area = _mm256_sub_epi32(
@@ -208,9 +208,10 @@ RASTERCMP_AVX2 void setup_small_block_avx2(const SmallBlockInput& in, SmallBlock
   const __m256i w = _mm256_sub_epi32(x1, x0), h = _mm256_sub_epi32(y1, y0);
   const __m256i grid_side = _mm256_set1_epi32(kGridSide);
   const __m256i grid = _mm256_and_si256(live, _mm256_and_si256(_mm256_cmpgt_epi32(grid_side, w), _mm256_cmpgt_epi32(grid_side, h)));
-  out.scalar_mask = ~lanes(simple) & used;
+  const __m256i job = _mm256_and_si256(_mm256_andnot_si256(grid, live), one_tile);  // grid lanes may span tiles
   out.grid_mask = lanes(grid) & used;
-  out.job_mask = lanes(live) & used & ~out.grid_mask;
+  out.job_mask = lanes(job) & used;
+  out.scalar_mask = (~lanes(simple) | (lanes(live) & ~out.grid_mask & ~out.job_mask)) & used;
   if ((out.grid_mask | out.job_mask) == 0) return;
   const __m256i swap = _mm256_cmpgt_epi32(zero, area);  // rotate_fixed_position_12: (v0, v2, v1)
   swap_where(swap, p1.x_fixed, p2.x_fixed);
@@ -224,6 +225,8 @@ RASTERCMP_AVX2 void setup_small_block_avx2(const SmallBlockInput& in, SmallBlock
                           edge8(p2.x_fixed, p2.y_fixed, p0.x_fixed, p0.y_fixed)};
   _mm256_store_si256(reinterpret_cast<__m256i*>(out.x0), x0);
   _mm256_store_si256(reinterpret_cast<__m256i*>(out.y0), y0);
+  _mm256_store_si256(reinterpret_cast<__m256i*>(out.x1), x1);
+  _mm256_store_si256(reinterpret_cast<__m256i*>(out.y1), y1);
   if (out.grid_mask) {
     const GridLanes g{grid, x0, y0, w, h, max_lane(w, out.grid_mask) + 1, max_lane(h, out.grid_mask) + 1};
     switch (in.depth.format) {
@@ -237,8 +240,6 @@ RASTERCMP_AVX2 void setup_small_block_avx2(const SmallBlockInput& in, SmallBlock
     // One span per row: 8 lanes from origin_x, kept inside the tile (rect.x1 <= origin_x + 7).
     const __m256i origin_x = _mm256_min_epi32(
         x0, _mm256_add_epi32(_mm256_and_si256(x0, _mm256_set1_epi32(~(kTileSize - 1))), _mm256_set1_epi32(kTileSize - 8)));
-    _mm256_store_si256(reinterpret_cast<__m256i*>(out.x1), x1);
-    _mm256_store_si256(reinterpret_cast<__m256i*>(out.y1), y1);
     _mm256_store_si256(reinterpret_cast<__m256i*>(out.origin_x), origin_x);
     _mm256_store_ps(out.a0, plane.a0);
     _mm256_store_ps(out.dzdx, plane.dzdx);
