@@ -40,7 +40,8 @@ std::optional<Quad> rectangular_quad(Endpoint v1, Endpoint v2, float dx, float d
 // The diamond-exit decisions and end shifts of a Bresenham line, along its major axis "a" with
 // minor axis "b" (x-major: a = x; y-major: a = y). Written once for both axes: the y-major code
 // of lp_setup_line.c is the x-major one with the axes exchanged, except for the comparisons
-// marked below, which differ between the two branches in Mesa and are reproduced as they are.
+// marked below, which differ between the two branches in Mesa and are reproduced as they are,
+// and the y-major start tests, which follow the observed driver (lavapipe-rules §5.4).
 struct DiamondExit {
   bool draw_start = false, draw_end = false;
   float a_offset = 0, b_offset = 0, a_offset_end = 0, b_offset_end = 0;
@@ -114,7 +115,9 @@ DiamondExit diamond_exit_y_major(Endpoint v1, Endpoint v2, float dx, float dy) {
   }
   if (dy > 0.0f) {
     d.swap = true;
-    if ((y1diff > 0.f) != d.draw_start) {  // bottom edge (bottom_edge_rule = 0)
+    // bottom edge. Observed on lavapipe 22.3.6: a start exactly on a pixel row (y1diff == 0) counts as
+    // already drawn (">=", not lp_setup_line.c's bottom_edge_rule = 0 ">"); the end test keeps "<=".
+    if ((y1diff >= 0.f) != d.draw_start) {
       d.a_offset_end = -y1diff + 0.5f;
       d.b_offset_end = d.a_offset_end * dxdy;
     }
@@ -123,7 +126,8 @@ DiamondExit diamond_exit_y_major(Endpoint v1, Endpoint v2, float dx, float dy) {
       d.b_offset = d.a_offset * dxdy;
     }
   } else {
-    if ((y1diff <= 0.f) != d.draw_start) {  // top edge
+    // top edge. Observed, as above: y1diff == 0 counts as not drawn ("<", not "<=").
+    if ((y1diff < 0.f) != d.draw_start) {
       d.a_offset = -y1diff - 0.5f;
       d.b_offset = d.a_offset * dxdy;
     }

@@ -129,6 +129,9 @@ INSTANTIATE_TEST_SUITE_P(RectangularLines, Differential,
                          Combine(Values(Family{"lines_rectangular", rectangular_lines}), Range(1u, 9u)), case_name);
 INSTANTIATE_TEST_SUITE_P(BresenhamLines, Differential,
                          Combine(Values(Family{"lines_bresenham", bresenham_lines}), Range(1u, 9u)), case_name);
+INSTANTIATE_TEST_SUITE_P(CentredBresenhamLines, Differential,
+                         Combine(Values(Family{"lines_bresenham_centred", centred_bresenham_lines}), Range(1u, 5u)),
+                         case_name);
 INSTANTIATE_TEST_SUITE_P(StripsFans, Differential,
                          Combine(Values(Family{"strips_fans", strips_and_fans}), Range(1u, 6u)), case_name);
 INSTANTIATE_TEST_SUITE_P(Msaa, Differential, Combine(Values(Family{"msaa", msaa_triangles}), Range(1u, 9u)), case_name);

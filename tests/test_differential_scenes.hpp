@@ -207,6 +207,32 @@ inline Scene line_scene(uint32_t seed, LineMode mode, uint32_t samples = 1) {
   return scene;
 }
 
+// Wide Bresenham lines, y-major and x-major, starting exactly on a pixel centre (the diamond-exit
+// start tests at y1diff == 0, lavapipe-rules §5.4). The far end is on an odd 1/256 step, so the
+// side edges do not pass through sample points.
+inline Scene centred_bresenham_lines(uint32_t seed) {
+  Random rng(seed);
+  Scene scene = make_scene(scene_name("lines_bresenham_centred", seed), 128, 64, format_for(seed));
+  for (int d = 0; d < 60; ++d) {
+    Draw draw;
+    draw.state = always_state();
+    draw.topology = Topology::LineList;
+    draw.state.line_mode = LineMode::Bresenham;
+    draw.state.line_width = float(rng.integer(1, 6));
+    const float x1 = float(rng.integer(8, 119)) + 0.5f, y1 = float(rng.integer(8, 55)) + 0.5f;
+    const float major = float(rng.integer(6, 30)) * (rng.chance(0.5f) ? 1.0f : -1.0f);
+    const float minor = rng.uniform(-0.9f, 0.9f) * std::fabs(major);
+    const float odd_step = float(2 * rng.integer(0, 127) + 1) / 256.0f;
+    const bool y_major = rng.chance(0.5f);
+    const float x2 = std::floor(x1 + (y_major ? minor : major)) + odd_step;
+    const float y2 = std::floor(y1 + (y_major ? major : minor)) + odd_step;
+    draw.positions_clip.push_back(clip_from_window(x1, y1, rng.uniform(0, 1), scene));
+    draw.positions_clip.push_back(clip_from_window(x2, y2, rng.uniform(0, 1), scene));
+    scene.draws.push_back(draw);
+  }
+  return scene;
+}
+
 // Strips and fans, indexed or not (primitive order and the provoking-vertex-first vertex order).
 inline Scene strips_and_fans(uint32_t seed) {
   Random rng(seed);
