@@ -20,9 +20,9 @@ using fast_test::render_fast;
 using fast_test::same_bytes;
 
 // Every fast variant against the exact result.
-void expect_fast_matches(const Scene& scene, bool fma) {
+void expect_fast_matches(const Scene& scene, bool fma, std::initializer_list<uint32_t> thread_counts = {1u, 2u}) {
   const RenderResult exact = render_exact(scene, fma);
-  for (const uint32_t threads : {1u, 2u}) {
+  for (const uint32_t threads : thread_counts) {
     for (const bool avx2 : {true, false}) {
       SCOPED_TRACE(scene.name + " threads=" + std::to_string(threads) + (avx2 ? " avx2" : " scalar") +
                    (fma ? " fma" : " no-fma"));
@@ -52,6 +52,24 @@ TEST(FastDenseScenes, ManyTrianglesAcrossTileRows) {
     expect_fast_matches(fast_test::random_scene(seed, spec), true);
   }
 }
+
+class FastLayeredScenes : public ::testing::TestWithParam<uint64_t> {};
+
+TEST_P(FastLayeredScenes, MatchExactPath) {
+  expect_fast_matches(fast_test::layered_scene(GetParam()), GetParam() % 4 != 0, {1u, 2u, 3u});
+}
+
+INSTANTIATE_TEST_SUITE_P(Seeds, FastLayeredScenes, ::testing::Range<uint64_t>(1, 41),
+                         [](const ::testing::TestParamInfo<uint64_t>& info) { return "seed_" + std::to_string(info.param); });
+
+class FastSmallMeshes : public ::testing::TestWithParam<uint64_t> {};
+
+TEST_P(FastSmallMeshes, MatchExactPath) {
+  expect_fast_matches(fast_test::small_mesh_scene(GetParam()), GetParam() % 4 != 0, {1u, 2u, 3u});
+}
+
+INSTANTIATE_TEST_SUITE_P(Seeds, FastSmallMeshes, ::testing::Range<uint64_t>(1, 41),
+                         [](const ::testing::TestParamInfo<uint64_t>& info) { return "seed_" + std::to_string(info.param); });
 
 TEST(FastBenchScenes, SmallVersionsMatchExactPath) {
   expect_fast_matches(bench::fill_layers_scene(true, 200, 6), true);

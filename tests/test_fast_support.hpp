@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <random>
 #include <string>
@@ -116,6 +117,81 @@ inline Scene random_scene(uint64_t seed, const RandomSceneSpec& spec = {}) {
   }
   const uint32_t draws = 1 + r.below(4);
   for (uint32_t d = 0; d < draws; ++d) scene.draws.push_back(random_draw(r, spec));
+  return scene;
+}
+
+// Overlapping big quads over several draws: every compare op, write on and off, all formats,
+// framebuffers whose sides are not multiples of the tile size; exercises the tile depth bounds
+// and the fast clear.
+inline Scene layered_scene(uint64_t seed) {
+  Random r(seed);
+  Scene scene;
+  scene.name = "test.fast.layered." + std::to_string(seed);
+  scene.width = 40 + r.below(200);
+  scene.height = 40 + r.below(200);
+  scene.depth_format = DepthFormat(1 + r.below(3));
+  scene.depth_clear = r.chance(0.5) ? 1.0f : float(r.range(0, 1));
+  const uint32_t draws = 2 + r.below(5);
+  for (uint32_t d = 0; d < draws; ++d) {
+    Draw draw;
+    const uint32_t quads = 1 + r.below(4);
+    for (uint32_t q = 0; q < quads; ++q) {
+      const float x0 = float(r.range(-1.3, 0.2)), x1 = float(r.range(0.2, 1.3));
+      const float y0 = float(r.range(-1.3, 0.2)), y1 = float(r.range(0.2, 1.3));
+      const float z = float(r.range(-0.1, 1.1)), tilt_x = float(r.range(-0.2, 0.2)), tilt_y = float(r.range(-0.2, 0.2));
+      const auto corner = [&](float x, float y) { return glm::vec4(x, y, z + tilt_x * x + tilt_y * y, 1.0f); };
+      for (const glm::vec4& v : {corner(x0, y0), corner(x1, y0), corner(x1, y1), corner(x0, y0), corner(x1, y1), corner(x0, y1)})
+        draw.positions_clip.push_back(v);
+    }
+    draw.state.depth.compare_op = r.chance(0.5) ? CompareOp::Less : CompareOp(r.below(8));
+    draw.state.depth.write_enable = !r.chance(0.2);
+    draw.state.depth.test_enable = !r.chance(0.1);
+    draw.state.depth_clamp = r.chance(0.2);
+    if (r.chance(0.2)) draw.state.depth_bias = DepthBias{true, float(r.range(-3, 3)), float(r.range(-1, 1)), 0.0f};
+    scene.draws.push_back(std::move(draw));
+  }
+  if (r.chance(0.3)) scene.viewport = Viewport{float(r.range(-20, 20)), float(r.range(-20, 20)), float(scene.width),
+                                                float(scene.height), float(r.range(0, 0.3)), float(r.range(0.7, 1))};
+  return scene;
+}
+
+// A jittered grid of small triangles (cells of 0.6 to 7 pixels) as lists, strips or fans, with
+// random depth state: the eight-wide set-up, its grid and kernel lanes, tile borders, row ends.
+inline Scene small_mesh_scene(uint64_t seed) {
+  Random r(seed);
+  Scene scene;
+  scene.name = "test.fast.small_mesh." + std::to_string(seed);
+  scene.width = 33 + r.below(220);
+  scene.height = 33 + r.below(220);
+  scene.depth_format = DepthFormat(r.below(4));
+  const float cell_px = float(r.range(0.6, 7.0));
+  const uint32_t columns = std::min(uint32_t(float(scene.width) / cell_px) + 2, 300u);
+  const uint32_t rows = std::min(uint32_t(float(scene.height) / cell_px) + 2, 300u);
+  Draw draw;
+  const float step_x = 2.2f / float(columns), step_y = 2.2f / float(rows);
+  for (uint32_t j = 0; j <= rows; ++j)
+    for (uint32_t i = 0; i <= columns; ++i) {
+      const float x = -1.1f + step_x * (float(i) + float(r.range(-0.3, 0.3)));
+      const float y = -1.1f + step_y * (float(j) + float(r.range(-0.3, 0.3)));
+      draw.positions_clip.emplace_back(x, y, float(r.range(0.0, 1.0)), 1.0f);
+    }
+  const uint32_t topology = r.below(3);
+  for (uint32_t j = 0; j < rows; ++j)
+    for (uint32_t i = 0; i < columns; ++i) {
+      const uint32_t v = j * (columns + 1) + i;
+      for (uint32_t k : {v, v + 1, v + columns + 2, v, v + columns + 2, v + columns + 1}) draw.indices.push_back(k);
+    }
+  if (topology == 1) draw.topology = Topology::TriangleStrip;  // the same indices, read as a strip
+  if (topology == 2) draw.topology = Topology::TriangleFan;
+  draw.state.cull_mode = CullMode(r.below(4));
+  draw.state.front_face = FrontFace(r.below(2));
+  draw.state.depth.compare_op = r.chance(0.5) ? CompareOp::Less : CompareOp(r.below(8));
+  draw.state.depth.write_enable = !r.chance(0.2);
+  draw.state.depth_clamp = r.chance(0.2);
+  scene.draws.push_back(draw);
+  draw.state.depth.compare_op = CompareOp(r.below(8));  // a second pass over the same mesh
+  scene.draws.push_back(std::move(draw));
+  if (r.chance(0.3)) scene.scissor = Rect2D{int32_t(r.below(40)), int32_t(r.below(40)), 20 + r.below(200), 20 + r.below(200)};
   return scene;
 }
 

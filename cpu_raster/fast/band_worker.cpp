@@ -60,6 +60,15 @@ BandWorker::BandWorker(FastFrame& frame, uint32_t index) : frame_(frame), index_
 }
 
 void BandWorker::run() {
+  try {
+    run_draws();
+  } catch (...) {
+    frame_.failed.store(true, std::memory_order_relaxed);  // WorkerPool rethrows it in the caller
+    throw;
+  }
+}
+
+void BandWorker::run_draws() {
   for (uint32_t d = 0; d < frame_.draws.size(); ++d) {
     if (frame_.draws[d].fast) walk_fast(d);
     else walk_exact(d);
@@ -126,8 +135,12 @@ void BandWorker::walk_small_blocks(uint32_t d) {
       pipeline.publish(uint32_t(block));
       progress = true;
     }
-    if (progress) rounds = 0;
-    else wait_for_other_worker(rounds);
+    if (progress) {
+      rounds = 0;
+    } else {
+      if (frame_.failed.load(std::memory_order_relaxed)) return;  // the block will never come
+      wait_for_other_worker(rounds);
+    }
   }
 }
 
@@ -164,21 +177,35 @@ void BandWorker::draw_block(uint32_t d, const SmallBlock& block) {
   }
 }
 
-// A small triangle inside one tile: straight to the kernel (no depth bounds: the tile's become unknown).
+// A small triangle: a grid lane (which may reach into a neighbouring tile row or column: only
+// this worker's rows are written) or a kernel job inside one tile. Its tiles are cleared first;
+// their depth bounds become unknown when depth is written.
 void BandWorker::draw_small(const SmallBlockOutput& block, int lane, uint32_t owner, const DrawRaster& raster) {
-  const int32_t ty = block.y0[lane] >> kTileOrder;
-  if (!owns_tile_row(ty)) return;
-  if (!batch_.empty()) flush(raster);  // keep submission order: earlier batched triangles first
-  const int32_t tx = block.x0[lane] >> kTileOrder;
-  TileState& tile = frame_.raster.tile(tx, ty);
-  if (!tile.cleared) {
-    clear_tile(tx, ty, frame_.raster);
-    tile.cleared = true;
+  int32_t row_lo = block.y0[lane], row_hi = block.y1[lane];
+  const int32_t ty0 = row_lo >> kTileOrder, ty1 = row_hi >> kTileOrder;
+  if (!owns_tile_row(ty0)) {
+    if (ty1 == ty0 || !owns_tile_row(ty1)) return;
+    row_lo = ty1 << kTileOrder;
+  } else if (ty1 != ty0 && !owns_tile_row(ty1)) {
+    row_hi = (ty1 << kTileOrder) - 1;
   }
-  const bool wrote = (block.grid_mask >> lane) & 1u
-                         ? raster.grid_fn(block, lane, owner, raster.kernel.write, frame_.raster.target)
-                         : raster.small_fn(block, lane, owner, raster.kernel, frame_.raster.target);
-  if (wrote && raster.depth.write) tile.bounds.state = BoundsState::Unknown;
+  if (!batch_.empty()) flush(raster);  // keep submission order: earlier batched triangles first
+  const int32_t tx0 = block.x0[lane] >> kTileOrder, tx1 = block.x1[lane] >> kTileOrder;
+  for (int32_t ty = row_lo >> kTileOrder; ty <= row_hi >> kTileOrder; ++ty) {
+    for (int32_t tx = tx0; tx <= tx1; ++tx) {
+      TileState& tile = frame_.raster.tile(tx, ty);
+      if (!tile.cleared) {
+        clear_tile(tx, ty, frame_.raster);
+        tile.cleared = true;
+      }
+      if (raster.depth.write) tile.bounds.state = BoundsState::Unknown;  // before any write lands
+    }
+  }
+  if ((block.grid_mask >> lane) & 1u) {
+    raster.grid_fn(block, lane, owner, row_lo, row_hi, raster.kernel.write, frame_.raster.target);
+  } else {
+    raster.small_fn(block, lane, owner, raster.kernel, frame_.raster.target);
+  }
 }
 
 // Set-up of an unclipped triangle: triangle_setup.cpp step by step (lavapipe-rules §2.2-§2.5,
@@ -189,7 +216,10 @@ void BandWorker::triangle(uint32_t d, uint32_t primitive, uint32_t a, uint32_t b
   const FastVertex& v1 = fd.vertices[b];
   const FastVertex& v2 = fd.vertices[c];
   const uint32_t flags = v0.flags | v1.flags | v2.flags;
-  if (flags & kVertexClipBits) return clipped_triangle(d, primitive, a, b, c);
+  if (flags & kVertexClipBits) {
+    if (v0.flags & v1.flags & v2.flags & kVertexClipBits) return;  // all outside one plane: ClipFate::Outside
+    return clipped_triangle(d, primitive, a, b, c);
+  }
   if (flags & kVertexSnapFailed) return;  // SetupFate::NonFinite
   const PixelRect& region = frame_.exact.region;
   // triangle_bbox (x0 = min >> 8, x1 = (max - 1) >> 8) ∩ draw region; coverage lies inside it.

@@ -24,6 +24,7 @@ class BandWorker {
   static constexpr size_t kBatchSize = 64;
 
  private:
+  void run_draws();
   bool owns_tile_row(int32_t tile_y) const { return owned_rows_[size_t(tile_y)] != 0; }
   bool owns_rows(int32_t y0, int32_t y1) const;
 

@@ -5,11 +5,15 @@
 
 namespace rastercmp::cpu::fast {
 
-BlockPipeline::BlockPipeline(uint32_t primitives, uint32_t workers)
+uint32_t BlockPipeline::slots_for(uint32_t primitives) {
+  return std::max<uint32_t>(1, std::min((primitives + 7) / 8, kMaxSlots));
+}
+
+BlockPipeline::BlockPipeline(uint32_t primitives, uint32_t workers, SmallBlock* ring)
     : blocks_((primitives + 7) / 8),
-      slots_(std::max<uint32_t>(1, std::min(blocks_, kMaxSlots))),
+      slots_(slots_for(primitives)),
       workers_(workers),
-      ring_(std::make_unique<SmallBlock[]>(slots_)),
+      ring_(ring),
       ready_(std::make_unique<Counter[]>(slots_)),
       consumed_(std::make_unique<Counter[]>(workers)) {}
 
@@ -25,8 +29,18 @@ int64_t BlockPipeline::claim() {
   }
 }
 
+SmallBlock* block_scratch(size_t count) {
+  thread_local std::unique_ptr<SmallBlock[]> storage;
+  thread_local size_t capacity = 0;
+  if (count > capacity) {
+    storage = std::make_unique<SmallBlock[]>(count);
+    capacity = count;
+  }
+  return storage.get();
+}
+
 void wait_for_other_worker(uint32_t& rounds) {
-  if (++rounds < 64) {
+  if (++rounds < 32) {
     __builtin_ia32_pause();
   } else {
     std::this_thread::yield();

@@ -23,7 +23,9 @@ struct SmallBlock {
 
 class BlockPipeline {
  public:
-  BlockPipeline(uint32_t primitives, uint32_t workers);
+  // `ring` holds slots_for(primitives) blocks (block_scratch), reused from render to render.
+  BlockPipeline(uint32_t primitives, uint32_t workers, SmallBlock* ring);
+  static uint32_t slots_for(uint32_t primitives);
 
   uint32_t blocks() const { return blocks_; }
   // The next block to set up, or -1 when all are taken or the ring is full.
@@ -36,14 +38,14 @@ class BlockPipeline {
   // `worker` has drawn blocks [0, count).
   void consumed(uint32_t worker, uint32_t count) { consumed_[worker].value.store(count, std::memory_order_release); }
 
-  static constexpr uint32_t kMaxSlots = 256;
+  static constexpr uint32_t kMaxSlots = 128;
 
  private:
   struct alignas(64) Counter {
     std::atomic<uint32_t> value{0};
   };
   uint32_t blocks_, slots_, workers_;
-  std::unique_ptr<SmallBlock[]> ring_;
+  SmallBlock* ring_;
   std::unique_ptr<Counter[]> ready_;
   std::unique_ptr<Counter[]> consumed_;
   Counter next_;
@@ -51,5 +53,8 @@ class BlockPipeline {
 
 // A short wait for another worker: spin first, then give the core away.
 void wait_for_other_worker(uint32_t& rounds);
+
+// The calling thread's ring storage: at least `count` blocks, valid until the next call.
+SmallBlock* block_scratch(size_t count);
 
 }  // namespace rastercmp::cpu::fast

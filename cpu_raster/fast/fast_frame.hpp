@@ -3,6 +3,7 @@
 // the tiles' depth bounds.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -34,6 +35,7 @@ struct FastFrame {
   std::vector<TileState> tiles;
   std::vector<FastDraw> draws;
   uint32_t workers = 1;
+  std::atomic<bool> failed{false};  // a worker threw: the others stop waiting for it
 };
 
 }  // namespace rastercmp::cpu::fast

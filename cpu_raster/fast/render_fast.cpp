@@ -140,6 +140,8 @@ void transform_all_vertices(FastFrame& frame) {
       for (size_t i = w; i < tasks.size(); i += frame.workers) run(tasks[i]);
     });
   }
+  std::vector<uint32_t> small_draws;
+  size_t slots = 0;
   for (uint32_t d = 0; d < frame.draws.size(); ++d) {
     FastDraw& fd = frame.draws[d];
     if (!fd.fast) continue;
@@ -149,8 +151,16 @@ void transform_all_vertices(FastFrame& frame) {
     fd.pipelined = any_outside && any_used_vertex_clipped(draw, fd.vertices);
     // The eight-wide set-up leaves out what it does not model: depth bias, the pipeline float cull.
     if (fd.raster.small_fn && fd.raster.vector_ok && !draw.state.depth_bias.enable &&
-        !(fd.pipelined && draw.state.cull_mode != CullMode::None))
-      fd.pipeline = std::make_unique<BlockPipeline>(primitive_count(draw), frame.workers);
+        !(fd.pipelined && draw.state.cull_mode != CullMode::None)) {
+      small_draws.push_back(d);
+      slots += BlockPipeline::slots_for(primitive_count(draw));
+    }
+  }
+  SmallBlock* ring = block_scratch(slots);
+  for (uint32_t d : small_draws) {
+    const uint32_t primitives = primitive_count(frame.scene->draws[d]);
+    frame.draws[d].pipeline = std::make_unique<BlockPipeline>(primitives, frame.workers, ring);
+    ring += BlockPipeline::slots_for(primitives);
   }
 }
 

@@ -41,16 +41,16 @@ template <DepthFormat F, CompareOp Op>
 bool scatter(const SmallBlockOutput& b, int l, uint32_t owner, int32_t row_lo, int32_t row_hi, bool depth_write,
              const TileTarget& t) {
   // Rows outside [row_lo, row_hi] belong to another worker: their bits are dropped up front.
-  uint32_t bits = b.grid_bits[l];
+  uint64_t bits = b.grid_bits[l];
   const int32_t first_row = row_lo - b.y0[l], last_row = row_hi - b.y0[l];
-  if (first_row > 0) bits &= ~0u << (first_row * kGridSide);
-  if (last_row < kGridSide - 1) bits &= (1u << ((last_row + 1) * kGridSide)) - 1u;
+  if (first_row > 0) bits &= ~uint64_t(0) << (first_row * kGridSide);
+  if (last_row < kGridSide - 1) bits &= (uint64_t(1) << ((last_row + 1) * kGridSide)) - 1u;
   bool wrote = false;
   for (; bits != 0; bits &= bits - 1) {
     const int p = std::countr_zero(bits);
     const size_t i = size_t(b.y0[l] + p / kGridSide) * size_t(t.width) + size_t(b.x0[l] + p % kGridSide);
     if constexpr (F != DepthFormat::None) {
-      const uint32_t raw = b.grid_raw[p][l];
+      const uint32_t raw = b.grid_raw[(p / kGridSide) * b.grid_columns + p % kGridSide][l];
       if (!passes<F, Op>(raw, t.depth[i])) continue;
       if (depth_write) t.depth[i] = raw;
     }

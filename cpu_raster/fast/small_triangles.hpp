@@ -28,7 +28,7 @@ namespace rastercmp::cpu::fast {
 
 inline constexpr int32_t kSmallWidth = 8;    // pixels: one 8-lane span per row
 inline constexpr int32_t kSmallHeight = 16;  // rows
-inline constexpr int32_t kGridSide = 4;      // candidate pixels per side of a grid lane
+inline constexpr int32_t kGridSide = 8;      // candidate pixels per side of a grid lane
 
 struct SmallBlockInput {
   const FastVertex* vertices = nullptr;
@@ -48,8 +48,9 @@ struct SmallBlockOutput {
   alignas(32) int32_t g_minus_1[3][8], gx[3][8], gy[3][8];
   alignas(32) float a0[8], dzdx[8], dzdy[8];
   // Grid lanes: bit dy*kGridSide + dx is set when pixel (x0 + dx, y0 + dy) is covered; its raw
-  // depth is grid_raw[dy*kGridSide + dx][lane].
-  alignas(32) uint32_t grid_bits[8];
+  // depth is grid_raw[dy*grid_columns + dx][lane] (only the block's window is written).
+  int32_t grid_columns = 0;
+  alignas(32) uint64_t grid_bits[8];
   alignas(32) uint32_t grid_raw[kGridSide * kGridSide][8];
 
   // The lane's job (offset 0: draws with depth bias take the scalar set-up).

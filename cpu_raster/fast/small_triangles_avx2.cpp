@@ -137,7 +137,8 @@ RASTERCMP_AVX2 void evaluate_grid(const GridLanes& g, const Edge8 (&edges)[3], c
     gx[i] = step_x(edges[i]);
     gy[i] = step_y(edges[i]);
   }
-  __m256i bits = _mm256_setzero_si256();
+  // Coverage bits per lane: positions 0-31 in bits_lo, 32-63 in bits_hi (32-bit lanes).
+  __m256i bits_lo = _mm256_setzero_si256(), bits_hi = _mm256_setzero_si256();
   for (int dy = 0; dy < g.rows; ++dy) {
     const __m256i in_y = _mm256_andnot_si256(_mm256_cmpgt_epi32(_mm256_set1_epi32(dy), g.h), g.mask);
     const __m256 py = _mm256_cvtepi32_ps(_mm256_add_epi32(g.y0, _mm256_set1_epi32(dy)));
@@ -146,19 +147,24 @@ RASTERCMP_AVX2 void evaluate_grid(const GridLanes& g, const Edge8 (&edges)[3], c
       const int p = dy * kGridSide + dx;
       const __m256i in_xy = _mm256_andnot_si256(_mm256_cmpgt_epi32(_mm256_set1_epi32(dx), g.w), in_y);
       const __m256i covered = _mm256_andnot_si256(_mm256_srai_epi32(_mm256_or_si256(_mm256_or_si256(e[0], e[1]), e[2]), 31), in_xy);
-      bits = _mm256_or_si256(bits, _mm256_and_si256(covered, _mm256_set1_epi32(1 << p)));
+      const __m256i bit = _mm256_and_si256(covered, _mm256_set1_epi32(int32_t(1u << (p & 31))));
+      if (p < 32) bits_lo = _mm256_or_si256(bits_lo, bit);
+      else bits_hi = _mm256_or_si256(bits_hi, bit);
       if constexpr (F != DepthFormat::None) {
         const __m256 px = _mm256_cvtepi32_ps(_mm256_add_epi32(g.x0, _mm256_set1_epi32(dx)));
         // + o with o = 0 (draws with depth bias take the scalar set-up); the add turns -0 into +0
         const __m256 z = finish_depth8(mul_add8(plane.dzdy, py, mul_add8(plane.dzdx, px, plane.a0, depth.fma), depth.fma),
                                        _mm256_setzero_ps(), depth);
-        _mm256_store_si256(reinterpret_cast<__m256i*>(out.grid_raw[p]), to_raw<F>(z));
+        _mm256_store_si256(reinterpret_cast<__m256i*>(out.grid_raw[dy * g.columns + dx]), to_raw<F>(z));
       }
       for (int i = 0; i < 3; ++i) e[i] = _mm256_add_epi32(e[i], gx[i]);
     }
     for (int i = 0; i < 3; ++i) row_e[i] = _mm256_add_epi32(row_e[i], gy[i]);
   }
-  _mm256_store_si256(reinterpret_cast<__m256i*>(out.grid_bits), bits);
+  // Interleave into 64-bit lanes: grid_bits[l] = lo[l] | hi[l] << 32.
+  const __m256i lo4 = _mm256_unpacklo_epi32(bits_lo, bits_hi), hi4 = _mm256_unpackhi_epi32(bits_lo, bits_hi);
+  _mm256_store_si256(reinterpret_cast<__m256i*>(out.grid_bits), _mm256_permute2x128_si256(lo4, hi4, 0x20));
+  _mm256_store_si256(reinterpret_cast<__m256i*>(out.grid_bits + 4), _mm256_permute2x128_si256(lo4, hi4, 0x31));
 }
 
 // Largest lane value of v among the lanes of `lanes_mask`.
@@ -229,6 +235,7 @@ RASTERCMP_AVX2 void setup_small_block_avx2(const SmallBlockInput& in, SmallBlock
   _mm256_store_si256(reinterpret_cast<__m256i*>(out.y1), y1);
   if (out.grid_mask) {
     const GridLanes g{grid, x0, y0, w, h, max_lane(w, out.grid_mask) + 1, max_lane(h, out.grid_mask) + 1};
+    out.grid_columns = g.columns;
     switch (in.depth.format) {
       case DepthFormat::None: evaluate_grid<DepthFormat::None>(g, edges, plane, in.depth, out); break;
       case DepthFormat::D16Unorm: evaluate_grid<DepthFormat::D16Unorm>(g, edges, plane, in.depth, out); break;

@@ -79,7 +79,7 @@ void raster_in_tile(const FastTriangle& t, const PixelRect& r, int32_t tile_x, i
   if (!state.cleared) {
     // Fast clear: skipped when this triangle replaces every owner and depth value of the tile.
     const bool overwrites = covers_tile && (frame.target.depth == nullptr ||
-                                            (draw.depth.write && verdict == DepthVerdict::AllPass));
+                                            (verdict == DepthVerdict::AllPass));
     if (!overwrites) clear_tile(tile_x, tile_y, frame);
     state.cleared = true;
   }
