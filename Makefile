@@ -50,7 +50,8 @@ fuzz: setup
 	  echo "fuzz: $$t for $(FUZZ_SECONDS) s" && \
 	  $(BUILD_FUZZ)/fuzz/fuzz_$$t -max_total_time=$(FUZZ_SECONDS) -print_final_stats=1 \
 	    -artifact_prefix=$(BUILD_FUZZ)/artifacts/$$t- \
-	    $(BUILD_FUZZ)/corpus/$$t fuzz/corpus/$$t fuzz/regressions/$$t 2>$(BUILD_FUZZ)/fuzz_$$t.log \
+	    $(BUILD_FUZZ)/corpus/$$t fuzz/corpus/$$t $$(test -d fuzz/regressions/$$t && echo fuzz/regressions/$$t) \
+	    2>$(BUILD_FUZZ)/fuzz_$$t.log \
 	  || { tail -n 40 $(BUILD_FUZZ)/fuzz_$$t.log; exit 1; }; \
 	  grep -E "stat::number_of_executed_units" $(BUILD_FUZZ)/fuzz_$$t.log; \
 	done
