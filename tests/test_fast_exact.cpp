@@ -9,6 +9,7 @@
 
 #include "cpu_raster/fast/bench_scenes.hpp"
 #include "model/errors.hpp"
+#include "model/host.hpp"
 #include "model/scene_io.hpp"
 #include "tests/test_fast_support.hpp"
 
@@ -71,6 +72,43 @@ TEST_P(FastSmallMeshes, MatchExactPath) {
 INSTANTIATE_TEST_SUITE_P(Seeds, FastSmallMeshes, ::testing::Range<uint64_t>(1, 41),
                          [](const ::testing::TestParamInfo<uint64_t>& info) { return "seed_" + std::to_string(info.param); });
 
+// The fast clear skips a tile's clear only when the first triangle replaces every value of it.
+TEST(FastClear, TilesKeepTheirClearValuesUnderDepthWritesOff) {
+  for (const DepthFormat format : {DepthFormat::D16Unorm, DepthFormat::X8D24Unorm, DepthFormat::D32Sfloat}) {
+    Scene scene;
+    scene.name = "test.fast.clear";
+    scene.width = 150;
+    scene.height = 130;
+    scene.depth_format = format;
+    scene.depth_clear = 0.75f;
+    for (const bool write : {false, true}) {
+      Draw draw;  // a quad over the whole framebuffer, in front of the clear value
+      for (const glm::vec4& v : {glm::vec4(-1, -1, 0.25f, 1), glm::vec4(1, -1, 0.25f, 1), glm::vec4(1, 1, 0.25f, 1),
+                                 glm::vec4(-1, -1, 0.25f, 1), glm::vec4(1, 1, 0.25f, 1), glm::vec4(-1, 1, 0.25f, 1)})
+        draw.positions_clip.push_back(v);
+      draw.state.depth.write_enable = write;
+      scene.draws.push_back(draw);
+    }
+    expect_fast_matches(scene, true);
+    scene.draws.pop_back();  // writes off alone: the depth buffer must still hold the clear value
+    const RenderResult fast = render_fast(scene, true, 2, true);
+    EXPECT_TRUE(same_bytes(render_exact(scene, true), fast));
+  }
+}
+
+// Results rendered into reused buffers equal fresh ones (the fast clear leaves nothing behind).
+TEST(FastClear, ReusedBuffersGiveTheSameBytes) {
+  CpuOptions options;
+  options.threads = 2;
+  RenderResult reused;
+  for (uint64_t seed = 1; seed < 12; ++seed) {
+    const Scene scene = fast_test::layered_scene(seed);
+    options.fma = lavapipe_fuses_on_this_host();
+    render_cpu_fast_into(scene, options, reused);
+    EXPECT_TRUE(same_bytes(render_exact(scene, options.fma), reused)) << "seed " << seed;
+  }
+}
+
 TEST(FastBenchScenes, SmallVersionsMatchExactPath) {
   expect_fast_matches(bench::fill_layers_scene(true, 200, 6), true);
   expect_fast_matches(bench::fill_layers_scene(false, 200, 6), true);
@@ -78,6 +116,17 @@ TEST(FastBenchScenes, SmallVersionsMatchExactPath) {
   expect_fast_matches(bench::grid_scene(60, 256), true);
   expect_fast_matches(bench::grid_scene(181, 256), true);  // about 1 px triangles
   expect_fast_matches(bench::perspective_scene(40, 192), true);
+}
+
+// render_cpu_fast as the bench and render_cpu call it (its own choice of workers) on a scene big
+// enough for two.
+TEST(FastBenchScenes, ProductionEntryPointMatchesExactPath) {
+  const Scene scene = bench::grid_scene(200, 512);
+  CpuOptions options;
+  options.fma = lavapipe_fuses_on_this_host();
+  options.threads = 2;
+  EXPECT_TRUE(same_bytes(render_exact(scene, options.fma), render_cpu_fast(scene, options)));
+  EXPECT_TRUE(same_bytes(render_exact(scene, options.fma), render_cpu(scene, options)));
 }
 
 TEST(FastBuiltinScenes, EverySupportedSceneMatchesExactPath) {

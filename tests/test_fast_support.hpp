@@ -207,7 +207,8 @@ inline RenderResult render_fast(const Scene& scene, bool fma, uint32_t threads, 
   CpuOptions options;
   options.fma = fma;
   options.threads = threads;
-  return cpu::fast::render_fast(scene, options, cpu::fast::FastConfig{avx2});
+  // every_thread: the workers really split the rows, even on scenes one worker would take alone
+  return cpu::fast::render_fast(scene, options, cpu::fast::FastConfig{avx2, true});
 }
 
 // Identical owner and depth bytes; on failure names the first differing sample.

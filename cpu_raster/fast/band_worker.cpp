@@ -1,11 +1,14 @@
 #include "cpu_raster/fast/band_worker.hpp"
 
 #include <algorithm>
+#include <bit>
+#include <climits>
 
 #include "cpu_raster/assemble.hpp"
 #include "cpu_raster/clip_triangle.hpp"
 #include "cpu_raster/clip_vertex.hpp"
 #include "cpu_raster/depth_plane.hpp"
+#include "cpu_raster/fast/small_block_input.hpp"
 #include "cpu_raster/pipeline_cull.hpp"
 #include "cpu_raster/triangle_setup.hpp"
 #include "model/render_result.hpp"
@@ -21,15 +24,6 @@ bool face_culled(bool front_facing, CullMode cull) {
     case CullMode::FrontAndBack: return true;
   }
   return false;
-}
-
-// The draw's vertex numbers of primitive i (assemble.hpp, provoking vertex first).
-template <Topology T>
-std::array<uint32_t, 3> vertex_numbers(uint32_t i) {
-  if constexpr (T == Topology::TriangleList) return {3 * i, 3 * i + 1, 3 * i + 2};
-  if constexpr (T == Topology::TriangleStrip)
-    return (i & 1) == 0 ? std::array<uint32_t, 3>{i, i + 1, i + 2} : std::array<uint32_t, 3>{i, i + 2, i + 1};
-  return {i + 1, i + 2, 0};  // fan
 }
 
 WindowVertex window_of(const FastVertex& v) { return WindowVertex{v.x, v.y, v.z}; }
@@ -60,15 +54,6 @@ BandWorker::BandWorker(FastFrame& frame, uint32_t index) : frame_(frame), index_
 }
 
 void BandWorker::run() {
-  try {
-    run_draws();
-  } catch (...) {
-    frame_.failed.store(true, std::memory_order_relaxed);  // WorkerPool rethrows it in the caller
-    throw;
-  }
-}
-
-void BandWorker::run_draws() {
   for (uint32_t d = 0; d < frame_.draws.size(); ++d) {
     if (frame_.draws[d].fast) walk_fast(d);
     else walk_exact(d);
@@ -79,8 +64,9 @@ void BandWorker::run_draws() {
       if (!frame_.raster.tile(tx, ty).cleared) clear_tile(tx, ty, frame_.raster);
 }
 
-bool BandWorker::owns_rows(int32_t y0, int32_t y1) const {
-  const int32_t t0 = y0 >> kTileOrder, t1 = y1 >> kTileOrder;
+bool BandWorker::owns_rows(int32_t y0, int32_t y1) const { return owns_tile_rows(y0 >> kTileOrder, y1 >> kTileOrder); }
+
+bool BandWorker::owns_tile_rows(int32_t t0, int32_t t1) const {
   if (uint32_t(t1 - t0 + 1) >= workers_) return true;
   for (int32_t t = t0; t <= t1; ++t)
     if (owns_tile_row(t)) return true;
@@ -107,7 +93,7 @@ void BandWorker::walk_fast(uint32_t d) {
 template <Topology T, bool Indexed>
 void BandWorker::walk_triangles(uint32_t d) {
   const Draw& draw = frame_.scene->draws[d];
-  if (frame_.draws[d].pipeline) return walk_small_blocks<T, Indexed>(d);
+  if (frame_.draws[d].small_blocks) return walk_small_blocks<T, Indexed>(d);
   const uint32_t* indices = draw.indices.data();
   const uint32_t count = primitive_count(draw);
   for (uint32_t i = 0; i < count; ++i) {
@@ -117,94 +103,21 @@ void BandWorker::walk_triangles(uint32_t d) {
   }
 }
 
-// Draws the published blocks in order; in between, sets up the next unclaimed block.
+// The draw eight triangles at a time. Every worker sets up only the blocks that may reach its
+// rows (block_tile_rows); it never waits for another worker.
 template <Topology T, bool Indexed>
 void BandWorker::walk_small_blocks(uint32_t d) {
-  BlockPipeline& pipeline = *frame_.draws[d].pipeline;
-  uint32_t next = 0, rounds = 0;
-  while (next < pipeline.blocks()) {
-    bool progress = false;
-    while (next < pipeline.blocks() && pipeline.ready(next)) {
-      draw_block(d, pipeline.slot(next));
-      pipeline.consumed(index_, ++next);
-      progress = true;
-    }
-    const int64_t block = pipeline.claim();
-    if (block >= 0) {
-      set_up_block<T, Indexed>(d, uint32_t(block), pipeline.slot(uint32_t(block)));
-      pipeline.publish(uint32_t(block));
-      progress = true;
-    }
-    if (progress) {
-      rounds = 0;
-    } else {
-      if (frame_.failed.load(std::memory_order_relaxed)) return;  // the block will never come
-      wait_for_other_worker(rounds);
-    }
-  }
-}
-
-template <Topology T, bool Indexed>
-void BandWorker::set_up_block(uint32_t d, uint32_t block, SmallBlock& slot) {
-  const Draw& draw = frame_.scene->draws[d];
   const FastDraw& fd = frame_.draws[d];
-  const uint32_t* indices = draw.indices.data();
-  const uint32_t count = primitive_count(draw);
-  SmallBlockInput& in = slot.in;
-  slot.first = block * 8;
-  in.vertices = fd.vertices;
-  in.region = frame_.exact.region;
-  in.front_ccw = draw.state.front_face == FrontFace::CounterClockwise;
-  in.cull = draw.state.cull_mode;
-  in.depth = fd.raster.kernel;
-  in.count = std::min(count - slot.first, 8u);
-  for (uint32_t l = 0; l < 8; ++l) {
-    const std::array<uint32_t, 3> n = vertex_numbers<T>(slot.first + (l < in.count ? l : 0));
-    if constexpr (Indexed) in.a[l] = indices[n[0]], in.b[l] = indices[n[1]], in.c[l] = indices[n[2]];
-    else in.a[l] = n[0], in.b[l] = n[1], in.c[l] = n[2];
-  }
-  setup_small_block_avx2(in, slot.out);
-}
-
-// One block, lane by lane in primitive order, into this worker's rows.
-void BandWorker::draw_block(uint32_t d, const SmallBlock& block) {
-  const SmallBlockOutput& out = block.out;
-  const DrawRaster& raster = frame_.draws[d].raster;
-  for (uint32_t l = 0; l < block.in.count; ++l) {
-    const uint32_t bit = 1u << l;
-    if (out.scalar_mask & bit) triangle(d, block.first + l, block.in.a[l], block.in.b[l], block.in.c[l]);
-    else if ((out.grid_mask | out.job_mask) & bit) draw_small(out, int(l), encode_owner(d, block.first + l), raster);
-  }
-}
-
-// A small triangle: a grid lane (which may reach into a neighbouring tile row or column: only
-// this worker's rows are written) or a kernel job inside one tile. Its tiles are cleared first;
-// their depth bounds become unknown when depth is written.
-void BandWorker::draw_small(const SmallBlockOutput& block, int lane, uint32_t owner, const DrawRaster& raster) {
-  int32_t row_lo = block.y0[lane], row_hi = block.y1[lane];
-  const int32_t ty0 = row_lo >> kTileOrder, ty1 = row_hi >> kTileOrder;
-  if (!owns_tile_row(ty0)) {
-    if (ty1 == ty0 || !owns_tile_row(ty1)) return;
-    row_lo = ty1 << kTileOrder;
-  } else if (ty1 != ty0 && !owns_tile_row(ty1)) {
-    row_hi = (ty1 << kTileOrder) - 1;
-  }
-  if (!batch_.empty()) flush(raster);  // keep submission order: earlier batched triangles first
-  const int32_t tx0 = block.x0[lane] >> kTileOrder, tx1 = block.x1[lane] >> kTileOrder;
-  for (int32_t ty = row_lo >> kTileOrder; ty <= row_hi >> kTileOrder; ++ty) {
-    for (int32_t tx = tx0; tx <= tx1; ++tx) {
-      TileState& tile = frame_.raster.tile(tx, ty);
-      if (!tile.cleared) {
-        clear_tile(tx, ty, frame_.raster);
-        tile.cleared = true;
-      }
-      if (raster.depth.write) tile.bounds.state = BoundsState::Unknown;  // before any write lands
+  const uint32_t blocks = (primitive_count(frame_.scene->draws[d]) + 7) / 8;
+  for (uint32_t b = 0; b < blocks; ++b) {
+    const uint32_t rows = fd.block_rows ? fd.block_rows[b] : kBlockAnyRow;  // null: one worker owns every row
+    if (rows != kBlockAnyRow) {
+      const int32_t lo = int32_t(rows & 0xFFFFu), hi = int32_t(rows >> 16);
+      if (lo > hi || !owns_tile_rows(lo, hi)) continue;
     }
-  }
-  if ((block.grid_mask >> lane) & 1u) {
-    raster.grid_fn(block, lane, owner, row_lo, row_hi, raster.kernel.write, frame_.raster.target);
-  } else {
-    raster.small_fn(block, lane, owner, raster.kernel, frame_.raster.target);
+    fill_block_input<T, Indexed>(frame_, d, b, block_);
+    setup_small_block_avx2(block_.in, block_.out);
+    draw_block(d, block_);
   }
 }
 

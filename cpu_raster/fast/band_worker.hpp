@@ -16,6 +16,10 @@
 
 namespace rastercmp::cpu::fast {
 
+// Fills frame.draws[d].block_rows[begin, end) (the workers share the blocks out before the walk:
+// each block is measured once, by one of them).
+void measure_block_rows(FastFrame& frame, uint32_t draw_index, uint32_t begin, uint32_t end);
+
 class BandWorker {
  public:
   BandWorker(FastFrame& frame, uint32_t index);
@@ -24,9 +28,9 @@ class BandWorker {
   static constexpr size_t kBatchSize = 64;
 
  private:
-  void run_draws();
   bool owns_tile_row(int32_t tile_y) const { return owned_rows_[size_t(tile_y)] != 0; }
-  bool owns_rows(int32_t y0, int32_t y1) const;
+  bool owns_rows(int32_t y0, int32_t y1) const;            // pixel rows
+  bool owns_tile_rows(int32_t tile_y0, int32_t tile_y1) const;
 
   template <Topology T, bool Indexed>
   void walk_triangles(uint32_t draw_index);
@@ -35,9 +39,8 @@ class BandWorker {
 
   template <Topology T, bool Indexed>
   void walk_small_blocks(uint32_t draw_index);
-  template <Topology T, bool Indexed>
-  void set_up_block(uint32_t draw_index, uint32_t block, SmallBlock& slot);
   void draw_block(uint32_t draw_index, const SmallBlock& block);
+  bool draw_grid_block(const SmallBlock& block, uint32_t owner_of_lane_0, const DrawRaster& raster);
   void draw_small(const SmallBlockOutput& block, int lane, uint32_t owner, const DrawRaster& raster);
   void triangle(uint32_t draw_index, uint32_t primitive, uint32_t a, uint32_t b, uint32_t c);
   void clipped_triangle(uint32_t draw_index, uint32_t primitive, uint32_t a, uint32_t b, uint32_t c);
@@ -51,6 +54,7 @@ class BandWorker {
   uint32_t index_, workers_;
   std::vector<FastTriangle> batch_;
   std::vector<uint8_t> owned_rows_;  // per tile row: 1 when this worker draws it
+  SmallBlock block_;  // the small-triangle block being set up and drawn
 };
 
 }  // namespace rastercmp::cpu::fast

@@ -3,12 +3,9 @@
 // the tiles' depth bounds.
 #pragma once
 
-#include <atomic>
 #include <cstdint>
-#include <memory>
 #include <vector>
 
-#include "cpu_raster/fast/block_pipeline.hpp"
 #include "cpu_raster/fast/fast_vertices.hpp"
 #include "cpu_raster/fast/tile_raster.hpp"
 #include "cpu_raster/front_end.hpp"
@@ -21,11 +18,16 @@ struct FastDraw {
   // front end and rasterizer, restricted to each worker's rows.
   bool fast = false;
   FastVertex* vertices = nullptr;           // fast draws: one per position (VertexScratch)
+  int16_t* tile_rows = nullptr;       // fast draws: per position, its tile row or kRowUnknown
   bool pipelined = false;                  // lavapipe-rules §1.5 chunk flag
   SetupContext setup;                      // for the exact set-up of clipped triangles
   DrawRaster raster;
-  std::unique_ptr<BlockPipeline> pipeline;  // small-triangle blocks (AVX2 hosts, draws it models)
+  bool small_blocks = false;  // set up eight triangles at a time (small_triangles.hpp)
+  uint32_t* block_rows = nullptr;  // per block of 8: the tile rows it may reach (band_worker.cpp)
 };
+
+// block_rows value of a block that must be set up by every worker.
+inline constexpr uint32_t kBlockAnyRow = 0xFFFFFFFFu;
 
 struct FastFrame {
   const Scene* scene = nullptr;
@@ -35,7 +37,6 @@ struct FastFrame {
   std::vector<TileState> tiles;
   std::vector<FastDraw> draws;
   uint32_t workers = 1;
-  std::atomic<bool> failed{false};  // a worker threw: the others stop waiting for it
 };
 
 }  // namespace rastercmp::cpu::fast

@@ -5,7 +5,8 @@
 
 namespace rastercmp::cpu::fast {
 
-void transform_vertices_scalar(const VertexJob& job, size_t begin, size_t end, FastVertex* out) {
+uint32_t transform_vertices_scalar(const VertexJob& job, size_t begin, size_t end, FastVertex* out, int16_t* rows) {
+  uint32_t all_flags = 0;
   for (size_t k = begin; k < end; ++k) {
     const glm::vec4& p = job.pos_clip[k];
     const WindowVertex w = window_from_clip_jit(p, job.viewport, job.fma);  // §1.3
@@ -24,7 +25,11 @@ void transform_vertices_scalar(const VertexJob& job, size_t begin, size_t end, F
       v.x_fixed = x->raw;
       v.y_fixed = y->raw;
     }
+    // |y_fixed| <= 2^25 (Fixed24_8::kMaxMagnitude), so the row fits 16 bits
+    rows[k] = v.flags ? kRowUnknown : int16_t(v.y_fixed >> (kFixedOrder + 6));
+    all_flags |= v.flags;
   }
+  return all_flags;
 }
 
 }  // namespace rastercmp::cpu::fast

@@ -34,8 +34,13 @@ struct VertexJob {
   bool depth_clip = true;
 };
 
-// Fills out[begin, end) from job.pos_clip[begin, end).
-void transform_vertices_scalar(const VertexJob& job, size_t begin, size_t end, FastVertex* out);
-void transform_vertices_avx2(const VertexJob& job, size_t begin, size_t end, FastVertex* out);
+// Per vertex, the 64-pixel tile row of its snapped y (y_fixed >> 14), or kRowUnknown when the
+// vertex needs clipping or failed to snap: a compact copy for the block row test (band_worker.cpp).
+inline constexpr int16_t kRowUnknown = INT16_MIN;
+
+// Fills out[begin, end) and rows[begin, end) from job.pos_clip[begin, end); returns the OR of
+// the vertices' flags.
+uint32_t transform_vertices_scalar(const VertexJob& job, size_t begin, size_t end, FastVertex* out, int16_t* rows);
+uint32_t transform_vertices_avx2(const VertexJob& job, size_t begin, size_t end, FastVertex* out, int16_t* rows);
 
 }  // namespace rastercmp::cpu::fast

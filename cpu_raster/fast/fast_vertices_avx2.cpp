@@ -58,9 +58,11 @@ RASTERCMP_AVX2 inline __m256i snap8(__m256 window, __m256& ok) {
 
 }  // namespace
 
-RASTERCMP_AVX2 void transform_vertices_avx2(const VertexJob& job, size_t begin, size_t end, FastVertex* out) {
+RASTERCMP_AVX2 uint32_t transform_vertices_avx2(const VertexJob& job, size_t begin, size_t end, FastVertex* out,
+                                                int16_t* rows) {
   const ViewportTransform& vp = job.viewport;
   size_t k = begin;
+  __m256i all_flags = _mm256_setzero_si256();
   alignas(32) float wx[8], wy[8], wz[8];
   alignas(32) int32_t fx[8], fy[8], flags[8];
   for (; k + 8 <= end; k += 8) {
@@ -74,13 +76,25 @@ RASTERCMP_AVX2 void transform_vertices_avx2(const VertexJob& job, size_t begin, 
     _mm256_store_si256(reinterpret_cast<__m256i*>(fy), snap8(y, ok_y));
     const __m256i failed = _mm256_andnot_si256(_mm256_castps_si256(_mm256_and_ps(ok_x, ok_y)),
                                                _mm256_set1_epi32(int(kVertexSnapFailed)));
-    _mm256_store_si256(reinterpret_cast<__m256i*>(flags), _mm256_or_si256(clip_mask8(p, job.depth_clip), failed));
+    const __m256i lane_flags = _mm256_or_si256(clip_mask8(p, job.depth_clip), failed);
+    all_flags = _mm256_or_si256(all_flags, lane_flags);
+    _mm256_store_si256(reinterpret_cast<__m256i*>(flags), lane_flags);
+    // the tile row of y (kRowUnknown where a flag is set), packed to 16 bits
+    const __m256i row = _mm256_blendv_epi8(_mm256_srai_epi32(_mm256_load_si256(reinterpret_cast<const __m256i*>(fy)), kFixedOrder + 6),
+                                           _mm256_set1_epi32(kRowUnknown),
+                                           _mm256_xor_si256(_mm256_cmpeq_epi32(lane_flags, _mm256_setzero_si256()), _mm256_set1_epi32(-1)));
+    const __m128i row16 = _mm_packs_epi32(_mm256_castsi256_si128(row), _mm256_extracti128_si256(row, 1));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(rows + k), row16);
     _mm256_store_ps(wx, x);
     _mm256_store_ps(wy, y);
     _mm256_store_ps(wz, z);
     for (int i = 0; i < 8; ++i) out[k + i] = FastVertex{fx[i], fy[i], wx[i], wy[i], wz[i], uint32_t(flags[i]), {0, 0}};
   }
-  transform_vertices_scalar(job, k, end, out);
+  alignas(32) uint32_t lanes[8];
+  _mm256_store_si256(reinterpret_cast<__m256i*>(lanes), all_flags);
+  uint32_t result = transform_vertices_scalar(job, k, end, out, rows);
+  for (uint32_t lane : lanes) result |= lane;
+  return result;
 }
 
 }  // namespace rastercmp::cpu::fast

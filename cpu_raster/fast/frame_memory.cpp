@@ -35,6 +35,18 @@ FastVertex* VertexScratch::acquire(size_t count) {
   return data_.get();
 }
 
+int16_t* thread_row_scratch(size_t count) {
+  thread_local std::vector<int16_t> rows;
+  if (rows.size() < count + 8) rows.resize(count + 8);  // + 8: the AVX2 pass stores 8 rows at a time
+  return rows.data();
+}
+
+uint32_t* thread_word_scratch(size_t count) {
+  thread_local std::vector<uint32_t> words;
+  if (words.size() < count) words.resize(count);
+  return words.data();
+}
+
 VertexScratch& thread_vertex_scratch() {
   thread_local VertexScratch scratch;
   return scratch;

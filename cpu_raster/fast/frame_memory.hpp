@@ -33,4 +33,10 @@ class VertexScratch {
 // The calling thread's scratch.
 VertexScratch& thread_vertex_scratch();
 
+// The calling thread's scratch of `count` 16-bit tile rows (contents unspecified), valid until the next call.
+int16_t* thread_row_scratch(size_t count);
+
+// The calling thread's scratch of `count` words (contents unspecified), valid until the next call.
+uint32_t* thread_word_scratch(size_t count);
+
 }  // namespace rastercmp::cpu::fast

@@ -1,11 +1,13 @@
-// render_cpu_fast: phases of a fast render.
+// render_cpu_fast: phases of a fast render (docs/performance.md).
 //  1. frame: the exact path's frame context, the result buffers (not cleared: tiles are cleared
 //     by their workers), per-draw raster state and tiles;
 //  2. vertices: per fast draw, every position transformed and snapped once (in parallel);
-//  3. bands: one BandWorker per thread walks all draws and rasterizes its own tile rows.
+//  3. block rows (several workers): the tile rows each block of 8 small triangles may reach;
+//  4. bands: one BandWorker per thread walks all draws and rasterizes its own tile rows.
 #include "cpu_raster/fast/render_fast.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <memory>
 
@@ -68,12 +70,25 @@ void init_targets(FastFrame& frame, const Scene& scene, RenderResult& result) {
   }
 }
 
+// Workers for this scene: options.threads, or 1 when a second worker would have nothing to do
+// (one tile row) or too little to pay for waking it (a few thousand primitives on a small
+// framebuffer: waking a thread on another, idle CPU of this VM costs 0.1-0.3 ms, measured on the
+// built-in suite). The result does not depend on it.
+uint32_t worker_count(const Scene& scene, uint32_t threads, const FastConfig& config) {
+  if (config.every_thread) return std::max(threads, 1u);
+  if (threads <= 1 || (scene.height + kTileSize - 1) / kTileSize < 2) return 1;
+  uint64_t primitives = 0;
+  for (const Draw& draw : scene.draws) primitives += draw.vertex_count();
+  const uint64_t pixels = uint64_t(scene.width) * scene.height * scene.samples;
+  return primitives < 6000 && pixels < 256 * 1024 ? 1 : threads;
+}
+
 void init_frame(FastFrame& frame, const Scene& scene, const CpuOptions& options, const FastConfig& config,
                 RenderResult& result) {
   frame.scene = &scene;
   frame.exact = make_frame_context(scene, options.fma, SetupMethods{});
   init_targets(frame, scene, result);
-  frame.workers = std::max<uint32_t>(options.threads, 1);
+  frame.workers = worker_count(scene, options.threads, config);
   frame.draws.resize(scene.draws.size());
   for (uint32_t d = 0; d < scene.draws.size(); ++d) {
     FastDraw& fd = frame.draws[d];
@@ -110,60 +125,88 @@ bool any_used_vertex_clipped(const Draw& draw, const FastVertex* vertices) {
 struct VertexTask {
   uint32_t draw;
   size_t begin, end;
+  uint32_t flags = 0;  // OR of the vertices' flags
 };
 
-void transform_all_vertices(FastFrame& frame) {
+// Phase 2: every fast draw's positions transformed and snapped, in blocks shared out between the
+// workers. With several workers, worker 0 first runs the profile check when it is still pending
+// (its index scan is a pass over the whole index buffer) while the others start on the
+// vertices, which read no index: everything that does comes after this phase.
+void transform_all_vertices(FastFrame& frame, bool check_pending) {
   size_t total = 0;
   for (uint32_t d = 0; d < frame.draws.size(); ++d)
     if (frame.draws[d].fast) total += frame.scene->draws[d].positions_clip.size();
   FastVertex* scratch = thread_vertex_scratch().acquire(total);
+  int16_t* rows = thread_row_scratch(total);
   std::vector<VertexTask> tasks;
   for (uint32_t d = 0; d < frame.draws.size(); ++d) {
     if (!frame.draws[d].fast) continue;
     const size_t n = frame.scene->draws[d].positions_clip.size();
     frame.draws[d].vertices = scratch;
+    frame.draws[d].tile_rows = rows;
     scratch += n;
+    rows += n;
     for (size_t b = 0; b < n; b += kVertexBlock) tasks.push_back({d, b, std::min(n, b + kVertexBlock)});
   }
-  const auto run = [&frame](const VertexTask& task) {
+  const auto run = [&frame](VertexTask& task) {
     const Draw& draw = frame.scene->draws[task.draw];
     const VertexJob job{draw.positions_clip.data(), frame.exact.viewport, frame.exact.fma,
                         draw.state.depth_clip_enabled()};
-    FastVertex* out = frame.draws[task.draw].vertices;
-    if (frame.raster.avx2) transform_vertices_avx2(job, task.begin, task.end, out);
-    else transform_vertices_scalar(job, task.begin, task.end, out);
+    FastDraw& fd = frame.draws[task.draw];
+    task.flags = frame.raster.avx2 ? transform_vertices_avx2(job, task.begin, task.end, fd.vertices, fd.tile_rows)
+                                   : transform_vertices_scalar(job, task.begin, task.end, fd.vertices, fd.tile_rows);
   };
   if (frame.workers == 1 || tasks.size() <= 1) {
-    for (const VertexTask& task : tasks) run(task);
+    if (check_pending) check_lavapipe_profile_support(*frame.scene);
+    for (VertexTask& task : tasks) run(task);
   } else {
+    std::atomic<size_t> next{0};
     worker_pool(frame.workers).run([&](uint32_t w) {
-      for (size_t i = w; i < tasks.size(); i += frame.workers) run(tasks[i]);
+      if (w == 0 && check_pending) check_lavapipe_profile_support(*frame.scene);
+      for (size_t i = next++; i < tasks.size(); i = next++) run(tasks[i]);
     });
   }
-  std::vector<uint32_t> small_draws;
-  size_t slots = 0;
+  std::vector<uint32_t> draw_flags(frame.draws.size(), 0);
+  for (const VertexTask& task : tasks) draw_flags[task.draw] |= task.flags;
   for (uint32_t d = 0; d < frame.draws.size(); ++d) {
     FastDraw& fd = frame.draws[d];
     if (!fd.fast) continue;
     const Draw& draw = frame.scene->draws[d];
-    const bool any_outside = std::any_of(fd.vertices, fd.vertices + draw.positions_clip.size(),
-                                         [](const FastVertex& v) { return (v.flags & kVertexClipBits) != 0; });
-    fd.pipelined = any_outside && any_used_vertex_clipped(draw, fd.vertices);
+    fd.pipelined = (draw_flags[d] & kVertexClipBits) && any_used_vertex_clipped(draw, fd.vertices);
     // The eight-wide set-up leaves out what it does not model: depth bias, the pipeline float cull.
-    if (fd.raster.small_fn && fd.raster.vector_ok && !draw.state.depth_bias.enable &&
-        !(fd.pipelined && draw.state.cull_mode != CullMode::None)) {
-      small_draws.push_back(d);
-      slots += BlockPipeline::slots_for(primitive_count(draw));
-    }
-  }
-  SmallBlock* ring = block_scratch(slots);
-  for (uint32_t d : small_draws) {
-    const uint32_t primitives = primitive_count(frame.scene->draws[d]);
-    frame.draws[d].pipeline = std::make_unique<BlockPipeline>(primitives, frame.workers, ring);
-    ring += BlockPipeline::slots_for(primitives);
+    fd.small_blocks = fd.raster.small_fn && fd.raster.vector_ok && !draw.state.depth_bias.enable &&
+                      !(fd.pipelined && draw.state.cull_mode != CullMode::None);
   }
 }
 
+struct RowTask {
+  uint32_t draw, begin, end;
+};
+
+// Phase 3 (several workers): which tile rows each block of small triangles may reach, measured
+// once, so that a worker sets up only the blocks it may draw into.
+void measure_all_block_rows(FastFrame& frame) {
+  constexpr uint32_t kRowTaskBlocks = 4096;
+  size_t blocks = 0;
+  for (uint32_t d = 0; d < frame.draws.size(); ++d)
+    if (frame.draws[d].small_blocks) blocks += (primitive_count(frame.scene->draws[d]) + 7) / 8;
+  if (blocks == 0) return;
+  uint32_t* rows = thread_word_scratch(blocks);
+  std::vector<RowTask> tasks;
+  for (uint32_t d = 0; d < frame.draws.size(); ++d) {
+    if (!frame.draws[d].small_blocks) continue;
+    const uint32_t count = (primitive_count(frame.scene->draws[d]) + 7) / 8;
+    frame.draws[d].block_rows = rows;
+    rows += count;
+    for (uint32_t b = 0; b < count; b += kRowTaskBlocks) tasks.push_back({d, b, std::min(count, b + kRowTaskBlocks)});
+  }
+  std::atomic<size_t> next{0};
+  worker_pool(frame.workers).run([&](uint32_t) {
+    for (size_t i = next++; i < tasks.size(); i = next++) measure_block_rows(frame, tasks[i].draw, tasks[i].begin, tasks[i].end);
+  });
+}
+
+// Phase 4: every worker walks every draw into its own tile rows.
 void run_workers(FastFrame& frame) {
   if (frame.workers == 1) {
     BandWorker(frame, 0).run();
@@ -194,10 +237,18 @@ void render_fast_into(const Scene& scene, const CpuOptions& options, const FastC
     result = render_cpu(scene, exact);
     return;
   }
-  check_lavapipe_profile_support(scene);
+  // The sizes first (they decide the allocations); with several workers the full check, with its
+  // index scan, runs beside the vertex phase.
+  const bool sizes_ok = scene.width >= 1 && scene.width <= kMaxFramebufferSide && scene.height >= 1 &&
+                        scene.height <= kMaxFramebufferSide && (scene.samples == 1 || scene.samples == 4) &&
+                        scene.draws.size() <= kMaxDraws;
+  const bool several = sizes_ok && worker_count(scene, options.threads, config) > 1;
+  if (!several) check_lavapipe_profile_support(scene);
+  const bool check_pending = several;
   FastFrame frame;
   init_frame(frame, scene, options, config, result);
-  transform_all_vertices(frame);
+  transform_all_vertices(frame, check_pending);
+  if (frame.workers > 1) measure_all_block_rows(frame);
   run_workers(frame);
   fill_result(result, std::move(frame.targets), options.fma);
 }

@@ -20,7 +20,8 @@ namespace cpu::fast {
 
 // Knobs for tests and benchmarks; the defaults are what render_cpu_fast uses.
 struct FastConfig {
-  bool allow_avx2 = true;  // false: the scalar kernels even on an AVX2 host
+  bool allow_avx2 = true;      // false: the scalar kernels even on an AVX2 host
+  bool every_thread = false;   // true: options.threads workers even where one would do (tests)
 };
 
 void render_fast_into(const Scene& scene, const CpuOptions& options, const FastConfig& config, RenderResult& result);

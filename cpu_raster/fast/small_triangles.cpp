@@ -37,20 +37,18 @@ bool passes(uint32_t fragment, uint32_t stored) {
   }
 }
 
+// One lane's covered pixels, in raster order.
 template <DepthFormat F, CompareOp Op>
-bool scatter(const SmallBlockOutput& b, int l, uint32_t owner, int32_t row_lo, int32_t row_hi, bool depth_write,
-             const TileTarget& t) {
-  // Rows outside [row_lo, row_hi] belong to another worker: their bits are dropped up front.
-  uint64_t bits = b.grid_bits[l];
-  const int32_t first_row = row_lo - b.y0[l], last_row = row_hi - b.y0[l];
-  if (first_row > 0) bits &= ~uint64_t(0) << (first_row * kGridSide);
-  if (last_row < kGridSide - 1) bits &= (uint64_t(1) << ((last_row + 1) * kGridSide)) - 1u;
+inline bool scatter_bits(const SmallBlockOutput& b, int l, uint64_t bits, uint32_t owner, bool depth_write,
+                         const TileTarget& t) {
   bool wrote = false;
+  const size_t origin = size_t(b.y0[l]) * size_t(t.width) + size_t(b.x0[l]);
   for (; bits != 0; bits &= bits - 1) {
     const int p = std::countr_zero(bits);
-    const size_t i = size_t(b.y0[l] + p / kGridSide) * size_t(t.width) + size_t(b.x0[l] + p % kGridSide);
+    const int dy = p / kGridSide, dx = p % kGridSide;
+    const size_t i = origin + size_t(dy) * size_t(t.width) + size_t(dx);
     if constexpr (F != DepthFormat::None) {
-      const uint32_t raw = b.grid_raw[(p / kGridSide) * b.grid_columns + p % kGridSide][l];
+      const uint32_t raw = b.grid_raw[dy * b.grid_columns + dx][l];
       if (!passes<F, Op>(raw, t.depth[i])) continue;
       if (depth_write) t.depth[i] = raw;
     }
@@ -59,6 +57,39 @@ bool scatter(const SmallBlockOutput& b, int l, uint32_t owner, int32_t row_lo, i
   }
   return wrote;
 }
+
+template <DepthFormat F, CompareOp Op>
+bool scatter(const SmallBlockOutput& b, int l, uint32_t owner, int32_t row_lo, int32_t row_hi, bool depth_write,
+             const TileTarget& t) {
+  // Rows outside [row_lo, row_hi] belong to another worker: their bits are dropped up front.
+  uint64_t bits = b.grid_bits[l];
+  const int32_t first_row = row_lo - b.y0[l], last_row = row_hi - b.y0[l];
+  if (first_row > 0) bits &= ~uint64_t(0) << (first_row * kGridSide);
+  if (last_row < kGridSide - 1) bits &= (uint64_t(1) << ((last_row + 1) * kGridSide)) - 1u;
+  return scatter_bits<F, Op>(b, l, bits, owner, depth_write, t);
+}
+
+template <DepthFormat F, CompareOp Op>
+bool scatter_block(const SmallBlockOutput& b, uint32_t owner_of_lane_0, bool depth_write, const TileTarget& t) {
+  bool wrote = false;
+  for (uint32_t lanes = b.grid_mask; lanes != 0; lanes &= lanes - 1) {
+    const int l = std::countr_zero(lanes);
+    wrote |= scatter_bits<F, Op>(b, l, b.grid_bits[l], owner_of_lane_0 + uint32_t(l), depth_write, t);
+  }
+  return wrote;
+}
+
+template <DepthFormat F, size_t... I>
+constexpr std::array<GridBlockFn, 8> blocks_for(std::index_sequence<I...>) {
+  return {&scatter_block<F, CompareOp(I)>...};
+}
+
+constexpr std::array<std::array<GridBlockFn, 8>, 4> kBlocks = {
+    blocks_for<DepthFormat::None>(std::make_index_sequence<8>{}),
+    blocks_for<DepthFormat::D16Unorm>(std::make_index_sequence<8>{}),
+    blocks_for<DepthFormat::X8D24Unorm>(std::make_index_sequence<8>{}),
+    blocks_for<DepthFormat::D32Sfloat>(std::make_index_sequence<8>{}),
+};
 
 template <DepthFormat F, size_t... I>
 constexpr std::array<GridScatterFn, 8> scatters_for(std::index_sequence<I...>) {
@@ -90,6 +121,10 @@ KernelJob SmallBlockOutput::job(int lane, uint32_t owner, CompareOp op) const {
   j.owner = owner;
   j.op = op;
   return j;
+}
+
+GridBlockFn select_grid_block(DepthFormat format, CompareOp op) {
+  return kBlocks[size_t(format)][format == DepthFormat::None ? size_t(CompareOp::Always) : size_t(op)];
 }
 
 GridScatterFn select_grid_scatter(DepthFormat format, CompareOp op) {

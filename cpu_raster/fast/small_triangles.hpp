@@ -32,8 +32,13 @@ inline constexpr int32_t kGridSide = 8;      // candidate pixels per side of a g
 
 struct SmallBlockInput {
   const FastVertex* vertices = nullptr;
-  uint32_t a[8], b[8], c[8];  // vertex (position) numbers, already through the index buffer
-  uint32_t count = 0;         // lanes in use (the others repeat a valid vertex)
+  // Vertex (position) numbers of lane l's corners, already through the index buffer:
+  // corners[k][l * stride] (an indexed list's own index buffer, or `copied`).
+  const uint32_t* corners[3] = {nullptr, nullptr, nullptr};
+  uint32_t stride = 1;
+  uint32_t copied[3][8];      // strips, fans, non-indexed draws and a list's last block
+  uint32_t* corners_copy(int k) { return copied[k]; }
+  uint32_t count = 0;         // lanes in use (the others repeat a valid primitive)
   PixelRect region;
   bool front_ccw = true;
   CullMode cull = CullMode::None;
@@ -59,10 +64,20 @@ struct SmallBlockOutput {
 
 void setup_small_block_avx2(const SmallBlockInput& in, SmallBlockOutput& out);
 
+struct SmallBlock {
+  uint32_t first = 0;  // first primitive of the block
+  SmallBlockInput in;
+  SmallBlockOutput out;
+};
+
 // Depth test and writes of one grid lane's pixels in rows [row_lo, row_hi], in raster order;
 // returns whether any pixel was written.
 using GridScatterFn = bool (*)(const SmallBlockOutput&, int lane, uint32_t owner, int32_t row_lo, int32_t row_hi,
                                bool depth_write, const TileTarget&);
 GridScatterFn select_grid_scatter(DepthFormat format, CompareOp op);
+
+// Every grid lane of a block (lane l owned by owner_of_lane_0 + l), all rows.
+using GridBlockFn = bool (*)(const SmallBlockOutput&, uint32_t owner_of_lane_0, bool depth_write, const TileTarget&);
+GridBlockFn select_grid_block(DepthFormat format, CompareOp op);
 
 }  // namespace rastercmp::cpu::fast

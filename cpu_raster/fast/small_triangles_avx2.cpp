@@ -17,9 +17,9 @@ struct Corners {  // one triangle corner of eight lanes
 };
 
 // Eight FastVertex (32 bytes each) → one register per field: an 8x8 transpose.
-RASTERCMP_AVX2 inline Corners load_corners(const FastVertex* v, const uint32_t* index) {
+RASTERCMP_AVX2 inline Corners load_corners(const FastVertex* v, const uint32_t* index, uint32_t stride) {
   __m256 r[8];
-  for (int k = 0; k < 8; ++k) r[k] = _mm256_loadu_ps(reinterpret_cast<const float*>(v + index[k]));
+  for (uint32_t k = 0; k < 8; ++k) r[k] = _mm256_loadu_ps(reinterpret_cast<const float*>(v + index[k * stride]));
   __m256 u[8];
   for (int k = 0; k < 8; k += 4) {
     const __m256 t0 = _mm256_unpacklo_ps(r[k], r[k + 1]), t1 = _mm256_unpackhi_ps(r[k], r[k + 1]);
@@ -137,6 +137,14 @@ RASTERCMP_AVX2 void evaluate_grid(const GridLanes& g, const Edge8 (&edges)[3], c
     gx[i] = step_x(edges[i]);
     gy[i] = step_y(edges[i]);
   }
+  // The inner FMA?(dzdx, px, a0) depends on the column only.
+  __m256 inner[kGridSide];
+  if constexpr (F != DepthFormat::None) {
+    for (int dx = 0; dx < g.columns; ++dx) {
+      const __m256 px = _mm256_cvtepi32_ps(_mm256_add_epi32(g.x0, _mm256_set1_epi32(dx)));
+      inner[dx] = mul_add8(plane.dzdx, px, plane.a0, depth.fma);
+    }
+  }
   // Coverage bits per lane: positions 0-31 in bits_lo, 32-63 in bits_hi (32-bit lanes).
   __m256i bits_lo = _mm256_setzero_si256(), bits_hi = _mm256_setzero_si256();
   for (int dy = 0; dy < g.rows; ++dy) {
@@ -151,10 +159,8 @@ RASTERCMP_AVX2 void evaluate_grid(const GridLanes& g, const Edge8 (&edges)[3], c
       if (p < 32) bits_lo = _mm256_or_si256(bits_lo, bit);
       else bits_hi = _mm256_or_si256(bits_hi, bit);
       if constexpr (F != DepthFormat::None) {
-        const __m256 px = _mm256_cvtepi32_ps(_mm256_add_epi32(g.x0, _mm256_set1_epi32(dx)));
         // + o with o = 0 (draws with depth bias take the scalar set-up); the add turns -0 into +0
-        const __m256 z = finish_depth8(mul_add8(plane.dzdy, py, mul_add8(plane.dzdx, px, plane.a0, depth.fma), depth.fma),
-                                       _mm256_setzero_ps(), depth);
+        const __m256 z = finish_depth8(mul_add8(plane.dzdy, py, inner[dx], depth.fma), _mm256_setzero_ps(), depth);
         _mm256_store_si256(reinterpret_cast<__m256i*>(out.grid_raw[dy * g.columns + dx]), to_raw<F>(z));
       }
       for (int i = 0; i < 3; ++i) e[i] = _mm256_add_epi32(e[i], gx[i]);
@@ -167,22 +173,21 @@ RASTERCMP_AVX2 void evaluate_grid(const GridLanes& g, const Edge8 (&edges)[3], c
   _mm256_store_si256(reinterpret_cast<__m256i*>(out.grid_bits + 4), _mm256_permute2x128_si256(lo4, hi4, 0x31));
 }
 
-// Largest lane value of v among the lanes of `lanes_mask`.
-RASTERCMP_AVX2 int max_lane(__m256i v, uint32_t lanes_mask) {
-  alignas(32) int32_t values[8];
-  _mm256_store_si256(reinterpret_cast<__m256i*>(values), v);
-  int best = 0;
-  for (int l = 0; l < 8; ++l)
-    if (lanes_mask & (1u << l)) best = std::max(best, values[l]);
-  return best;
+// Largest value of v (>= 0) among the lanes set in `mask`, 0 when none is.
+RASTERCMP_AVX2 int max_lane(__m256i v, __m256i mask) {
+  __m256i m = _mm256_and_si256(v, mask);
+  m = _mm256_max_epi32(m, _mm256_permute2x128_si256(m, m, 0x01));
+  m = _mm256_max_epi32(m, _mm256_shuffle_epi32(m, 0x4E));
+  m = _mm256_max_epi32(m, _mm256_shuffle_epi32(m, 0xB1));
+  return _mm256_cvtsi256_si32(m);
 }
 
 }  // namespace
 
 RASTERCMP_AVX2 void setup_small_block_avx2(const SmallBlockInput& in, SmallBlockOutput& out) {
-  const Corners p0 = load_corners(in.vertices, in.a);
-  Corners p1 = load_corners(in.vertices, in.b);
-  Corners p2 = load_corners(in.vertices, in.c);
+  const Corners p0 = load_corners(in.vertices, in.corners[0], in.stride);
+  Corners p1 = load_corners(in.vertices, in.corners[1], in.stride);
+  Corners p2 = load_corners(in.vertices, in.corners[2], in.stride);
   const __m256i zero = _mm256_setzero_si256(), one = _mm256_set1_epi32(1);
   const __m256i special = _mm256_and_si256(_mm256_or_si256(p0.flags, _mm256_or_si256(p1.flags, p2.flags)),
                                            _mm256_set1_epi32(int32_t(kVertexClipBits | kVertexSnapFailed)));
@@ -234,7 +239,7 @@ RASTERCMP_AVX2 void setup_small_block_avx2(const SmallBlockInput& in, SmallBlock
   _mm256_store_si256(reinterpret_cast<__m256i*>(out.x1), x1);
   _mm256_store_si256(reinterpret_cast<__m256i*>(out.y1), y1);
   if (out.grid_mask) {
-    const GridLanes g{grid, x0, y0, w, h, max_lane(w, out.grid_mask) + 1, max_lane(h, out.grid_mask) + 1};
+    const GridLanes g{grid, x0, y0, w, h, max_lane(w, grid) + 1, max_lane(h, grid) + 1};
     out.grid_columns = g.columns;
     switch (in.depth.format) {
       case DepthFormat::None: evaluate_grid<DepthFormat::None>(g, edges, plane, in.depth, out); break;

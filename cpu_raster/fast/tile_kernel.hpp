@@ -40,6 +40,7 @@ struct KernelJob {
   float a0 = 0, dzdx = 0, dzdy = 0, offset = 0;
   uint32_t owner = 0;
   CompareOp op = CompareOp::Always;  // the draw's op, or Always once hi-z proved that all pass
+  bool all_in = false;               // every pixel of rect is covered (the edge fields are unused)
 };
 
 // Returns whether any pixel passed (and was written).

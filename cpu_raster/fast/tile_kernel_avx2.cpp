@@ -95,9 +95,53 @@ RASTERCMP_AVX2 inline __m256i depth_span(const KernelJob& j, const KernelDepth& 
   return pass;
 }
 
+// A rectangle every pixel of which is covered, in whole 8-pixel spans inside the row: no edge
+// or column masks, and the inner FMA?(dzdx, px, a0) of each of the tile's columns computed once.
+template <DepthFormat F, CompareOp Op>
+RASTERCMP_AVX2 bool covered_spans(const KernelJob& j, const KernelDepth& d, const TileTarget& t) {
+  constexpr int kMaxSpans = 8;  // a tile row is 64 pixels
+  const int spans = (j.rect.x1 + 1 - j.rect.x0) / 8;
+  const __m256 lane = _mm256_setr_ps(0, 1, 2, 3, 4, 5, 6, 7);
+  __m256 inner[kMaxSpans];
+  for (int k = 0; k < spans; ++k) {
+    const __m256 px = _mm256_add_ps(_mm256_set1_ps(float(j.rect.x0 + 8 * k)), lane);  // exact: integers below 2^24
+    inner[k] = mul_add8(_mm256_set1_ps(j.dzdx), px, _mm256_set1_ps(j.a0), d.fma);
+  }
+  const __m256 dzdy = _mm256_set1_ps(j.dzdy), offset = _mm256_set1_ps(j.offset);
+  const __m256i owner = _mm256_set1_epi32(int32_t(j.owner)), all = _mm256_set1_epi32(-1);
+  bool any = false;
+  for (int32_t y = j.rect.y0; y <= j.rect.y1; ++y) {
+    const __m256 py = _mm256_set1_ps(float(y));
+    uint32_t* owner_row = t.owner + size_t(y) * size_t(t.width) + size_t(j.rect.x0);
+    uint32_t* depth_row = F != DepthFormat::None ? t.depth + size_t(y) * size_t(t.width) + size_t(j.rect.x0) : nullptr;
+    for (int k = 0; k < spans; ++k) {
+      __m256i pass = all;
+      if constexpr (F != DepthFormat::None) {
+        const __m256 z = finish_depth8(mul_add8(dzdy, py, inner[k], d.fma), offset, d);
+        const __m256i raw = to_raw<F>(z);
+        __m256i* depth_span = reinterpret_cast<__m256i*>(depth_row + 8 * k);
+        if constexpr (Op == CompareOp::Always) {
+          if (d.write) _mm256_storeu_si256(depth_span, raw);
+        } else {
+          const __m256i stored = _mm256_loadu_si256(depth_span);
+          pass = depth_passes<F, Op>(z, raw, stored);
+          if (_mm256_testz_si256(pass, pass)) continue;
+          if (d.write) _mm256_storeu_si256(depth_span, _mm256_blendv_epi8(stored, raw, pass));
+        }
+      }
+      __m256i* owner_span = reinterpret_cast<__m256i*>(owner_row + 8 * k);
+      if (all_lanes(pass)) _mm256_storeu_si256(owner_span, owner);
+      else _mm256_storeu_si256(owner_span, _mm256_blendv_epi8(_mm256_loadu_si256(owner_span), owner, pass));
+      any = true;
+    }
+  }
+  return any;
+}
+
 template <DepthFormat F, CompareOp Op>
 RASTERCMP_AVX2 bool kernel(const KernelJob& j, const KernelDepth& d, const TileTarget& t) {
   if constexpr (Op == CompareOp::Never && F != DepthFormat::None) return false;
+  if (j.all_in && (j.rect.x0 & 7) == 0 && ((j.rect.x1 + 1) & 7) == 0) return covered_spans<F, Op>(j, d, t);
   const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
   __m256i lane_g[3], span_step[3];
   for (int i = 0; i < 3; ++i) {

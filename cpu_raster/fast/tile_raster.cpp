@@ -19,9 +19,10 @@ bool same_rect(const PixelRect& a, const PixelRect& b) {
   return a.x0 == b.x0 && a.y0 == b.y0 && a.x1 == b.x1 && a.y1 == b.y1;
 }
 
-// The tile's bounds after the triangle wrote depth over r.
+// The tile's bounds after the triangle wrote depth over r (`ranged`: the tile's bounds were
+// known and the fragments' range is f).
 void update_bounds(TileBounds& tile, bool ranged, const FragmentRange& f, DepthVerdict verdict, bool covers_tile) {
-  if (!ranged || tile.state == BoundsState::Unknown) {
+  if (!ranged) {
     tile.state = BoundsState::Unknown;
   } else if (verdict == DepthVerdict::AllPass && covers_tile) {
     tile = TileBounds{f.lo, f.hi, BoundsState::Exact};  // every stored value was replaced
@@ -44,6 +45,7 @@ DrawRaster make_draw_raster(const DepthTestState& depth, bool frame_bounds, bool
     draw.kernel_fn = select_kernel_avx2(draw.kernel.format, depth.op);
     draw.small_fn = select_small_kernel_avx2(draw.kernel.format, depth.op);
     draw.grid_fn = select_grid_scatter(draw.kernel.format, depth.op);
+    draw.grid_block_fn = select_grid_block(draw.kernel.format, depth.op);
   }
   return draw;
 }
@@ -59,27 +61,36 @@ void raster_in_tile(const FastTriangle& t, const PixelRect& r, int32_t tile_x, i
   job.offset = t.offset;
   job.owner = t.owner;
   job.op = draw.depth.op;
+  job.all_in = edges.all_in;
   TileState& state = frame.tile(tile_x, tile_y);
   TileBounds& tile = state.bounds;
   const PixelRect whole_tile = tile_rect(tile_x, tile_y, frame.target);
   FragmentRange fragment;
   bool ranged = false;
   DepthVerdict verdict = DepthVerdict::PerPixel;
-  if (draw.bounds && area(r) >= kBoundsMinArea) {
-    if (tile.state != BoundsState::Exact && area(r) >= kMeasureMinArea)
+  if (draw.bounds && area(r) >= kBoundsMinArea && fragment_range(t, r, draw.depth, fragment)) {
+    const bool whole = same_rect(r, whole_tile), measurable = area(r) >= kMeasureMinArea && state.cleared;
+    if (tile.state != BoundsState::Exact && whole && measurable)
       measure_bounds(frame.target.depth, frame.target.width, whole_tile, frame.avx2, tile);
-    if (tile.state != BoundsState::Unknown && fragment_range(t, r, draw.depth, fragment)) {
+    if (tile.state != BoundsState::Unknown) {
       ranged = true;
       verdict = classify_depth(draw.depth.op, fragment, tile);
-      if (verdict == DepthVerdict::AllFail) return;
-      if (verdict == DepthVerdict::AllPass) job.op = CompareOp::Always;
     }
+    if (verdict == DepthVerdict::PerPixel && !whole && measurable) {  // the values under r alone
+      TileBounds under;
+      measure_bounds(frame.target.depth, frame.target.width, r, frame.avx2, under);
+      const DepthVerdict local = classify_depth(draw.depth.op, fragment, under);
+      if (local != DepthVerdict::PerPixel) verdict = local;
+    }
+    if (verdict == DepthVerdict::AllFail) return;
+
+    if (verdict == DepthVerdict::AllPass) job.op = CompareOp::Always;
   }
   const bool covers_tile = edges.all_in && same_rect(r, whole_tile);
   if (!state.cleared) {
     // Fast clear: skipped when this triangle replaces every owner and depth value of the tile.
     const bool overwrites = covers_tile && (frame.target.depth == nullptr ||
-                                            (verdict == DepthVerdict::AllPass));
+                                            (draw.depth.write && verdict == DepthVerdict::AllPass));
     if (!overwrites) clear_tile(tile_x, tile_y, frame);
     state.cleared = true;
   }

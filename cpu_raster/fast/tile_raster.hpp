@@ -23,6 +23,7 @@ struct DrawRaster {
   KernelFn kernel_fn = nullptr;  // the AVX2 kernels of this depth state (set when the host has AVX2)
   SmallKernelFn small_fn = nullptr;
   GridScatterFn grid_fn = nullptr;
+  GridBlockFn grid_block_fn = nullptr;
 };
 
 // Shared by the workers of a frame; a tile (and its bounds) is only touched by the worker that

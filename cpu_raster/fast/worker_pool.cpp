@@ -1,5 +1,8 @@
 #include "cpu_raster/fast/worker_pool.hpp"
 
+#include <pthread.h>
+#include <sched.h>
+
 #include <map>
 #include <memory>
 
@@ -27,8 +30,23 @@ void WorkerPool::call(const std::function<void(uint32_t)>& job, uint32_t index) 
   }
 }
 
+void WorkerPool::keep_off_caller_cpu() {
+#ifdef __linux__
+  const int caller = sched_getcpu();
+  if (caller < 0 || caller == placed_for_cpu_ || threads_.empty()) return;
+  placed_for_cpu_ = caller;
+  cpu_set_t allowed;
+  CPU_ZERO(&allowed);
+  if (sched_getaffinity(0, sizeof(allowed), &allowed) != 0) return;
+  CPU_CLR(caller, &allowed);
+  if (CPU_COUNT(&allowed) == 0) return;  // one CPU: nowhere else to go
+  for (std::thread& t : threads_) pthread_setaffinity_np(t.native_handle(), sizeof(allowed), &allowed);  // a hint
+#endif
+}
+
 void WorkerPool::run(const std::function<void(uint32_t)>& job) {
   const std::lock_guard<std::mutex> serial(run_mutex_);
+  keep_off_caller_cpu();
   {
     const std::lock_guard<std::mutex> lock(mutex_);
     job_ = &job;

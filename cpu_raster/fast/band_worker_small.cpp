@@ -1,0 +1,144 @@
+// BandWorker's small-triangle blocks: drawing a set-up block into the worker's rows, and the
+// phase before the walks that measures which tile rows each block may reach.
+#include <algorithm>
+#include <bit>
+#include <climits>
+
+#include "cpu_raster/fast/band_worker.hpp"
+#include "cpu_raster/fast/small_block_input.hpp"
+#include "model/render_result.hpp"
+
+namespace rastercmp::cpu::fast {
+namespace {
+
+// Tile rows lo..hi cut to the draw region's, packed lo | hi << 16 (lo > hi: none).
+uint32_t pack_rows(int32_t lo, int32_t hi, const PixelRect& region) {
+  lo = std::max(lo, region.y0 >> kTileOrder);  // the corner rows bound the bounding boxes' rows
+  hi = std::min(hi, region.y1 >> kTileOrder);
+  if (lo > hi) return 0xFFFFu;  // lo > hi: no row
+  return uint32_t(lo) | uint32_t(hi) << 16;
+}
+
+// The tile rows a block's triangles may reach, from the corners' tile rows (fast_vertices.hpp):
+// the bounding boxes lie within them. kBlockAnyRow when a corner needs clipping or failed to snap
+// (its window position says nothing then).
+uint32_t block_tile_rows(const SmallBlockInput& in, const int16_t* tile_rows, const PixelRect& region) {
+  int32_t lo = INT32_MAX, hi = INT32_MIN;
+  for (uint32_t l = 0; l < in.count; ++l) {
+    for (int k = 0; k < 3; ++k) {
+      const int16_t row = tile_rows[in.corners[k][l * in.stride]];
+      if (row == kRowUnknown) return kBlockAnyRow;
+      lo = std::min(lo, int32_t(row));
+      hi = std::max(hi, int32_t(row));
+    }
+  }
+  return pack_rows(lo, hi, region);
+}
+
+template <Topology T, bool Indexed>
+void measure_rows(FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end) {
+  SmallBlock block;
+  for (uint32_t b = begin; b < end; ++b) {
+    fill_block_input<T, Indexed>(frame, d, b, block);
+    frame.draws[d].block_rows[b] = block_tile_rows(block.in, frame.draws[d].tile_rows, frame.exact.region);
+  }
+}
+
+}  // namespace
+
+// One block, lane by lane in primitive order, into this worker's rows.
+void BandWorker::draw_block(uint32_t d, const SmallBlock& block) {
+  const SmallBlockOutput& out = block.out;
+  const DrawRaster& raster = frame_.draws[d].raster;
+  if (out.scalar_mask == 0 && out.job_mask == 0 && draw_grid_block(block, encode_owner(d, block.first), raster)) return;
+  for (uint32_t l = 0; l < block.in.count; ++l) {
+    const uint32_t bit = 1u << l;
+    if (out.scalar_mask & bit) {
+      const std::array<uint32_t, 3> v = assemble_primitive(frame_.scene->draws[d], block.first + l).position;
+      triangle(d, block.first + l, v[0], v[1], v[2]);
+    }
+    else if ((out.grid_mask | out.job_mask) & bit) draw_small(out, int(l), encode_owner(d, block.first + l), raster);
+  }
+}
+
+// The common case of a mesh: only grid lanes, all in one tile row. The row and tile checks are
+// made once for the block; false when the block needs the lane-by-lane path.
+bool BandWorker::draw_grid_block(const SmallBlock& block, uint32_t owner_of_lane_0, const DrawRaster& raster) {
+  const SmallBlockOutput& out = block.out;
+  if (out.grid_mask == 0) return true;
+  int32_t x0 = INT32_MAX, y0 = INT32_MAX, x1 = INT32_MIN, y1 = INT32_MIN;
+  for (uint32_t lanes = out.grid_mask; lanes != 0; lanes &= lanes - 1) {
+    const int l = std::countr_zero(lanes);
+    x0 = std::min(x0, out.x0[l]);
+    y0 = std::min(y0, out.y0[l]);
+    x1 = std::max(x1, out.x1[l]);
+    y1 = std::max(y1, out.y1[l]);
+  }
+  const int32_t ty = y0 >> kTileOrder;
+  if (ty != (y1 >> kTileOrder)) return false;
+  if (!owns_tile_row(ty)) return true;
+  if (!batch_.empty()) flush(raster);  // keep submission order: earlier batched triangles first
+  for (int32_t tx = x0 >> kTileOrder; tx <= x1 >> kTileOrder; ++tx) {
+    TileState& tile = frame_.raster.tile(tx, ty);
+    if (!tile.cleared) {
+      clear_tile(tx, ty, frame_.raster);
+      tile.cleared = true;
+    }
+    if (raster.depth.write) tile.bounds.state = BoundsState::Unknown;
+  }
+  raster.grid_block_fn(out, owner_of_lane_0, raster.kernel.write, frame_.raster.target);
+  return true;
+}
+
+// A small triangle: a grid lane (which may reach into a neighbouring tile row or column: only
+// this worker's rows are written) or a kernel job inside one tile. Its tiles are cleared first;
+// their depth bounds become unknown when depth is written.
+void BandWorker::draw_small(const SmallBlockOutput& block, int lane, uint32_t owner, const DrawRaster& raster) {
+  int32_t row_lo = block.y0[lane], row_hi = block.y1[lane];
+  const int32_t ty0 = row_lo >> kTileOrder, ty1 = row_hi >> kTileOrder;
+  if (!owns_tile_row(ty0)) {
+    if (ty1 == ty0 || !owns_tile_row(ty1)) return;
+    row_lo = ty1 << kTileOrder;
+  } else if (ty1 != ty0 && !owns_tile_row(ty1)) {
+    row_hi = (ty1 << kTileOrder) - 1;
+  }
+  if (!batch_.empty()) flush(raster);  // keep submission order: earlier batched triangles first
+  const int32_t tx0 = block.x0[lane] >> kTileOrder, tx1 = block.x1[lane] >> kTileOrder;
+  for (int32_t ty = row_lo >> kTileOrder; ty <= row_hi >> kTileOrder; ++ty) {
+    for (int32_t tx = tx0; tx <= tx1; ++tx) {
+      TileState& tile = frame_.raster.tile(tx, ty);
+      if (!tile.cleared) {
+        clear_tile(tx, ty, frame_.raster);
+        tile.cleared = true;
+      }
+      if (raster.depth.write) tile.bounds.state = BoundsState::Unknown;  // before any write lands
+    }
+  }
+  if ((block.grid_mask >> lane) & 1u) {
+    raster.grid_fn(block, lane, owner, row_lo, row_hi, raster.kernel.write, frame_.raster.target);
+  } else {
+    raster.small_fn(block, lane, owner, raster.kernel, frame_.raster.target);
+  }
+}
+
+void measure_block_rows(FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end) {
+  const Draw& draw = frame.scene->draws[d];
+  const bool indexed = !draw.indices.empty();
+  switch (draw.topology) {
+    case Topology::TriangleList:
+      indexed ? measure_rows<Topology::TriangleList, true>(frame, d, begin, end)
+              : measure_rows<Topology::TriangleList, false>(frame, d, begin, end);
+      break;
+    case Topology::TriangleStrip:
+      indexed ? measure_rows<Topology::TriangleStrip, true>(frame, d, begin, end)
+              : measure_rows<Topology::TriangleStrip, false>(frame, d, begin, end);
+      break;
+    case Topology::TriangleFan:
+      indexed ? measure_rows<Topology::TriangleFan, true>(frame, d, begin, end)
+              : measure_rows<Topology::TriangleFan, false>(frame, d, begin, end);
+      break;
+    default: break;
+  }
+}
+
+}  // namespace rastercmp::cpu::fast

@@ -1,0 +1,52 @@
+// Which primitives make up a block of eight small triangles (small_triangles.hpp), shared by the
+// workers' walk and the block-row phase (band_worker*.cpp).
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+
+#include "cpu_raster/assemble.hpp"
+#include "cpu_raster/fast/fast_frame.hpp"
+#include "cpu_raster/fast/small_triangles.hpp"
+
+namespace rastercmp::cpu::fast {
+
+// The draw's vertex numbers of primitive i (assemble.hpp, provoking vertex first).
+template <Topology T>
+inline std::array<uint32_t, 3> vertex_numbers(uint32_t i) {
+  if constexpr (T == Topology::TriangleList) return {3 * i, 3 * i + 1, 3 * i + 2};
+  if constexpr (T == Topology::TriangleStrip)
+    return (i & 1) == 0 ? std::array<uint32_t, 3>{i, i + 1, i + 2} : std::array<uint32_t, 3>{i, i + 2, i + 1};
+  return {i + 1, i + 2, 0};  // fan
+}
+
+// Lane l's corners: through the index buffer for full blocks of indexed lists, else copied.
+template <Topology T, bool Indexed>
+inline void fill_block_input(const FastFrame& frame, uint32_t d, uint32_t block, SmallBlock& slot) {
+  const Draw& draw = frame.scene->draws[d];
+  const FastDraw& fd = frame.draws[d];
+  const uint32_t* indices = draw.indices.data();
+  const uint32_t count = primitive_count(draw);
+  SmallBlockInput& in = slot.in;
+  slot.first = block * 8;
+  in.vertices = fd.vertices;
+  in.region = frame.exact.region;
+  in.front_ccw = draw.state.front_face == FrontFace::CounterClockwise;
+  in.cull = draw.state.cull_mode;
+  in.depth = fd.raster.kernel;
+  in.count = std::min(count - slot.first, 8u);
+  if (T == Topology::TriangleList && Indexed && in.count == 8) {
+    for (int k = 0; k < 3; ++k) in.corners[k] = indices + 3 * size_t(slot.first) + k;
+    in.stride = 3;
+  } else {
+    for (uint32_t l = 0; l < 8; ++l) {
+      const std::array<uint32_t, 3> n = vertex_numbers<T>(slot.first + (l < in.count ? l : 0));
+      for (int k = 0; k < 3; ++k) in.corners_copy(k)[l] = Indexed ? indices[n[k]] : n[k];
+    }
+    for (int k = 0; k < 3; ++k) in.corners[k] = in.corners_copy(k);
+    in.stride = 1;
+  }
+}
+
+}  // namespace rastercmp::cpu::fast

@@ -1,0 +1,69 @@
+// The fast CPU path against lavapipe itself (VulkanRenderer, validation layer on): identical
+// owner and depth bytes at 1 and 2 threads on seeded random scenes and on small versions of the
+// benchmark scenes. Skipped, with the reason, only where no Vulkan device exists.
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <string>
+
+#include "cpu_raster/fast/bench_scenes.hpp"
+#include "model/errors.hpp"
+#include "model/host.hpp"
+#include "tests/test_fast_support.hpp"
+#include "vk_reference/vk_reference.hpp"
+
+namespace rastercmp {
+namespace {
+
+std::string missing_vulkan_reason() {
+  try {
+    return list_vulkan_devices().empty() ? "no Vulkan device" : "";
+  } catch (const EnvironmentError& e) {
+    return e.what();
+  }
+}
+
+class FastAgainstLavapipe : public ::testing::Test {
+ protected:
+  static VulkanRenderer& renderer() {
+    static std::unique_ptr<VulkanRenderer> shared = std::make_unique<VulkanRenderer>(VkOptions{"", true});
+    return *shared;
+  }
+
+  void SetUp() override {
+    const std::string reason = missing_vulkan_reason();
+    if (!reason.empty()) GTEST_SKIP() << "no Vulkan device: " << reason;
+  }
+
+  // The driver's result (the CPU profile's fma follows the host, as lavapipe does) against the
+  // fast path at 1 and 2 threads.
+  void expect_same(const Scene& scene) {
+    const RenderResult vulkan = renderer().render(scene);
+    EXPECT_TRUE(renderer().validation_messages().empty()) << renderer().validation_messages().front();
+    for (const uint32_t threads : {1u, 2u}) {
+      SCOPED_TRACE(scene.name + " threads=" + std::to_string(threads));
+      EXPECT_TRUE(fast_test::same_bytes(vulkan, fast_test::render_fast(scene, renderer().device().fma, threads, true)));
+    }
+  }
+};
+
+TEST_F(FastAgainstLavapipe, RandomScenes) {
+  fast_test::RandomSceneSpec spec;
+  spec.allow_multisample = false;  // multisampled depth is not read back (vk_reference.hpp)
+  spec.max_primitives = 24;        // one vsplit chunk per draw (lavapipe-rules §1.5)
+  for (uint64_t seed = 1; seed <= 12; ++seed) expect_same(fast_test::random_scene(1000 + seed, spec));
+}
+
+TEST_F(FastAgainstLavapipe, LayeredAndSmallMeshScenes) {
+  for (uint64_t seed = 1; seed <= 4; ++seed) expect_same(fast_test::layered_scene(seed));
+  expect_same(bench::grid_scene(40, 128));
+}
+
+TEST_F(FastAgainstLavapipe, BenchScenesAtSmallSize) {
+  expect_same(bench::fill_layers_scene(true, 128, 6));
+  expect_same(bench::fill_layers_scene(false, 128, 6));
+  expect_same(bench::perspective_scene(16, 128));
+}
+
+}  // namespace
+}  // namespace rastercmp

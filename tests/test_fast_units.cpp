@@ -1,0 +1,195 @@
+// Unit tests of the fast path's stages against the exact path's own functions: the per-vertex
+// pass (AVX2 and scalar), the 32-bit "G" edge form, the tile depth-bounds verdicts, the
+// benchmark statistics.
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "cpu_raster/clip_vertex.hpp"
+#include "cpu_raster/depth_sample.hpp"
+#include "cpu_raster/edge_plane.hpp"
+#include "cpu_raster/fast/bench_stats.hpp"
+#include "cpu_raster/fast/cpu_features.hpp"
+#include "cpu_raster/fast/fast_vertices.hpp"
+#include "cpu_raster/fast/tile_depth_bounds.hpp"
+#include "cpu_raster/fast/tile_edges.hpp"
+#include "cpu_raster/fixed_point.hpp"
+#include "tests/test_fast_support.hpp"
+
+namespace rastercmp::cpu::fast {
+namespace {
+
+std::vector<glm::vec4> awkward_positions() {
+  fast_test::Random r(7);
+  std::vector<glm::vec4> p;
+  const float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
+  for (int i = 0; i < 997; ++i)
+    p.emplace_back(float(r.range(-3, 3)), float(r.range(-3, 3)), float(r.range(-1, 2)), float(r.range(-0.5, 3)));
+  for (const glm::vec4& v : {glm::vec4(nan, 0, 0, 1), glm::vec4(0, inf, 0, 1), glm::vec4(0, 0, 0, 0), glm::vec4(1e30f, 0, 0, 1),
+                             glm::vec4(0.25f, -0.5f, 0.5f, 1), glm::vec4(1, 1, 1, 1), glm::vec4(-1, -1, 0, 1)})
+    p.push_back(v);
+  return p;
+}
+
+void expect_same_vertex(const FastVertex& a, const FastVertex& b, size_t k) {
+  EXPECT_EQ(a.flags, b.flags) << "position " << k;
+  EXPECT_EQ(std::bit_cast<uint32_t>(a.x), std::bit_cast<uint32_t>(b.x)) << "position " << k;
+  EXPECT_EQ(std::bit_cast<uint32_t>(a.y), std::bit_cast<uint32_t>(b.y)) << "position " << k;
+  EXPECT_EQ(std::bit_cast<uint32_t>(a.z), std::bit_cast<uint32_t>(b.z)) << "position " << k;
+  if (!(a.flags & kVertexSnapFailed)) {
+    EXPECT_EQ(a.x_fixed, b.x_fixed) << "position " << k;
+    EXPECT_EQ(a.y_fixed, b.y_fixed) << "position " << k;
+  }
+}
+
+TEST(FastVertices, ScalarPassIsTheExactPathsPerVertexWork) {
+  const std::vector<glm::vec4> positions = awkward_positions();
+  const ViewportTransform viewport = make_viewport_transform(Viewport{3.5f, -2, 301, 177, 0.25f, 0.75f});
+  for (const bool fma : {true, false}) {
+    std::vector<FastVertex> out(positions.size());
+    std::vector<int16_t> rows(positions.size() + 8);
+    transform_vertices_scalar(VertexJob{positions.data(), viewport, fma, true}, 0, positions.size(), out.data(), rows.data());
+    for (size_t k = 0; k < positions.size(); ++k) {
+      const ClipVertex exact = make_clip_vertex(positions[k], viewport, true, fma);
+      EXPECT_EQ(out[k].flags & kVertexClipBits, exact.clip_mask);
+      EXPECT_EQ(std::bit_cast<uint32_t>(out[k].x), std::bit_cast<uint32_t>(exact.window.x));
+      const auto x = snap_vertex(exact.window.x, 0.5f, SnapRounding::NearestEven);
+      const auto y = snap_vertex(exact.window.y, 0.5f, SnapRounding::NearestEven);
+      EXPECT_EQ((out[k].flags & kVertexSnapFailed) != 0, !x || !y);
+      if (x && y) {
+        EXPECT_EQ(out[k].x_fixed, x->raw);
+      }
+      // the tile row of a vertex that needs neither clipping nor a failed snap, else unknown
+      EXPECT_EQ(rows[k], out[k].flags ? kRowUnknown : int16_t(y ? y->raw >> 14 : 0));
+    }
+  }
+}
+
+TEST(FastVertices, Avx2PassEqualsScalarPass) {
+  if (!host_has_avx2_fma()) GTEST_SKIP() << "host without AVX2/FMA: only the scalar pass runs here";
+  const std::vector<glm::vec4> positions = awkward_positions();
+  const ViewportTransform viewport = make_viewport_transform(Viewport{0, 0, 1024, -768, 0, 1});
+  for (const bool depth_clip : {true, false}) {
+    for (const bool fma : {true, false}) {
+      const VertexJob job{positions.data(), viewport, fma, depth_clip};
+      std::vector<FastVertex> scalar(positions.size()), vector(positions.size());
+      std::vector<int16_t> scalar_rows(positions.size() + 8), vector_rows(positions.size() + 8);
+      const uint32_t scalar_flags = transform_vertices_scalar(job, 0, positions.size(), scalar.data(), scalar_rows.data());
+      // an unaligned start, then a scalar tail
+      uint32_t vector_flags = transform_vertices_avx2(job, 3, positions.size(), vector.data(), vector_rows.data());
+      vector_flags |= transform_vertices_scalar(job, 0, 3, vector.data(), vector_rows.data());
+      EXPECT_EQ(scalar_flags, vector_flags);
+      for (size_t k = 0; k < positions.size(); ++k) {
+        expect_same_vertex(scalar[k], vector[k], k);
+        EXPECT_EQ(scalar_rows[k], vector_rows[k]) << "position " << k;
+      }
+    }
+  }
+}
+
+// G > 0 exactly where the exact 64-bit edge value E > 0, over random rectangles of a tile.
+TEST(FastTileEdges, GFormAgreesWithExactEdgeValues) {
+  fast_test::Random r(11);
+  for (int trial = 0; trial < 400; ++trial) {
+    FastTriangle t;
+    const int32_t spread = trial % 2 ? 40 * kFixedOne : 3000 * kFixedOne;
+    const int32_t cx = int32_t(r.below(2048)) * kFixedOne, cy = int32_t(r.below(2048)) * kFixedOne;
+    for (int k = 0; k < 3; ++k) {
+      t.x_fixed[k] = cx + int32_t(r.below(uint32_t(2 * spread))) - spread;
+      t.y_fixed[k] = cy + int32_t(r.below(uint32_t(2 * spread))) - spread;
+    }
+    const int32_t tx = int32_t(r.below(32)) * kTileSize, ty = int32_t(r.below(32)) * kTileSize;
+    const int32_t x0 = tx + int32_t(r.below(64)), y0 = ty + int32_t(r.below(64));
+    const PixelRect rect{x0, y0, x0 + int32_t(r.below(uint32_t(tx + 64 - x0))), y0 + int32_t(r.below(uint32_t(ty + 64 - y0)))};
+    KernelJob job;
+    const EdgeSetup setup = setup_tile_edges(t, rect, job);
+    ASSERT_NE(setup.fit, EdgeFit::Scalar);
+    for (int32_t py = rect.y0; py <= rect.y1; ++py) {
+      for (int32_t px = rect.x0; px <= rect.x1; ++px) {
+        bool exact_in = true, g_in = true;
+        for (int i = 0; i < 3; ++i) {
+          const int j = (i + 1) % 3;
+          const EdgePlane e = make_edge(FixedPoint{Fixed24_8{t.x_fixed[i]}, Fixed24_8{t.y_fixed[i]}},
+                                        FixedPoint{Fixed24_8{t.x_fixed[j]}, Fixed24_8{t.y_fixed[j]}}, TieBreak::TopLeft);
+          exact_in = exact_in && edge_value(e, int64_t(px) * kFixedOne, int64_t(py) * kFixedOne) > 0;
+          const int64_t g_minus_1 = int64_t(job.g_minus_1[i]) + int64_t(job.gx[i]) * (px - job.origin_x) +
+                                    int64_t(job.gy[i]) * (py - rect.y0);
+          g_in = g_in && g_minus_1 >= 0;
+        }
+        if (setup.fit == EdgeFit::None) {
+          ASSERT_FALSE(exact_in) << "rejected rectangle covers (" << px << "," << py << ")";
+        } else {
+          ASSERT_EQ(exact_in, g_in) << "trial " << trial << " pixel (" << px << "," << py << ")";
+        }
+        if (setup.all_in) {
+          ASSERT_TRUE(exact_in);
+        }
+      }
+    }
+  }
+}
+
+// A verdict holds for every fragment and stored value in the ranges (depth_test_passes decides).
+TEST(FastDepthBounds, VerdictsHoldForEveryValueInTheRanges) {
+  fast_test::Random r(5);
+  for (int trial = 0; trial < 3000; ++trial) {
+    const auto value = [&] { return uint32_t(r.below(12)) * 0x100000u; };  // D32 bits of floats in [0, 1)
+    FragmentRange f{value(), value()};
+    if (f.lo > f.hi) std::swap(f.lo, f.hi);
+    TileBounds tile{value(), value(), BoundsState::Exact};
+    if (tile.zmin > tile.zmax) std::swap(tile.zmin, tile.zmax);
+    const CompareOp op = CompareOp(r.below(8));
+    const DepthVerdict verdict = classify_depth(op, f, tile);
+    if (verdict == DepthVerdict::PerPixel) continue;
+    for (uint32_t a = f.lo; a <= f.hi; a += 0x100000u)
+      for (uint32_t s = tile.zmin; s <= tile.zmax; s += 0x100000u)
+        ASSERT_EQ(depth_test_passes(op, DepthFormat::D32Sfloat, a, s), verdict == DepthVerdict::AllPass)
+            << to_string(op) << " fragment " << a << " stored " << s;
+  }
+}
+
+TEST(FastDepthBounds, FragmentRangeIsTheCornersExtremes) {
+  fast_test::Random r(9);
+  DepthTestState depth;
+  depth.active = true;
+  depth.format = DepthFormat::X8D24Unorm;
+  for (int trial = 0; trial < 200; ++trial) {
+    FastTriangle t;
+    t.a0 = float(r.range(-2, 2));
+    t.dzdx = float(r.range(-0.01, 0.01));
+    t.dzdy = float(r.range(-0.01, 0.01));
+    const PixelRect rect{int32_t(r.below(500)), int32_t(r.below(500)), 0, 0};
+    const PixelRect box{rect.x0, rect.y0, rect.x0 + int32_t(r.below(64)), rect.y0 + int32_t(r.below(64))};
+    FragmentRange range;
+    ASSERT_TRUE(fragment_range(t, box, depth, range));
+    for (int32_t y = box.y0; y <= box.y1; ++y)
+      for (int32_t x = box.x0; x <= box.x1; ++x) {
+        const uint32_t raw = sample_depth(DepthPlane{t.a0, t.dzdx, t.dzdy}, 0, float(x), float(y), depth.range,
+                                          depth.format, depth.fma).raw;
+        ASSERT_GE(raw, range.lo);
+        ASSERT_LE(raw, range.hi);
+      }
+  }
+  FastTriangle steep;
+  steep.dzdx = std::numeric_limits<float>::infinity();
+  FragmentRange unused;
+  EXPECT_FALSE(fragment_range(steep, PixelRect{0, 0, 3, 3}, depth, unused));
+}
+
+TEST(FastBenchStats, QuartilesAndExtremes) {
+  const bench::TimingStats s = bench::summarize({5, 1, 4, 2, 3});
+  EXPECT_EQ(s.count, 5u);
+  EXPECT_DOUBLE_EQ(s.median, 3);
+  EXPECT_DOUBLE_EQ(s.q1, 2);
+  EXPECT_DOUBLE_EQ(s.q3, 4);
+  EXPECT_DOUBLE_EQ(s.min, 1);
+  EXPECT_DOUBLE_EQ(s.max, 5);
+  EXPECT_DOUBLE_EQ(bench::summarize({1, 2}).median, 1.5);
+  EXPECT_EQ(bench::summarize({}).count, 0u);
+}
+
+}  // namespace
+}  // namespace rastercmp::cpu::fast
