@@ -41,7 +41,11 @@ std::optional<Quad> rectangular_quad(Endpoint v1, Endpoint v2, float dx, float d
 // minor axis "b" (x-major: a = x; y-major: a = y). Written once for both axes: the y-major code
 // of lp_setup_line.c is the x-major one with the axes exchanged, except for the comparisons
 // marked below, which differ between the two branches in Mesa and are reproduced as they are,
-// and the y-major start tests, which follow the observed driver (lavapipe-rules §5.4).
+// and four tests that follow the observed driver instead of lp_setup_line.c when the start or end
+// lies exactly on a pixel centre line (x1diff, x2diff, y1diff or y2diff == 0): the x-major
+// rightward end, the y-major starts and the y-major downward end (lavapipe-rules §5.4; found
+// with lines between pixel centres whose slope is not a power of two, e.g. 1/3, where the
+// half-pixel shift tilts the side edges off the samples they would otherwise pass through).
 struct DiamondExit {
   bool draw_start = false, draw_end = false;
   float a_offset = 0, b_offset = 0, a_offset_end = 0, b_offset_end = 0;
@@ -75,7 +79,9 @@ DiamondExit diamond_exit_x_major(Endpoint v1, Endpoint v2, float dx, float dy) {
       d.a_offset_end = -x1diff - 0.5f;
       d.b_offset_end = d.a_offset_end * dydx;
     }
-    if ((x2diff > 0.f) != d.draw_end) {  // right edge
+    // right edge. Observed: an end exactly on a pixel column (x2diff == 0) counts as drawn (">=",
+    // not lp_setup_line.c's ">"), so it moves back half a pixel.
+    if ((x2diff >= 0.f) != d.draw_end) {
       d.a_offset = -x2diff - 0.5f;
       d.b_offset = d.a_offset * dydx;
     }
@@ -131,7 +137,8 @@ DiamondExit diamond_exit_y_major(Endpoint v1, Endpoint v2, float dx, float dy) {
       d.a_offset = -y1diff - 0.5f;
       d.b_offset = d.a_offset * dxdy;
     }
-    if ((y2diff > 0.f) != d.draw_end) {  // bottom edge
+    // bottom edge. Observed, as above: y2diff == 0 counts as drawn (">=", not ">").
+    if ((y2diff >= 0.f) != d.draw_end) {
       d.a_offset_end = -y2diff - 0.5f;
       d.b_offset_end = d.a_offset_end * dxdy;
     }

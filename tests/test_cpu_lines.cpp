@@ -1,5 +1,5 @@
-// Bresenham line set-up at pixel centres (lavapipe-rules §5.4): the diamond-exit start tests of
-// y-major lines whose start lies exactly on a pixel centre, with answers worked out by hand.
+// Bresenham line set-up at pixel centres (lavapipe-rules §5.4): the diamond-exit tests of lines
+// whose start or end lies exactly on a pixel centre, with answers worked out by hand.
 #include <array>
 
 #include <gtest/gtest.h>
@@ -64,6 +64,41 @@ TEST(CpuBresenhamLine, YMajorEndOnARowStillMovesHalfAPixel) {
   EXPECT_EQ(setup.raster.vertex_fixed[1].y.wide(), 58 * 256);  // the start, unmoved
   EXPECT_EQ(setup.bbox.y0, 7);
   EXPECT_EQ(setup.bbox.y1, 57);
+}
+
+// (10.5, 20.5) -> (28.5, 26.5), width 2: x-major, going right (dx = -18 < 0: the endpoints are
+// swapped), both ends on centres. The end (x2diff == 0, draw_end false) counts as drawn, so it
+// moves by x_offset = -0.5 and y_offset = -0.5 * dy/dx = -0.5 * 0.33333334f: x = 28.5 - 0.5 - 0.5
+// = 27.5 -> 7040; y = 26.5 - 0.16666667 - 0.5 = 25.833334 -> 6613.33, snapped 6613. Unmoved, the
+// side edges would keep slope exactly 1/3 and pass through samples (a one-row difference).
+TEST(CpuBresenhamLine, XMajorRightwardEndOnAColumnMovesBackHalfAPixel) {
+  const LineSetup setup = LineFixture(2).run(WindowVertex{10.5f, 20.5f, 0}, WindowVertex{28.5f, 26.5f, 0});
+  ASSERT_EQ(setup.fate, SetupFate::Rasterized);
+  EXPECT_TRUE(setup.x_major);
+  EXPECT_TRUE(setup.draw_start);
+  EXPECT_FALSE(setup.draw_end);
+  // After the swap corners 0 and 3 are the end, corners 1 and 2 the (unmoved) start.
+  EXPECT_EQ(setup.raster.vertex_fixed[0].x.wide(), 7040);
+  EXPECT_EQ(setup.raster.vertex_fixed[3].x.wide(), 7040);
+  EXPECT_EQ(setup.raster.vertex_fixed[0].y.wide(), 6613 - 256);
+  EXPECT_EQ(setup.raster.vertex_fixed[3].y.wide(), 6613 + 256);
+  EXPECT_EQ(setup.raster.vertex_fixed[1].x.wide(), 10 * 256);
+  EXPECT_EQ(setup.raster.vertex_fixed[1].y.wide(), 20 * 256 - 256);
+}
+
+// (20.5, 10.5) -> (23.5, 40.5), width 1: y-major, going down (dy = -30 < 0: no swap), the end on
+// a row (y2diff == 0, draw_end false) counts as drawn, so it moves by y_offset = -0.5 and
+// x_offset = -0.5 * dx/dy = -0.05: y = 40.5 - 0.5 - 0.5 = 39.5 -> 10112; x = 23.5 - 0.05 - 0.5 =
+// 22.95 -> 5875.2, snapped 5875, then -/+ half the width (128).
+TEST(CpuBresenhamLine, YMajorDownwardEndOnARowMovesBackHalfAPixel) {
+  const LineSetup setup = LineFixture(1).run(WindowVertex{20.5f, 10.5f, 0}, WindowVertex{23.5f, 40.5f, 0});
+  ASSERT_EQ(setup.fate, SetupFate::Rasterized);
+  EXPECT_FALSE(setup.x_major);
+  EXPECT_FALSE(setup.draw_end);
+  EXPECT_EQ(setup.raster.vertex_fixed[1].y.wide(), 10112);
+  EXPECT_EQ(setup.raster.vertex_fixed[2].y.wide(), 10112);
+  EXPECT_EQ(setup.raster.vertex_fixed[1].x.wide(), 5875 - 128);
+  EXPECT_EQ(setup.raster.vertex_fixed[2].x.wide(), 5875 + 128);
 }
 
 }  // namespace

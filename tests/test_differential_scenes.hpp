@@ -233,6 +233,33 @@ inline Scene centred_bresenham_lines(uint32_t seed) {
   return scene;
 }
 
+// Wide and thin Bresenham lines between lattice points: each end on a pixel centre or a pixel
+// corner, slopes small rationals that are mostly not powers of two (1/3, 2/5, ...), every
+// direction. The side edges pass exactly through samples, so any half-pixel end shift that the
+// model decides differently from the driver tilts them and moves a row (lavapipe-rules §5.4).
+inline Scene lattice_bresenham_lines(uint32_t seed) {
+  Random rng(seed);
+  Scene scene = make_scene(scene_name("lines_bresenham_lattice", seed), 128, 96, format_for(seed));
+  for (int d = 0; d < 60; ++d) {
+    Draw draw;
+    draw.state = always_state();
+    draw.topology = Topology::LineList;
+    draw.state.line_mode = LineMode::Bresenham;
+    draw.state.line_width = float(rng.integer(1, 6));
+    const float corner = rng.chance(0.25f) ? 0.0f : 0.5f;
+    const float x1 = float(rng.integer(6, 121)) + corner, y1 = float(rng.integer(6, 89)) + corner;
+    int major = rng.integer(2, 12), minor = rng.integer(0, major);
+    const int steps = rng.integer(1, 3);
+    if (rng.chance(0.5f)) std::swap(major, minor);
+    const float x2 = x1 + float(major * steps * (rng.chance(0.5f) ? 1 : -1));
+    const float y2 = y1 + float(minor * steps * (rng.chance(0.5f) ? 1 : -1));
+    draw.positions_clip.push_back(clip_from_window(x1, y1, rng.uniform(0, 1), scene));
+    draw.positions_clip.push_back(clip_from_window(x2, y2, rng.uniform(0, 1), scene));
+    scene.draws.push_back(draw);
+  }
+  return scene;
+}
+
 // Strips and fans, indexed or not (primitive order and the provoking-vertex-first vertex order).
 inline Scene strips_and_fans(uint32_t seed) {
   Random rng(seed);
