@@ -11,6 +11,7 @@ struct PageSection {
   std::string heading;
   std::string text;                 // one paragraph, plain text (escaped)
   std::vector<std::string> charts;  // chart names (NAME.svg / NAME.png)
+  std::vector<std::vector<std::string>> table = {};  // optional: first row is the header (plain text, escaped)
 };
 
 void write_index_html(const std::string& dir, const std::string& title, const std::vector<PageSection>& sections,

@@ -1,11 +1,12 @@
 // Experiment building blocks that need no device: the append-only CSV and its resume, the
-// Pareto front, number formatting, the scene builders' invariants.
+// Pareto front, chart labels, number formatting, the scene builders' invariants.
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 
 #include <gtest/gtest.h>
 
+#include "experiments/chart_labels.hpp"
 #include "experiments/csv_log.hpp"
 #include "experiments/scene_make.hpp"
 #include "experiments/speed_accuracy.hpp"
@@ -64,6 +65,46 @@ TEST(ExperimentsPareto, KeepsOnlyPointsNothingBeatsOnBothAxes) {
                                              {"f", "middle", 2.0, 1.0, 1.0}};
   EXPECT_EQ(pareto_front(entries, true), (std::vector<size_t>{1, 3, 0}));
   EXPECT_EQ(pareto_front(entries, false), (std::vector<size_t>{1, 3, 0}));
+}
+
+TEST(ExperimentsChartLabels, FarPointsKeepTheirOwnLabels) {
+  const ChartAxes axes{false, 0, 100, 0, 100};
+  const auto labels = cluster_labels({{10, 10, 1}, {80, 10, 2}, {10, 80, 3}}, axes);
+  ASSERT_EQ(labels.size(), 3u);
+  EXPECT_EQ(labels[0].text, "1");
+  EXPECT_EQ(labels[1].text, "2");
+  EXPECT_EQ(labels[2].text, "3");
+}
+
+TEST(ExperimentsChartLabels, ClosePointsShareOneLabelAtTheLeftmostPoint) {
+  const ChartAxes axes{false, 0, 100, 0, 100};
+  const auto labels = cluster_labels({{12, 50, 7}, {10, 51, 3}, {60, 50, 9}}, axes);
+  ASSERT_EQ(labels.size(), 2u);
+  EXPECT_EQ(labels[0].text, "3,7");  // ascending, whatever the input order
+  EXPECT_EQ(labels[0].x, 10);
+  EXPECT_EQ(labels[0].y, 51);
+  EXPECT_EQ(labels[1].text, "9");
+}
+
+TEST(ExperimentsChartLabels, AGrowingLabelSwallowsTheLabelItNowReaches) {
+  // 1..6 sit 2% apart on one row; 7 is 16% to the right of 1: alone its label would be clear of
+  // "1", but "1,2,3,4,5,6" (11 characters, 12% wide) plus the margins reaches it.
+  const ChartAxes axes{false, 0, 100, 0, 100};
+  std::vector<ChartPoint> points;
+  for (int i = 0; i < 6; ++i) points.push_back({10.0 + 2 * i, 0, i + 1});
+  points.push_back({26, 0, 7});
+  const auto labels = cluster_labels(points, axes);
+  ASSERT_EQ(labels.size(), 1u);
+  EXPECT_EQ(labels[0].text, "1,2,3,4,5,6,7");
+  const auto apart = cluster_labels({{10, 0, 1}, {26, 0, 7}}, axes);
+  EXPECT_EQ(apart.size(), 2u);
+}
+
+TEST(ExperimentsChartLabels, LogAxisMeasuresDistanceInDecades) {
+  // 1 ms and 1.1 ms are 0.014 of a 3-decade axis apart; 0.1 ms and 0.2 ms are 0.1 apart.
+  const ChartAxes axes{true, 1e-4, 1e-1, 0, 1};
+  EXPECT_EQ(cluster_labels({{1e-3, 0, 1}, {1.1e-3, 0, 2}}, axes).size(), 1u);
+  EXPECT_EQ(cluster_labels({{1e-4, 0.5, 1}, {2e-4, 0.5, 2}}, axes).size(), 2u);
 }
 
 TEST(ExperimentsScenes, DecalSceneBiasSignAndDraws) {
