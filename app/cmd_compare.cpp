@@ -37,7 +37,8 @@ std::string owner_text(uint32_t owner) {
 }
 
 void print_case(const CaseRecord& record) {
-  fmt::print("{}: {} ({})\n", record.name, to_string(record.verdict), record.message);
+  const std::string method = record.cpu_method == "exact" ? "" : " [CPU method " + record.cpu_method + "]";
+  fmt::print("{}: {} ({}){}\n", record.name, to_string(record.verdict), record.message, method);
   if (!record.diff) return;
   for (const BadSample& b : record.diff->first_bad) {
     std::string depth;

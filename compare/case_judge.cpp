@@ -6,6 +6,7 @@ CaseRecord make_case_record(const SuiteCase& suite_case, const CaseResult& resul
   CaseRecord record;
   record.name = suite_case.name;
   record.source = suite_case.path;
+  record.cpu_method = result.cpu_method;
   record.width = suite_case.scene.width;
   record.height = suite_case.scene.height;
   record.verdict = result.verdict;

@@ -143,6 +143,7 @@ nlohmann::ordered_json case_to_json(const CaseRecord& c, bool with_outcome) {
   OJson j;
   j["scene"] = c.name;
   j["source"] = c.source;
+  j["cpu_method"] = c.cpu_method;
   j["verdict"] = to_string(c.verdict);
   j["message"] = c.message;
   j["compared"] = c.diff.has_value();
@@ -174,6 +175,7 @@ CaseRecord case_from_json(const nlohmann::json& j, const std::string& file, cons
   CaseRecord c;
   c.name = r.get<std::string>(j, path, "scene");
   c.source = r.get<std::string>(j, path, "source");
+  c.cpu_method = r.get<std::string>(j, path, "cpu_method");
   const std::string verdict = r.get<std::string>(j, path, "verdict");
   const std::string expectation = r.get<std::string>(j, path, "expectation");
   if (!parse_verdict(verdict)) throw InputError(file, path + ".verdict", "expected a CTS result name");

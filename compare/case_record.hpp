@@ -31,6 +31,7 @@ struct CaseImages {
 struct CaseRecord {
   std::string name;
   std::string source;  // scene file
+  std::string cpu_method = "exact";  // the CPU side's method overrides ("fill=scanline depth=bilinear") or "exact"
   uint32_t width = 0, height = 0;
   Verdict verdict = Verdict::InternalError;
   std::string message;
@@ -46,7 +47,7 @@ struct CaseRecord {
   bool operator==(const CaseRecord&) const = default;
 };
 
-// The per-scene JSON object (compare --json, summary.json "cases"): scene, source, verdict,
+// The per-scene JSON object (compare --json, summary.json "cases"): scene, source, cpu_method, verdict,
 // message, width, height, pixels, samples, depth_format, coverage_mismatches, missing,
 // unexpected, wrong_owner, allowed, covered_match, bad_pixels, depth_mismatches, depth_unit,
 // max_depth_error (+_r), depth_p50 / depth_p95 (+_r), max_depth_at, first_bad; the diff fields

@@ -38,8 +38,15 @@ void CaseRunner::render_both(const Scene& scene, CaseResult& result) {
   result.validation_messages.assign(messages.begin() + std::ptrdiff_t(messages_before), messages.end());
 }
 
+std::string cpu_method_label(const CpuOptions& options) {
+  std::string label;
+  for (const MethodChoice& choice : options.methods) label += (label.empty() ? "" : " ") + choice.stage + "=" + choice.name;
+  return label.empty() ? "exact" : label;
+}
+
 CaseResult CaseRunner::run(const Scene& scene) {
   CaseResult result;
+  result.cpu_method = cpu_method_label(cpu_options(scene));
   try {
     render_both(scene, result);
     if (!result.validation_messages.empty()) {

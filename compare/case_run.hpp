@@ -28,7 +28,12 @@ struct CaseResult {
   std::optional<RenderResult> actual;    // the Vulkan render, when it succeeded
   std::optional<SceneDiff> diff;         // when both succeeded
   std::vector<std::string> validation_messages;
+  std::string cpu_method = "exact";  // cpu_method_label of the CPU options used
 };
+
+// "exact" when the CPU renders with the exact pipeline, else its method overrides in order,
+// "STAGE=NAME" separated by spaces (command line first, then the scene's "methods").
+std::string cpu_method_label(const CpuOptions& options);
 
 // The CPU options for one scene (the command line merged with the scene's "methods").
 using CpuOptionsForScene = std::function<CpuOptions(const Scene&)>;

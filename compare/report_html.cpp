@@ -74,6 +74,7 @@ data case_data(const CaseRecord& c) {
   d.set("name", c.name);
   d.set("anchor", "case-" + case_folder(c.name).substr(6));
   d.set("source", c.source);
+  d.set("cpu_method", c.cpu_method);
   d.set("status", c.status);
   d.set("verdict", to_string(c.verdict));
   d.set("expectation", to_string(c.expectation));

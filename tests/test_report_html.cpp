@@ -170,6 +170,7 @@ std::vector<CaseRecord> write_report(const fs::path& report) {
     records.push_back(r);
   }
   records[0].explains.push_back({{2, 2, 0}, "cases/rastercmp.t.fail/explain_2_2_s0.txt"});
+  records[1].cpu_method = "fill=even_odd";
   write_report_html(report.string(), RunInfo{"lavapipe", "llvmpipe <test>", "Mesa", true, false, {}}, records);
   return records;
 }
@@ -184,7 +185,18 @@ TEST(ReportHtml, IsDeterministicAndEscapesText) {
   EXPECT_NE(html.find("llvmpipe &lt;test&gt;"), std::string::npos);
   EXPECT_EQ(html.find("llvmpipe <test>"), std::string::npos);
   EXPECT_NE(html.find("href=\"cases/rastercmp.t.fail/explain_2_2_s0.txt\""), std::string::npos);
+  // The CPU method of each case, in its summary row and its section.
+  EXPECT_EQ(count_matches(html, "<td class=\"name\">fill=even_odd</td>"), 1u);
+  EXPECT_EQ(count_matches(html, "CPU method: <b>fill=even_odd</b>"), 1u);
+  EXPECT_EQ(count_matches(html, "CPU method: <b>exact</b>"), 2u);
   EXPECT_EQ(html.find("http"), std::string::npos) << "no external resources";
+}
+
+TEST(ReportHtml, CpuMethodLabelNamesTheOverridesInOrder) {
+  CpuOptions options;
+  EXPECT_EQ(cpu_method_label(options), "exact");
+  options.methods = {{"fill", "scanline"}, {"depth", "bilinear"}};
+  EXPECT_EQ(cpu_method_label(options), "fill=scanline depth=bilinear");
 }
 
 TEST(ReportHtml, OpensInHeadlessChromiumWithRowsImagesAndNoErrors) {

@@ -79,6 +79,7 @@ std::vector<CaseRecord> sample_records() {
   r.push_back(record("rastercmp.b.fail", Verdict::Fail, "Fail", true, 1.5));
   r.push_back(record("rastercmp.c.expected", Verdict::Fail, "ExpectedFail", false, 0.5));
   r.back().expectation = Verdict::Fail;
+  r.back().cpu_method = "fill=scanline depth=bilinear";  // parses back with the rest
   r.push_back(record("rastercmp.d.flaky", Verdict::Fail, "KnownFlake", false, 0.125));
   r.push_back(record("rastercmp.e.unsupported", Verdict::NotSupported, "NotSupported", false, 0.01));
   r.push_back(record("rastercmp.f.improved", Verdict::Pass, "UnexpectedImprovement(Pass)", true, 0.75));
