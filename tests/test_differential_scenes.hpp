@@ -207,6 +207,18 @@ inline Scene line_scene(uint32_t seed, LineMode mode, uint32_t samples = 1) {
   return scene;
 }
 
+// One Bresenham line draw from window position (x1, y1) to (x2, y2), random depths.
+inline void add_bresenham_line(Scene& scene, Random& rng, float width, float x1, float y1, float x2, float y2) {
+  Draw draw;
+  draw.state = always_state();
+  draw.topology = Topology::LineList;
+  draw.state.line_mode = LineMode::Bresenham;
+  draw.state.line_width = width;
+  draw.positions_clip.push_back(clip_from_window(x1, y1, rng.uniform(0, 1), scene));
+  draw.positions_clip.push_back(clip_from_window(x2, y2, rng.uniform(0, 1), scene));
+  scene.draws.push_back(draw);
+}
+
 // Wide Bresenham lines, y-major and x-major, starting exactly on a pixel centre (the diamond-exit
 // start tests at y1diff == 0, lavapipe-rules §5.4). The far end is on an odd 1/256 step, so the
 // side edges do not pass through sample points.
@@ -214,11 +226,7 @@ inline Scene centred_bresenham_lines(uint32_t seed) {
   Random rng(seed);
   Scene scene = make_scene(scene_name("lines_bresenham_centred", seed), 128, 64, format_for(seed));
   for (int d = 0; d < 60; ++d) {
-    Draw draw;
-    draw.state = always_state();
-    draw.topology = Topology::LineList;
-    draw.state.line_mode = LineMode::Bresenham;
-    draw.state.line_width = float(rng.integer(1, 6));
+    const float width = float(rng.integer(1, 6));
     const float x1 = float(rng.integer(8, 119)) + 0.5f, y1 = float(rng.integer(8, 55)) + 0.5f;
     const float major = float(rng.integer(6, 30)) * (rng.chance(0.5f) ? 1.0f : -1.0f);
     const float minor = rng.uniform(-0.9f, 0.9f) * std::fabs(major);
@@ -226,9 +234,7 @@ inline Scene centred_bresenham_lines(uint32_t seed) {
     const bool y_major = rng.chance(0.5f);
     const float x2 = std::floor(x1 + (y_major ? minor : major)) + odd_step;
     const float y2 = std::floor(y1 + (y_major ? major : minor)) + odd_step;
-    draw.positions_clip.push_back(clip_from_window(x1, y1, rng.uniform(0, 1), scene));
-    draw.positions_clip.push_back(clip_from_window(x2, y2, rng.uniform(0, 1), scene));
-    scene.draws.push_back(draw);
+    add_bresenham_line(scene, rng, width, x1, y1, x2, y2);
   }
   return scene;
 }
@@ -241,11 +247,7 @@ inline Scene lattice_bresenham_lines(uint32_t seed) {
   Random rng(seed);
   Scene scene = make_scene(scene_name("lines_bresenham_lattice", seed), 128, 96, format_for(seed));
   for (int d = 0; d < 60; ++d) {
-    Draw draw;
-    draw.state = always_state();
-    draw.topology = Topology::LineList;
-    draw.state.line_mode = LineMode::Bresenham;
-    draw.state.line_width = float(rng.integer(1, 6));
+    const float width = float(rng.integer(1, 6));
     const float corner = rng.chance(0.25f) ? 0.0f : 0.5f;
     const float x1 = float(rng.integer(6, 121)) + corner, y1 = float(rng.integer(6, 89)) + corner;
     int major = rng.integer(2, 12), minor = rng.integer(0, major);
@@ -253,9 +255,7 @@ inline Scene lattice_bresenham_lines(uint32_t seed) {
     if (rng.chance(0.5f)) std::swap(major, minor);
     const float x2 = x1 + float(major * steps * (rng.chance(0.5f) ? 1 : -1));
     const float y2 = y1 + float(minor * steps * (rng.chance(0.5f) ? 1 : -1));
-    draw.positions_clip.push_back(clip_from_window(x1, y1, rng.uniform(0, 1), scene));
-    draw.positions_clip.push_back(clip_from_window(x2, y2, rng.uniform(0, 1), scene));
-    scene.draws.push_back(draw);
+    add_bresenham_line(scene, rng, width, x1, y1, x2, y2);
   }
   return scene;
 }
