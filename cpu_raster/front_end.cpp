@@ -2,25 +2,14 @@
 
 #include "cpu_raster/assemble.hpp"
 #include "cpu_raster/clip_line.hpp"
-#include "cpu_raster/clip_test.hpp"
 #include "cpu_raster/clip_vertex.hpp"
+#include "cpu_raster/draw_chunks.hpp"
 #include "cpu_raster/line_setup.hpp"
 #include "cpu_raster/pipeline_cull.hpp"
 #include "model/render_result.hpp"
 
 namespace rastercmp::cpu {
 namespace {
-
-// The "pipelined" chunk flag: any vertex the draw uses has a clip-mask bit (§1.5, step 5).
-// The whole draw is taken as one chunk; vsplit's chunk boundaries for very large draws (more
-// than 1024 indices / 4096 vertices) are not modelled.
-bool any_vertex_clipped(const Draw& draw, bool depth_clip) {
-  for (uint32_t k = 0; k < draw.vertex_count(); ++k) {
-    const uint32_t position = draw.indices.empty() ? k : draw.indices[k];
-    if (clip_mask(draw.positions_clip[position], depth_clip) != 0) return true;
-  }
-  return false;
-}
 
 void record_triangle_setup(PrimitiveOutcome& outcome, const TriangleSetup& setup) {
   outcome.reached_setup = true;
@@ -113,12 +102,13 @@ void run_front_end(const FrameContext& frame, uint32_t draw_index, const Outcome
   PrimitiveOutcome base;
   base.draw_index = draw_index;
   base.is_line = is_line_topology(draw.topology);
-  base.pipelined = any_vertex_clipped(draw, draw.state.depth_clip_enabled());
-  const uint32_t count = primitive_count(draw);
+  const std::vector<bool> pipelined = pipelined_chunks(draw, draw.state.depth_clip_enabled());  // §1.5
+  const uint32_t count = primitive_count(draw), per_chunk = primitives_per_chunk(draw);
   for (uint32_t i = 0; i < count; ++i) {
     const AssembledPrimitive prim = assemble_primitive(draw, i);
     PrimitiveOutcome outcome = base;
     outcome.primitive_index = i;
+    outcome.pipelined = pipelined[i / per_chunk];
     if (base.is_line) run_line(frame, ctx, draw, prim, outcome, sink);
     else run_triangle(frame, ctx, draw, prim, outcome, sink);
   }

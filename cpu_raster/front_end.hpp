@@ -33,7 +33,7 @@ struct PrimitiveOutcome {
   uint32_t draw_index = 0;
   uint32_t primitive_index = 0;
   bool is_line = false;
-  bool pipelined = false;         // some vertex of the draw needed clipping (lavapipe-rules §1.5)
+  bool pipelined = false;         // some vertex of the primitive's draw chunk needed clipping (§1.5, draw_chunks.hpp)
   ClipFate clip_fate = ClipFate::Inside;
   uint32_t piece = 0;             // which triangle of the clipped fan
   uint32_t piece_count = 0;       // triangles (or lines) that reached set-up; 0: none did

@@ -1,9 +1,11 @@
-// Primitive assembly order with the provoking vertex first (draw_decompose_tmp.h, lp_setup_vbuf.c).
+// Primitive assembly order with the provoking vertex first (draw_decompose_tmp.h, lp_setup_vbuf.c),
+// and the driver's draw chunks with their "pipelined" flag (draw_chunks.hpp, lavapipe-rules §1.5).
 #include <array>
 
 #include <gtest/gtest.h>
 
 #include "cpu_raster/assemble.hpp"
+#include "cpu_raster/draw_chunks.hpp"
 
 namespace rastercmp::cpu {
 namespace {
@@ -61,6 +63,40 @@ TEST(CpuAssemble, TooFewVerticesFormNoPrimitive) {
   EXPECT_EQ(primitive_count(draw_of(Topology::TriangleStrip, 2)), 0u);
   EXPECT_EQ(primitive_count(draw_of(Topology::TriangleFan, 1)), 0u);
   EXPECT_EQ(primitive_count(draw_of(Topology::LineStrip, 1)), 0u);
+}
+
+TEST(CpuDrawChunks, PrimitivesPerChunkFollowTheSegmentSize) {
+  Draw draw = draw_of(Topology::TriangleList, 3);
+  EXPECT_EQ(primitives_per_chunk(draw), 1365u);  // 4095 of 4096 vertices: whole triangles
+  draw.indices = {0, 1, 2};
+  EXPECT_EQ(primitives_per_chunk(draw), 341u);   // 1023 of 1024 indices
+  draw.topology = Topology::TriangleStrip;
+  EXPECT_EQ(primitives_per_chunk(draw), 1022u);  // segments overlap by two vertices
+  draw.topology = Topology::TriangleFan;
+  EXPECT_EQ(primitives_per_chunk(draw), 1022u);
+  draw.indices.clear();
+  EXPECT_EQ(primitives_per_chunk(draw), 4094u);
+}
+
+TEST(CpuDrawChunks, OnlyTheChunkThatUsesAClippedVertexIsPipelined) {
+  // 400 indexed triangles = chunks of 341 and 59; only triangle 350 uses position 5 (outside x).
+  Draw draw = draw_of(Topology::TriangleList, 6);
+  draw.positions_clip[5] = glm::vec4(2, 0, 0, 1);
+  for (uint32_t t = 0; t < 400; ++t) {
+    const uint32_t last = t == 350 ? 5u : 2u;
+    draw.indices.insert(draw.indices.end(), {0, 1, last});
+  }
+  EXPECT_EQ(pipelined_chunks(draw, true), (std::vector<bool>{false, true}));
+  draw.indices[3 * 350 + 2] = 2;  // position 5 still exists but no primitive uses it
+  EXPECT_EQ(pipelined_chunks(draw, true), (std::vector<bool>{false, false}));
+}
+
+TEST(CpuDrawChunks, AFanHubOutsideMakesEveryChunkPipelined) {
+  Draw fan = draw_of(Topology::TriangleFan, 5000);  // 4998 triangles: chunks of 4094 and 904
+  EXPECT_EQ(pipelined_chunks(fan, true), (std::vector<bool>{false, false}));
+  fan.positions_clip[0] = glm::vec4(0, 0, -1, 1);  // z < 0: outside the near plane
+  EXPECT_EQ(pipelined_chunks(fan, true), (std::vector<bool>{true, true}));
+  EXPECT_EQ(pipelined_chunks(fan, false), (std::vector<bool>{false, false}));  // depth clip off
 }
 
 }  // namespace

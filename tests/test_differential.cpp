@@ -135,6 +135,7 @@ INSTANTIATE_TEST_SUITE_P(CentredBresenhamLines, Differential,
 INSTANTIATE_TEST_SUITE_P(LatticeBresenhamLines, Differential,
                          Combine(Values(Family{"lines_bresenham_lattice", lattice_bresenham_lines}), Range(1u, 7u)),
                          case_name);
+INSTANTIATE_TEST_SUITE_P(Chunks, Differential, Combine(Values(Family{"chunks", chunked_draws}), Range(1u, 7u)), case_name);
 INSTANTIATE_TEST_SUITE_P(StripsFans, Differential,
                          Combine(Values(Family{"strips_fans", strips_and_fans}), Range(1u, 6u)), case_name);
 INSTANTIATE_TEST_SUITE_P(Msaa, Differential, Combine(Values(Family{"msaa", msaa_triangles}), Range(1u, 9u)), case_name);

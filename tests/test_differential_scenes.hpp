@@ -6,9 +6,13 @@
 // "pipelined" flag is exercised per primitive; the multi-triangle family groups 16 per draw.
 #pragma once
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 #include <vector>
+
+#include <glm/vec2.hpp>
 
 #include "tests/test_differential_support.hpp"
 
@@ -257,6 +261,80 @@ inline Scene lattice_bresenham_lines(uint32_t seed) {
     const float y2 = y1 + float(minor * steps * (rng.chance(0.5f) ? 1 : -1));
     add_bresenham_line(scene, rng, width, x1, y1, x2, y2);
   }
+  return scene;
+}
+
+// Large draws cut into the driver's chunks (lavapipe-rules §1.5, cpu_raster/draw_chunks.hpp):
+// one clipped triangle makes its chunk "pipelined", and slivers whose float facing (unsnapped
+// window coordinates) is back but whose fixed-point facing is front sit just before and after
+// each chunk boundary: the pipeline's float cull drops them only inside a pipelined chunk.
+// Seeds 1-6 cover lists, strips and fans, indexed and not; the rest are degenerate fillers.
+struct ChunkSliver {
+  glm::vec2 a, b, c;  // window coordinates; cull back with front_face cw keeps it only unpipelined
+};
+
+inline ChunkSliver chunk_sliver(float row, float x0) {
+  const float u = 1.0f / 256.0f, y = row + 0.5f;
+  return {{x0, y - 0.45f * u}, {x0 + 20, y + 0.45f * u}, {x0 + 60, y + 0.55f * u}};
+}
+
+inline Scene chunked_draws(uint32_t seed) {
+  const Topology topology = std::array{Topology::TriangleList, Topology::TriangleStrip, Topology::TriangleFan}[seed % 3];
+  const bool indexed = (seed / 3) % 2 == 1;
+  Scene scene = make_scene(scene_name("chunks", seed), 128, 64, format_for(seed));
+  Draw draw;
+  draw.state = always_state();
+  draw.state.cull_mode = CullMode::Back;
+  draw.state.front_face = FrontFace::Clockwise;
+  draw.topology = topology;
+  const uint32_t per_chunk = topology == Topology::TriangleList ? (indexed ? 341 : 1365) : (indexed ? 1022 : 4094);
+  const uint32_t count = 2 * per_chunk + per_chunk / 2, clipped_chunk = (seed / 2) % 3;
+  const glm::vec2 filler{100.5f, 50.5f}, outside{-5.0f, 5.0f};
+  std::vector<glm::vec2> window;  // three per triangle (lists) or the vertex sequence (strips, fans)
+  if (topology == Topology::TriangleList) {
+    // Slivers at the two boundaries, two primitives either side; the clipped triangle (rows 5-9)
+    // and the slivers (rows 12-33) do not meet.
+    window.assign(3 * size_t(count), filler);
+    const auto put = [&](uint32_t t, glm::vec2 a, glm::vec2 b, glm::vec2 c) {
+      window[3 * t] = a, window[3 * t + 1] = b, window[3 * t + 2] = c;
+    };
+    put(clipped_chunk * per_chunk + 5, outside, {4, 5}, {4, 9});
+    for (uint32_t k = 1, slot = 4; k <= 2; ++k)
+      for (uint32_t t = k * per_chunk - 2; t <= k * per_chunk + 1; ++t, ++slot) {
+        const ChunkSliver s = chunk_sliver(float(3 * slot), 2.0f + float(slot % 3) * 20);
+        put(t, s.a, s.b, s.c);
+      }
+  } else if (topology == Topology::TriangleStrip) {
+    // Triangle t (even) is (v_t, v_t+1, v_t+2); a sliver there is framed by copies of a and c so
+    // that its neighbours are degenerate. Slivers 6 before and at each boundary.
+    window.assign(count + 2, filler);
+    for (uint32_t k = 1, slot = 4; k <= 2; ++k)
+      for (uint32_t t : {k * per_chunk - 6, k * per_chunk}) {
+        const ChunkSliver s = chunk_sliver(float(3 * slot), 2.0f + float(slot % 3) * 20);
+        ++slot;
+        window[t - 1] = s.a, window[t] = s.a, window[t + 1] = s.b, window[t + 2] = s.c, window[t + 3] = s.c;
+      }
+    window[clipped_chunk * per_chunk + 10] = outside;  // its triangles are degenerate (two filler corners)
+  } else {
+    // Fans share vertex 0: one sliver (v0, v_t+1, v_t+2) at the first boundary or just before it.
+    // Before it the vertices are the filler; after it they are copies of its last corner c, so
+    // the fan's later triangles are degenerate, except the two around the clipped vertex, which
+    // lies below the snapped edge a-c and so away from the row samples the sliver covers.
+    const ChunkSliver s = chunk_sliver(20, 10);
+    const uint32_t t = seed % 2 == 0 ? per_chunk : per_chunk - 1;
+    window.assign(count + 2, s.c);
+    std::fill(window.begin(), window.begin() + t + 1, filler);
+    window[0] = s.a, window[t + 1] = s.b;
+    window[clipped_chunk * per_chunk + 10] = glm::vec2{-5.0f, 60.0f};
+  }
+  for (const glm::vec2& p : window) draw.positions_clip.push_back(clip_from_window(p.x, p.y, 0.5f, scene));
+  if (indexed) {
+    // Lists: every filler triangle repeats one index (repeats do not change the chunk size).
+    const bool list = topology == Topology::TriangleList;
+    for (uint32_t k = 0; k < uint32_t(window.size()); ++k)
+      draw.indices.push_back(list && window[k] == filler ? 0u : k);  // window[0] is a filler
+  }
+  scene.draws.push_back(draw);
   return scene;
 }
 
