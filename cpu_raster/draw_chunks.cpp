@@ -1,6 +1,5 @@
 #include "cpu_raster/draw_chunks.hpp"
 
-#include "cpu_raster/assemble.hpp"
 #include "cpu_raster/clip_test.hpp"
 
 namespace rastercmp::cpu {
@@ -20,21 +19,21 @@ uint32_t primitives_per_chunk(const Draw& draw) {
   return s;
 }
 
-std::vector<bool> pipelined_chunks(const Draw& draw, bool depth_clip) {
-  const uint32_t count = primitive_count(draw), per_chunk = primitives_per_chunk(draw);
-  std::vector<bool> pipelined((count + per_chunk - 1) / per_chunk, false);
-  std::vector<int8_t> clipped(draw.positions_clip.size(), -1);  // clip test per position, once
-  const auto is_clipped = [&](uint32_t position) {
-    if (clipped[position] < 0) clipped[position] = clip_mask(draw.positions_clip[position], depth_clip) != 0;
-    return clipped[position] == 1;
-  };
-  for (uint32_t i = 0; i < count; ++i) {
-    if (pipelined[i / per_chunk]) continue;
-    const AssembledPrimitive prim = assemble_primitive(draw, i);
-    for (uint32_t k = 0; k < prim.vertex_count; ++k)
-      if (is_clipped(prim.position[k])) pipelined[i / per_chunk] = true;
+ChunkVertices chunk_vertices(Topology topology, uint32_t first, uint32_t last) {
+  switch (topology) {
+    case Topology::PointList: return {first, last};
+    case Topology::LineList: return {2 * first, 2 * last};
+    case Topology::LineStrip: return {first, last + 1};
+    case Topology::TriangleList: return {3 * first, 3 * last};
+    case Topology::TriangleStrip: return {first, last + 2};
+    case Topology::TriangleFan: return {first + 1, last + 2, true};
   }
-  return pipelined;
+  return {first, last};
+}
+
+std::vector<bool> pipelined_chunks(const Draw& draw, bool depth_clip) {
+  return pipelined_chunks_by(
+      draw, [&](uint32_t position) { return clip_mask(draw.positions_clip[position], depth_clip) != 0; });
 }
 
 }  // namespace rastercmp::cpu

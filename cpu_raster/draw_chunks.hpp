@@ -13,9 +13,11 @@
 // strip) follow the same segment sizes and are not checked against the driver.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
+#include "cpu_raster/assemble.hpp"
 #include "model/scene.hpp"
 
 namespace rastercmp::cpu {
@@ -26,7 +28,30 @@ uint32_t segment_size(const Draw& draw);
 // How many primitives of the draw's topology one chunk holds.
 uint32_t primitives_per_chunk(const Draw& draw);
 
-// Per chunk, in order: whether any vertex used by the chunk's primitives has a clip-mask bit.
+// The vertex numbers (before index lookup) the primitives [first, last) use: lists and strips a
+// run, fans their hub and a run (assemble.cpp's order, lavapipe-rules §1.5).
+struct ChunkVertices {
+  uint32_t begin = 0, end = 0;
+  bool hub = false;  // a fan: vertex 0 as well
+};
+ChunkVertices chunk_vertices(Topology topology, uint32_t first, uint32_t last);
+
+// Per chunk, in order: whether `is_clipped(position)` holds for a vertex the chunk's primitives use.
+template <class IsClipped>
+std::vector<bool> pipelined_chunks_by(const Draw& draw, IsClipped is_clipped) {
+  const uint32_t count = primitive_count(draw), per_chunk = primitives_per_chunk(draw);
+  std::vector<bool> pipelined((count + per_chunk - 1) / per_chunk, false);
+  const auto position = [&](uint32_t k) { return draw.indices.empty() ? k : draw.indices[k]; };
+  for (uint32_t c = 0; c < pipelined.size(); ++c) {
+    const ChunkVertices v = chunk_vertices(draw.topology, c * per_chunk, std::min(count, (c + 1) * per_chunk));
+    bool clipped = v.hub && is_clipped(position(0));
+    for (uint32_t k = v.begin; k < v.end && !clipped; ++k) clipped = is_clipped(position(k));
+    pipelined[c] = clipped;
+  }
+  return pipelined;
+}
+
+// pipelined_chunks_by with the clip test of clip_test.hpp.
 std::vector<bool> pipelined_chunks(const Draw& draw, bool depth_clip);
 
 }  // namespace rastercmp::cpu

@@ -11,6 +11,7 @@
 #include "model/errors.hpp"
 #include "model/host.hpp"
 #include "model/scene_io.hpp"
+#include "tests/test_differential_scenes.hpp"
 #include "tests/test_fast_support.hpp"
 
 namespace rastercmp {
@@ -52,6 +53,12 @@ TEST(FastDenseScenes, ManyTrianglesAcrossTileRows) {
     spec.max_primitives = 400;
     expect_fast_matches(fast_test::random_scene(seed, spec), true);
   }
+}
+
+// Large draws cut into the driver's chunks, one chunk pipelined, slivers on both sides of each
+// boundary (tests/test_differential_scenes.hpp): the float cull applies per chunk (§1.5, §2.6).
+TEST(FastChunkedDraws, PipelinedChunksMatchExactPath) {
+  for (uint32_t seed = 1; seed <= 6; ++seed) expect_fast_matches(differential::chunked_draws(seed), true);
 }
 
 class FastLayeredScenes : public ::testing::TestWithParam<uint64_t> {};

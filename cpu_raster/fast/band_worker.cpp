@@ -148,7 +148,7 @@ void BandWorker::triangle(uint32_t d, uint32_t primitive, uint32_t a, uint32_t b
   if (area == 0) return;  // always dropped
   const RasterState& state = frame_.scene->draws[d].state;
   if (face_culled((area > 0) == (state.front_face == FrontFace::CounterClockwise), state.cull_mode)) return;
-  if (fd.pipelined && state.cull_mode != CullMode::None &&  // draw_pipe_cull.c (§2.6)
+  if (fd.pipelined(primitive) && state.cull_mode != CullMode::None &&  // draw_pipe_cull.c (§2.6)
       pipeline_cull_drops(pipeline_cull_determinant({window_of(v0), window_of(v1), window_of(v2)}), state.cull_mode,
                           state.front_face))
     return;
@@ -183,7 +183,7 @@ void BandWorker::clipped_triangle(uint32_t d, uint32_t primitive, uint32_t a, ui
   const ClippedTriangles clipped = clip_triangle(corners, exact.viewport);
   for (const auto& piece : clipped.triangles) {
     const std::array<WindowVertex, 3> window{piece[0].window, piece[1].window, piece[2].window};
-    if (fd.pipelined && draw.state.cull_mode != CullMode::None &&
+    if (fd.pipelined(primitive) && draw.state.cull_mode != CullMode::None &&
         pipeline_cull_drops(pipeline_cull_determinant(window), draw.state.cull_mode, draw.state.front_face))
       continue;
     const TriangleSetup setup = setup_triangle(window, encode_owner(d, primitive), fd.setup);

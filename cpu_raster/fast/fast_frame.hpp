@@ -3,6 +3,7 @@
 // the tiles' depth bounds.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -19,7 +20,16 @@ struct FastDraw {
   bool fast = false;
   FastVertex* vertices = nullptr;           // fast draws: one per position (VertexScratch)
   int16_t* tile_rows = nullptr;       // fast draws: per position, its tile row or kRowUnknown
-  bool pipelined = false;                  // lavapipe-rules §1.5 chunk flag
+  // lavapipe-rules §1.5: per driver chunk (draw_chunks.hpp), whether it takes the pipeline path;
+  // empty when no position of the draw is outside the clip volume.
+  std::vector<bool> pipelined_chunks;
+  uint32_t chunk_size = 1;  // primitives per chunk
+  bool pipelined(uint32_t primitive) const {
+    return !pipelined_chunks.empty() && pipelined_chunks[primitive / chunk_size];
+  }
+  bool any_pipelined() const {
+    return std::find(pipelined_chunks.begin(), pipelined_chunks.end(), true) != pipelined_chunks.end();
+  }
   SetupContext setup;                      // for the exact set-up of clipped triangles
   DrawRaster raster;
   bool small_blocks = false;  // set up eight triangles at a time (small_triangles.hpp)

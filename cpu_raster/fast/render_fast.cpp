@@ -13,6 +13,7 @@
 
 #include "cpu_raster/assemble.hpp"
 #include "cpu_raster/depth_sample.hpp"
+#include "cpu_raster/draw_chunks.hpp"
 #include "cpu_raster/fast/band_worker.hpp"
 #include "cpu_raster/fast/cpu_features.hpp"
 #include "cpu_raster/fast/frame_memory.hpp"
@@ -115,13 +116,6 @@ void init_frame(FastFrame& frame, const Scene& scene, const CpuOptions& options,
   raster.tiles = frame.tiles.data();
 }
 
-// The §1.5 chunk flag, for a draw some of whose positions are outside the clip volume.
-bool any_used_vertex_clipped(const Draw& draw, const FastVertex* vertices) {
-  for (uint32_t k = 0; k < draw.vertex_count(); ++k)
-    if (vertices[draw.indices.empty() ? k : draw.indices[k]].flags & kVertexClipBits) return true;
-  return false;
-}
-
 struct VertexTask {
   uint32_t draw;
   size_t begin, end;
@@ -172,10 +166,14 @@ void transform_all_vertices(FastFrame& frame, bool check_pending) {
     FastDraw& fd = frame.draws[d];
     if (!fd.fast) continue;
     const Draw& draw = frame.scene->draws[d];
-    fd.pipelined = (draw_flags[d] & kVertexClipBits) && any_used_vertex_clipped(draw, fd.vertices);
+    fd.chunk_size = primitives_per_chunk(draw);
+    fd.pipelined_chunks.clear();
+    if (draw_flags[d] & kVertexClipBits)  // the §1.5 chunk flags, from the vertices' clip bits
+      fd.pipelined_chunks =
+          pipelined_chunks_by(draw, [&fd](uint32_t position) { return (fd.vertices[position].flags & kVertexClipBits) != 0; });
     // The eight-wide set-up leaves out what it does not model: depth bias, the pipeline float cull.
     fd.small_blocks = fd.raster.small_fn && fd.raster.vector_ok && !draw.state.depth_bias.enable &&
-                      !(fd.pipelined && draw.state.cull_mode != CullMode::None);
+                      !(fd.any_pipelined() && draw.state.cull_mode != CullMode::None);
   }
 }
 
