@@ -13,8 +13,12 @@ namespace rastercmp::cpu {
 struct ClippedLine {
   ClipFate fate = ClipFate::Inside;
   std::array<ClipVertex, 2> line{};  // valid for Inside and Clipped
+  float t0 = 0, t1 = 0;              // the clip parameters of line[0] and line[1] (0: not moved)
 };
 
-ClippedLine clip_line(const std::array<ClipVertex, 2>& line, const ViewportTransform& viewport);
+// `inside_planes`: as for clip_triangle, planes to run a line wholly inside through anyway; it comes
+// back unchanged (t0 = t1 = 0; no endpoint has a mask bit, so none is replaced).
+ClippedLine clip_line(const std::array<ClipVertex, 2>& line, const ViewportTransform& viewport,
+                      uint32_t inside_planes = 0);
 
 }  // namespace rastercmp::cpu

@@ -22,6 +22,9 @@ enum ClipPlane : uint32_t {
 // Bit k set: the vertex is outside plane k. The depth bits only when depth clipping is on.
 uint32_t clip_mask(const glm::vec4& pos_clip, bool depth_clip);
 
+// The planes the clip test checks: x and y always, the depth planes only with depth clipping.
+inline uint32_t tested_clip_planes(bool depth_clip) { return depth_clip ? 0x3Fu : 0x0Fu; }
+
 // Signed distance to plane k as draw_pipe_clip.c dot4 computes it: ((a0b0 + a1b1) + a2b2) + a3b3.
 float plane_distance(const glm::vec4& pos_clip, uint32_t plane);
 

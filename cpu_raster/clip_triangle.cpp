@@ -54,12 +54,37 @@ std::optional<Polygon> clip_against(const Polygon& in, uint32_t plane, const Vie
   return out;
 }
 
+// The passes over the planes of `mask`, in increasing bit order; nullopt when the primitive must be
+// discarded.
+std::optional<Polygon> clip_polygon(Polygon polygon, uint32_t mask, const ViewportTransform& viewport) {
+  for (; mask != 0 && polygon.size() >= 3; mask &= mask - 1) {
+    if (polygon.size() >= kMaxClippedVertices) return std::nullopt;
+    std::optional<Polygon> next = clip_against(polygon, uint32_t(std::countr_zero(mask)), viewport);
+    if (!next) return std::nullopt;
+    polygon = std::move(*next);
+  }
+  return polygon;
+}
+
+// emit_poly with flatshade_first: (p0, p[k-1], p[k]).
+void emit_fan(const Polygon& polygon, ClippedTriangles& result) {
+  for (size_t k = 2; k < polygon.size(); ++k) result.triangles.push_back({polygon[0], polygon[k - 1], polygon[k]});
+}
+
 }  // namespace
 
-ClippedTriangles clip_triangle(const std::array<ClipVertex, 3>& triangle, const ViewportTransform& viewport) {
+ClippedTriangles clip_triangle(const std::array<ClipVertex, 3>& triangle, const ViewportTransform& viewport,
+                               uint32_t inside_planes) {
   ClippedTriangles result;
   const uint32_t union_mask = triangle[0].clip_mask | triangle[1].clip_mask | triangle[2].clip_mask;
-  if (union_mask == 0) {
+  if (union_mask == 0) {  // passed unchanged (§1.5)
+    if (inside_planes != 0) {  // WorkSkips::clip_only_when_needed off: the clipper returns it unchanged
+      const std::optional<Polygon> same = clip_polygon(Polygon(triangle.begin(), triangle.end()), inside_planes, viewport);
+      if (same) {
+        emit_fan(*same, result);
+        return result;
+      }
+    }
     result.triangles.push_back(triangle);
     return result;
   }
@@ -67,22 +92,13 @@ ClippedTriangles clip_triangle(const std::array<ClipVertex, 3>& triangle, const 
     result.fate = ClipFate::Outside;
     return result;
   }
-  Polygon polygon(triangle.begin(), triangle.end());
-  for (uint32_t mask = union_mask; mask != 0 && polygon.size() >= 3; mask &= mask - 1) {
-    if (polygon.size() >= kMaxClippedVertices) {
-      result.fate = ClipFate::Discarded;
-      return result;
-    }
-    std::optional<Polygon> next = clip_against(polygon, uint32_t(std::countr_zero(mask)), viewport);
-    if (!next) {
-      result.fate = ClipFate::Discarded;
-      return result;
-    }
-    polygon = std::move(*next);
+  const std::optional<Polygon> polygon = clip_polygon(Polygon(triangle.begin(), triangle.end()), union_mask, viewport);
+  if (!polygon) {
+    result.fate = ClipFate::Discarded;
+    return result;
   }
   result.fate = ClipFate::Clipped;
-  for (size_t k = 2; k < polygon.size(); ++k)  // emit_poly, flatshade_first
-    result.triangles.push_back({polygon[0], polygon[k - 1], polygon[k]});
+  emit_fan(*polygon, result);
   return result;
 }
 

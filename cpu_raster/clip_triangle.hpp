@@ -25,6 +25,13 @@ struct ClippedTriangles {
   std::vector<std::array<ClipVertex, 3>> triangles;  // what goes on to set-up, in emit order
 };
 
-ClippedTriangles clip_triangle(const std::array<ClipVertex, 3>& triangle, const ViewportTransform& viewport);
+// `inside_planes`: planes to clip a triangle wholly inside against anyway (WorkSkips::
+// clip_only_when_needed off; 0: pass it unchanged, as lavapipe does). Every plane distance of such
+// a triangle is >= 0, so the clipper returns it unchanged (fate stays Inside). A non-finite distance,
+// which the clip test lets through (w = +Inf; |x| + w overflowing; z Inf or NaN without depth
+// clipping), would make do_clip_tri discard it although lavapipe never clips it: it is then passed
+// unchanged too. Forcing the clipper does not make a draw "pipelined" (§2.6's float cull).
+ClippedTriangles clip_triangle(const std::array<ClipVertex, 3>& triangle, const ViewportTransform& viewport,
+                               uint32_t inside_planes = 0);
 
 }  // namespace rastercmp::cpu

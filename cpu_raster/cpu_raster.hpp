@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "cpu_raster/work_skips.hpp"
 #include "model/render_result.hpp"
 #include "model/scene.hpp"
 
@@ -22,6 +23,9 @@ struct CpuOptions {
   uint32_t threads = 0;
   // Method overrides (--method STAGE=NAME); empty: the exact pipeline.
   std::vector<MethodChoice> methods;
+  // Measurement knob, exact path only (threads = 0): the work the scene's state makes unnecessary
+  // is skipped (the default), or done anyway with identical output (docs/cpu-raster.md).
+  cpu::WorkSkips skips;
 };
 
 // RenderResult::device of the Lavapipe profile.

@@ -52,12 +52,16 @@ DepthPlane triangle_depth_plane(const std::array<WindowVertex, 3>& v, float pixe
   return plane;
 }
 
-DepthOffset triangle_depth_offset(const std::array<WindowVertex, 3>& v, const DepthBias& bias, DepthFormat format) {
+DepthOffset triangle_depth_offset(const std::array<WindowVertex, 3>& v, const DepthBias& bias_in, DepthFormat format,
+                                  bool skip_when_off) {
   DepthOffset o;
   const bool float_depth = format == DepthFormat::D32Sfloat;
-  const float units = float_depth ? bias.constant_factor : unorm_constant_term(bias.constant_factor, format);
-  if (!bias.enable || (units == 0.0f && bias.slope_factor == 0.0f)) return o;  // o = 0.0f exactly
-  o.computed = true;
+  const float units_in = float_depth ? bias_in.constant_factor : unorm_constant_term(bias_in.constant_factor, format);
+  const bool applied = bias_in.enable && !(units_in == 0.0f && bias_in.slope_factor == 0.0f);
+  if (!applied && skip_when_off) return o;  // o = 0.0f exactly
+  // Not applied (the skip is off): the same arithmetic with zero factors; its result is not used.
+  const DepthBias bias = applied ? bias_in : DepthBias{false, 0.0f, 0.0f, 0.0f};
+  const float units = applied ? units_in : 0.0f;
   const float dx01 = v[0].x - v[1].x, dy01 = v[0].y - v[1].y;
   const float dx20 = v[2].x - v[0].x, dy20 = v[2].y - v[0].y;
   const float dz01 = v[0].z - v[1].z, dz20 = v[2].z - v[0].z;
@@ -80,6 +84,8 @@ DepthOffset triangle_depth_offset(const std::array<WindowVertex, 3>& v, const De
   if (bias.clamp > 0.0f) o.offset = sse_min(bias.clamp, o.offset);
   else if (bias.clamp < 0.0f) o.offset = sse_max(bias.clamp, o.offset);
   o.clamped = float_bits(o.offset) != float_bits(o.unclamped);
+  o.computed = applied;
+  if (!applied) o.offset = 0.0f;  // m may be Inf or NaN, so m * 0 need not be 0
   return o;
 }
 

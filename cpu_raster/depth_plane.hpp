@@ -20,7 +20,8 @@ struct DepthPlane {
 
 // How the polygon offset o was formed (kept for explain).
 struct DepthOffset {
-  bool computed = false;  // false: bias off or both factors 0 after conversion, o = 0 exactly
+  bool computed = false;  // false: bias off or both factors 0 after conversion, o = 0 exactly (the terms
+                          // below are then 0, or formed with zero factors and unused: WorkSkips)
   float m = 0;            // max(|dz/dx|, |dz/dy|)
   float r = 0;            // minimum resolvable difference applied to the constant factor
   float constant_term = 0;  // r * constant factor, as lavapipe forms it
@@ -32,7 +33,10 @@ struct DepthOffset {
 // pixel_center: 0.5 single sample, 0 multisample (key->multisample).
 DepthPlane triangle_depth_plane(const std::array<WindowVertex, 3>& v, float pixel_center);
 
-DepthOffset triangle_depth_offset(const std::array<WindowVertex, 3>& v, const DepthBias& bias, DepthFormat format);
+// skip_when_off: the bias is off or both factors are 0, so o = 0 and no term is formed. false
+// (WorkSkips::bias_only_when_enabled off): the terms are formed with zero factors, o stays 0.
+DepthOffset triangle_depth_offset(const std::array<WindowVertex, 3>& v, const DepthBias& bias, DepthFormat format,
+                                  bool skip_when_off = true);
 
 // Line plane from the original first/second endpoint; dx_eff/dy_eff are dx, dy for rectangular
 // lines and the "wide line" weighted ones for Bresenham lines (§5.5).

@@ -2,6 +2,7 @@
 
 #include "cpu_raster/assemble.hpp"
 #include "cpu_raster/clip_line.hpp"
+#include "cpu_raster/clip_test.hpp"
 #include "cpu_raster/clip_vertex.hpp"
 #include "cpu_raster/draw_chunks.hpp"
 #include "cpu_raster/line_setup.hpp"
@@ -10,6 +11,11 @@
 
 namespace rastercmp::cpu {
 namespace {
+
+// The planes a primitive wholly inside is clipped against anyway: none, unless the clip skip is off.
+uint32_t inside_planes(const FrameContext& frame, bool depth_clip) {
+  return frame.skips.clip_only_when_needed ? 0 : tested_clip_planes(depth_clip);
+}
 
 void record_triangle_setup(PrimitiveOutcome& outcome, const TriangleSetup& setup) {
   outcome.reached_setup = true;
@@ -28,7 +34,7 @@ void run_triangle(const FrameContext& frame, const SetupContext& ctx, const Draw
   std::array<ClipVertex, 3> triangle;
   for (size_t k = 0; k < 3; ++k)
     triangle[k] = make_clip_vertex(draw.positions_clip[prim.position[k]], frame.viewport, depth_clip, frame.fma);
-  const ClippedTriangles clipped = clip_triangle(triangle, frame.viewport);
+  const ClippedTriangles clipped = clip_triangle(triangle, frame.viewport, inside_planes(frame, depth_clip));
   outcome.clip_fate = clipped.fate;
   outcome.piece_count = uint32_t(clipped.triangles.size());
   if (clipped.triangles.empty()) {
@@ -56,7 +62,7 @@ void run_line(const FrameContext& frame, const SetupContext& ctx, const Draw& dr
   std::array<ClipVertex, 2> line;
   for (size_t k = 0; k < 2; ++k)
     line[k] = make_clip_vertex(draw.positions_clip[prim.position[k]], frame.viewport, depth_clip, frame.fma);
-  const ClippedLine clipped = clip_line(line, frame.viewport);
+  const ClippedLine clipped = clip_line(line, frame.viewport, inside_planes(frame, depth_clip));
   outcome.clip_fate = clipped.fate;
   if (clipped.fate == ClipFate::Outside || clipped.fate == ClipFate::Discarded) {
     sink(outcome);
@@ -76,7 +82,7 @@ void run_line(const FrameContext& frame, const SetupContext& ctx, const Draw& dr
 
 }  // namespace
 
-FrameContext make_frame_context(const Scene& scene, bool fma, const SetupMethods& methods) {
+FrameContext make_frame_context(const Scene& scene, bool fma, const SetupMethods& methods, const WorkSkips& skips) {
   FrameContext frame;
   frame.scene = &scene;
   frame.viewport = make_viewport_transform(scene.effective_viewport());
@@ -85,6 +91,7 @@ FrameContext make_frame_context(const Scene& scene, bool fma, const SetupMethods
   frame.multisample = scene.samples > 1;
   frame.fma = fma;
   frame.methods = methods;
+  frame.skips = skips;
   return frame;
 }
 
@@ -96,6 +103,7 @@ void run_front_end(const FrameContext& frame, uint32_t draw_index, const Outcome
   ctx.multisample = frame.multisample;
   ctx.fma = frame.fma;
   ctx.methods = frame.methods;
+  ctx.skips = frame.skips;
   ctx.depth_format = frame.scene->depth_format;
   ctx.state = &draw.state;
   ctx.draw_index = draw_index;

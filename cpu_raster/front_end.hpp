@@ -12,6 +12,7 @@
 #include "cpu_raster/setup_context.hpp"
 #include "cpu_raster/triangle_setup.hpp"
 #include "cpu_raster/viewport.hpp"
+#include "cpu_raster/work_skips.hpp"
 #include "model/scene.hpp"
 
 namespace rastercmp::cpu {
@@ -25,9 +26,11 @@ struct FrameContext {
   bool multisample = false;
   bool fma = true;
   SetupMethods methods;
+  WorkSkips skips;
 };
 
-FrameContext make_frame_context(const Scene& scene, bool fma, const SetupMethods& methods);
+FrameContext make_frame_context(const Scene& scene, bool fma, const SetupMethods& methods,
+                                const WorkSkips& skips = WorkSkips{});
 
 struct PrimitiveOutcome {
   uint32_t draw_index = 0;

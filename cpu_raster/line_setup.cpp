@@ -239,8 +239,8 @@ LineSetup setup_line(const std::array<WindowVertex, 2>& window, uint32_t owner, 
     setup.fate = SetupFate::OutsideRegion;
     return setup;
   }
-  if (ctx.depth_active()) {  // linear_coef uses setup->pixel_offset, not the snapping offset
-    raster.has_depth = true;
+  if (ctx.depth_plane_wanted()) {  // linear_coef uses setup->pixel_offset, not the snapping offset
+    raster.has_depth = ctx.depth_active();
     raster.depth = line_depth_plane(window[0], window[1], dx_eff, dy_eff, one_over_area, kHalfPixelCenter);
   }
   return setup;

@@ -2,15 +2,18 @@
 // for each pixel of the primitive's visit rectangle and each sample, the sample is covered iff all
 // plane values are > 0; a covered sample's depth is interpolated, offset, clamped, converted and
 // tested; if it passes, depth (when writes are on) and the owner id are written. Later primitives
-// overwrite earlier ones. No depth work at all when the draw has no active depth test.
+// overwrite earlier ones. No depth work at all when the draw has no active depth test (unless the
+// depth skip is off). Coverage uses 32-bit edge values where the visit rectangle allows it.
 #pragma once
 
 #include <cstdint>
 
 #include "cpu_raster/depth_sample.hpp"
+#include "cpu_raster/edge_frame32.hpp"
 #include "cpu_raster/raster_primitive.hpp"
 #include "cpu_raster/render_targets.hpp"
 #include "cpu_raster/viewport.hpp"
+#include "cpu_raster/work_skips.hpp"
 #include "model/scene.hpp"
 
 namespace rastercmp::cpu {
@@ -22,9 +25,13 @@ struct DepthTestState {
   DepthFormat format = DepthFormat::None;
   DepthRange range;
   bool fma = true;
+  // WorkSkips::depth_only_when_attached off: covered samples get their depth computed (and, with an
+  // attachment, compared) although the test is not active; the result is discarded.
+  bool compute_when_inactive = false;
 };
 
-DepthTestState make_depth_test_state(const Scene& scene, const Draw& draw, const ViewportTransform& viewport, bool fma);
+DepthTestState make_depth_test_state(const Scene& scene, const Draw& draw, const ViewportTransform& viewport, bool fma,
+                                     const WorkSkips& skips = WorkSkips{});
 
 // Index of the first plane whose value at the point is <= 0, or -1 when the sample is covered.
 inline int first_failing_plane(const PlaneSet& planes, int64_t x_fixed, int64_t y_fixed) {
@@ -46,6 +53,12 @@ struct SampleVerdict {
 SampleVerdict evaluate_sample(const RasterPrimitive& primitive, const DepthTestState& depth, int32_t px, int32_t py,
                               uint32_t sample, uint32_t stored_raw);
 
-void rasterize_primitive(const RasterPrimitive& primitive, const DepthTestState& depth, RenderTargets& targets);
+// The same, with the coverage test in 32 bits when `frame32` is given (edge_frame32.hpp).
+SampleVerdict evaluate_sample(const RasterPrimitive& primitive, const DepthTestState& depth, int32_t px, int32_t py,
+                              uint32_t sample, uint32_t stored_raw, const EdgeFrame32* frame32);
+
+// `skips`: only edges32_when_box_fits matters here (depth work follows `depth`).
+void rasterize_primitive(const RasterPrimitive& primitive, const DepthTestState& depth, RenderTargets& targets,
+                         const WorkSkips& skips = WorkSkips{});
 
 }  // namespace rastercmp::cpu

@@ -84,10 +84,10 @@ TriangleSetup setup_triangle(const std::array<WindowVertex, 3>& window_in, uint3
     setup.fate = SetupFate::OutsideRegion;
     return setup;
   }
-  if (ctx.depth_active()) {
-    raster.has_depth = true;
+  if (ctx.depth_plane_wanted()) {  // without an active test only when the depth skip is off
+    raster.has_depth = ctx.depth_active();
     raster.depth = triangle_depth_plane(window, pixel_offset);
-    raster.offset = triangle_depth_offset(window, state.depth_bias, ctx.depth_format);
+    raster.offset = triangle_depth_offset(window, state.depth_bias, ctx.depth_format, ctx.skips.bias_only_when_enabled);
   }
   return setup;
 }
