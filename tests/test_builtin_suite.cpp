@@ -481,7 +481,9 @@ TEST(BuiltinSuiteCoverage, DepthBiasVariantsOnEveryFormat) {
       {"negative clamp", [](const DepthBias& b) { return b.clamp < 0; }},
       {"negative factors", [](const DepthBias& b) { return b.constant_factor < 0 && b.slope_factor < 0; }}};
   for (const DepthFormat format : {DepthFormat::D16Unorm, DepthFormat::X8D24Unorm, DepthFormat::D32Sfloat}) {
-    for (const auto& [what, check] : variants) {
+    for (const auto& variant : variants) {  // not a structured binding: clang 14 cannot capture one
+      const std::string& what = variant.first;
+      const Check& check = variant.second;
       EXPECT_TRUE(any_draw([&](const Scene& scene, const Draw& draw) {
         return scene.depth_format == format && is_triangle_topology(draw.topology) && draw.state.depth_bias.enable &&
                check(draw.state.depth_bias);
