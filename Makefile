@@ -29,7 +29,11 @@ conformance: build
 
 # What CI runs (.ci/run): the test suite (Release), the same suite under ASan + UBSan + LSan,
 # then the fuzzers. Two build trees: $(BUILD) and $(BUILD_SAN), which serves both of the last two.
-test: test-unit test-sanitize fuzz
+# The Release tests leave a core idle much of the time (they wait on child processes and the
+# driver), so the sanitizer tree builds beside them; each step's output is printed when it ends.
+test: build
+	@$(MAKE) --no-print-directory -j2 --output-sync=target test-unit build-san
+	@$(MAKE) --no-print-directory test-sanitize fuzz
 
 test-unit: build
 	@cd $(BUILD) && ctest --output-on-failure -j $(JOBS)

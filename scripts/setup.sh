@@ -4,7 +4,7 @@
 set -euo pipefail
 
 packages=(
-  cmake make g++ clang libclang-rt-14-dev pkg-config
+  cmake make g++ clang libclang-rt-14-dev llvm-14 pkg-config
   libgtest-dev libgmock-dev libbenchmark-dev librapidcheck-dev
   libvulkan-dev mesa-vulkan-drivers vulkan-tools vulkan-validationlayers
   glslang-dev glslang-tools spirv-tools libglm-dev
