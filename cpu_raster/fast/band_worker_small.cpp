@@ -4,6 +4,7 @@
 #include <bit>
 #include <climits>
 
+#include "cpu_raster/assemble.hpp"
 #include "cpu_raster/fast/band_worker.hpp"
 #include "cpu_raster/fast/small_block_input.hpp"
 #include "model/render_result.hpp"
@@ -35,8 +36,35 @@ uint32_t block_tile_rows(const SmallBlockInput& in, const int16_t* tile_rows, co
   return pack_rows(lo, hi, region);
 }
 
+// block_tile_rows for a full block of an indexed list: its 24 corners are consecutive in the
+// index buffer. kRowUnknown is INT16_MIN, below every row, so the minimum finds it without a
+// branch per corner; four independent minima and maxima keep the compare chains short (the
+// loop was bound by one chain of 24 dependent compares).
+uint32_t list_block_tile_rows(const uint32_t* indices, const int16_t* tile_rows, const PixelRect& region) {
+  int32_t lo[4], hi[4];
+  for (int j = 0; j < 4; ++j) lo[j] = hi[j] = tile_rows[indices[j]];
+#pragma GCC unroll 24
+  for (int k = 4; k < 24; ++k) {
+    const int32_t row = tile_rows[indices[k]];
+    lo[k & 3] = std::min(lo[k & 3], row);
+    hi[k & 3] = std::max(hi[k & 3], row);
+  }
+  const int32_t low = std::min(std::min(lo[0], lo[1]), std::min(lo[2], lo[3]));
+  const int32_t high = std::max(std::max(hi[0], hi[1]), std::max(hi[2], hi[3]));
+  return low == kRowUnknown ? kBlockAnyRow : pack_rows(low, high, region);
+}
+
 template <Topology T, bool Indexed>
 void measure_rows(FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end) {
+  if constexpr (T == Topology::TriangleList && Indexed) {  // the full blocks of a mesh
+    const uint32_t full_end = std::min(end, primitive_count(frame.scene->draws[d]) / 8);
+    const uint32_t* indices = frame.scene->draws[d].indices.data();
+    const int16_t* tile_rows = frame.draws[d].tile_rows;
+    uint32_t* block_rows = frame.draws[d].block_rows;
+    const PixelRect region = frame.exact.region;
+    for (; begin < full_end; ++begin)
+      block_rows[begin] = list_block_tile_rows(indices + 24 * size_t(begin), tile_rows, region);
+  }
   SmallBlock block;
   for (uint32_t b = begin; b < end; ++b) {
     fill_block_input<T, Indexed>(frame, d, b, block);
