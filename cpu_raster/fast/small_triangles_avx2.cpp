@@ -125,6 +125,7 @@ RASTERCMP_AVX2 void store_job_edges(const Edge8 (&edges)[3], __m256i ox, __m256i
 struct GridLanes {
   __m256i mask, x0, y0, w, h;  // w, h: rectangle width and height minus 1
   int columns, rows;           // the largest over the grid lanes
+  int shift;                   // log2 of the side of the bit layout (SmallBlockOutput::grid_shift)
 };
 
 // Coverage and raw depth of every candidate pixel of the grid lanes, one pixel position per step.
@@ -152,7 +153,7 @@ RASTERCMP_AVX2 void evaluate_grid(const GridLanes& g, const Edge8 (&edges)[3], c
     const __m256 py = _mm256_cvtepi32_ps(_mm256_add_epi32(g.y0, _mm256_set1_epi32(dy)));
     __m256i e[3] = {row_e[0], row_e[1], row_e[2]};
     for (int dx = 0; dx < g.columns; ++dx) {
-      const int p = dy * kGridSide + dx;
+      const int p = (dy << g.shift) + dx;
       const __m256i in_xy = _mm256_andnot_si256(_mm256_cmpgt_epi32(_mm256_set1_epi32(dx), g.w), in_y);
       const __m256i covered = _mm256_andnot_si256(_mm256_srai_epi32(_mm256_or_si256(_mm256_or_si256(e[0], e[1]), e[2]), 31), in_xy);
       const __m256i bit = _mm256_and_si256(covered, _mm256_set1_epi32(int32_t(1u << (p & 31))));
@@ -161,7 +162,7 @@ RASTERCMP_AVX2 void evaluate_grid(const GridLanes& g, const Edge8 (&edges)[3], c
       if constexpr (F != DepthFormat::None) {
         // + o with o = 0 (draws with depth bias take the scalar set-up); the add turns -0 into +0
         const __m256 z = finish_depth8(mul_add8(plane.dzdy, py, inner[dx], depth.fma), _mm256_setzero_ps(), depth);
-        _mm256_store_si256(reinterpret_cast<__m256i*>(out.grid_raw[dy * g.columns + dx]), to_raw<F>(z));
+        _mm256_store_si256(reinterpret_cast<__m256i*>(out.grid_raw[p]), to_raw<F>(z));
       }
       for (int i = 0; i < 3; ++i) e[i] = _mm256_add_epi32(e[i], gx[i]);
     }
@@ -171,6 +172,11 @@ RASTERCMP_AVX2 void evaluate_grid(const GridLanes& g, const Edge8 (&edges)[3], c
   const __m256i lo4 = _mm256_unpacklo_epi32(bits_lo, bits_hi), hi4 = _mm256_unpackhi_epi32(bits_lo, bits_hi);
   _mm256_store_si256(reinterpret_cast<__m256i*>(out.grid_bits), _mm256_permute2x128_si256(lo4, hi4, 0x20));
   _mm256_store_si256(reinterpret_cast<__m256i*>(out.grid_bits + 4), _mm256_permute2x128_si256(lo4, hi4, 0x31));
+  if (g.shift == kSmallGridShift) {  // 16 bits per lane: lanes 0-3 and 4-7 packed into one word each
+    const __m256i packed = _mm256_packus_epi32(bits_lo, _mm256_setzero_si256());  // bits < 2^16: no saturation
+    out.grid_words[0] = uint64_t(_mm_cvtsi128_si64(_mm256_castsi256_si128(packed)));
+    out.grid_words[1] = uint64_t(_mm_cvtsi128_si64(_mm256_extracti128_si256(packed, 1)));
+  }
 }
 
 // Largest value of v (>= 0) among the lanes set in `mask`, 0 when none is.
@@ -239,8 +245,10 @@ RASTERCMP_AVX2 void setup_small_block_avx2(const SmallBlockInput& in, SmallBlock
   _mm256_store_si256(reinterpret_cast<__m256i*>(out.x1), x1);
   _mm256_store_si256(reinterpret_cast<__m256i*>(out.y1), y1);
   if (out.grid_mask) {
-    const GridLanes g{grid, x0, y0, w, h, max_lane(w, grid) + 1, max_lane(h, grid) + 1};
-    out.grid_columns = g.columns;
+    const int columns = max_lane(w, grid) + 1, rows = max_lane(h, grid) + 1;
+    const int shift = columns <= kSmallGridSide && rows <= kSmallGridSide ? kSmallGridShift : 3;
+    const GridLanes g{grid, x0, y0, w, h, columns, rows, shift};
+    out.grid_shift = shift;
     switch (in.depth.format) {
       case DepthFormat::None: evaluate_grid<DepthFormat::None>(g, edges, plane, in.depth, out); break;
       case DepthFormat::D16Unorm: evaluate_grid<DepthFormat::D16Unorm>(g, edges, plane, in.depth, out); break;
