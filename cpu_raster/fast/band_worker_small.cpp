@@ -94,14 +94,7 @@ void BandWorker::draw_block(uint32_t d, const SmallBlock& block) {
 bool BandWorker::draw_grid_block(const SmallBlock& block, uint32_t owner_of_lane_0, const DrawRaster& raster) {
   const SmallBlockOutput& out = block.out;
   if (out.grid_mask == 0) return true;
-  int32_t x0 = INT32_MAX, y0 = INT32_MAX, x1 = INT32_MIN, y1 = INT32_MIN;
-  for (uint32_t lanes = out.grid_mask; lanes != 0; lanes &= lanes - 1) {
-    const int l = std::countr_zero(lanes);
-    x0 = std::min(x0, out.x0[l]);
-    y0 = std::min(y0, out.y0[l]);
-    x1 = std::max(x1, out.x1[l]);
-    y1 = std::max(y1, out.y1[l]);
-  }
+  const int32_t x0 = out.grid_x0, y0 = out.grid_y0, x1 = out.grid_x1, y1 = out.grid_y1;
   const int32_t ty = y0 >> kTileOrder;
   if (ty != (y1 >> kTileOrder)) return false;
   if (!owns_tile_row(ty)) return true;

@@ -59,6 +59,7 @@ struct SmallBlockOutput {
   // its raw depth is grid_raw[p][lane] (only the block's window is written). With the small side,
   // grid_words[w] also holds lanes 4w..4w+3's bits, 16 per lane (scatter_block's single loop).
   int32_t grid_shift = 3;
+  int32_t grid_x0 = 0, grid_y0 = 0, grid_x1 = -1, grid_y1 = -1;  // the union of the grid lanes' rectangles
   alignas(32) uint64_t grid_bits[8];
   uint64_t grid_words[2];
   alignas(32) uint32_t grid_raw[kGridSide * kGridSide][8];

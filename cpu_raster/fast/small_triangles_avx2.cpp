@@ -3,6 +3,7 @@
 #include <immintrin.h>
 
 #include <algorithm>
+#include <climits>
 
 #include "cpu_raster/fast/avx2_depth.hpp"
 #include "cpu_raster/fast/cpu_features.hpp"
@@ -194,6 +195,20 @@ RASTERCMP_AVX2 void evaluate_grid(const GridLanes& g, const Edge8 (&edges)[3], c
   else evaluate_grid<F, 3>(g, edges, plane, depth, out);
 }
 
+// Smallest and largest lane of v.
+RASTERCMP_AVX2 int min_of_lanes(__m256i m) {
+  m = _mm256_min_epi32(m, _mm256_permute2x128_si256(m, m, 0x01));
+  m = _mm256_min_epi32(m, _mm256_shuffle_epi32(m, 0x4E));
+  m = _mm256_min_epi32(m, _mm256_shuffle_epi32(m, 0xB1));
+  return _mm256_cvtsi256_si32(m);
+}
+RASTERCMP_AVX2 int max_of_lanes(__m256i m) {
+  m = _mm256_max_epi32(m, _mm256_permute2x128_si256(m, m, 0x01));
+  m = _mm256_max_epi32(m, _mm256_shuffle_epi32(m, 0x4E));
+  m = _mm256_max_epi32(m, _mm256_shuffle_epi32(m, 0xB1));
+  return _mm256_cvtsi256_si32(m);
+}
+
 // Largest value of v (>= 0) among the lanes set in `mask`, 0 when none is.
 RASTERCMP_AVX2 int max_lane(__m256i v, __m256i mask) {
   __m256i m = _mm256_and_si256(v, mask);
@@ -264,6 +279,13 @@ RASTERCMP_AVX2 void setup_small_block_avx2(const SmallBlockInput& in, SmallBlock
     const int shift = columns <= kSmallGridSide && rows <= kSmallGridSide ? kSmallGridShift : 3;
     const GridLanes g{grid, x0, y0, w, h, columns, rows, shift};
     out.grid_shift = shift;
+    // The union of the grid lanes' rectangles (lanes past in.count repeat a lane's primitive, so
+    // they add nothing to it).
+    const __m256i none_low = _mm256_set1_epi32(INT32_MAX), none_high = _mm256_set1_epi32(INT32_MIN);
+    out.grid_x0 = min_of_lanes(_mm256_blendv_epi8(none_low, x0, grid));
+    out.grid_y0 = min_of_lanes(_mm256_blendv_epi8(none_low, y0, grid));
+    out.grid_x1 = max_of_lanes(_mm256_blendv_epi8(none_high, x1, grid));
+    out.grid_y1 = max_of_lanes(_mm256_blendv_epi8(none_high, y1, grid));
     switch (in.depth.format) {
       case DepthFormat::None: evaluate_grid<DepthFormat::None>(g, edges, plane, in.depth, out); break;
       case DepthFormat::D16Unorm: evaluate_grid<DepthFormat::D16Unorm>(g, edges, plane, in.depth, out); break;
