@@ -1,11 +1,14 @@
 // BandWorker's small-triangle blocks: drawing a set-up block into the worker's rows, and the
 // phase before the walks that measures which tile rows each block may reach.
+#include <immintrin.h>
+
 #include <algorithm>
 #include <bit>
 #include <climits>
 
 #include "cpu_raster/assemble.hpp"
 #include "cpu_raster/fast/band_worker.hpp"
+#include "cpu_raster/fast/cpu_features.hpp"
 #include "cpu_raster/fast/small_block_input.hpp"
 #include "model/render_result.hpp"
 
@@ -54,6 +57,28 @@ uint32_t list_block_tile_rows(const uint32_t* indices, const int16_t* tile_rows,
   return low == kRowUnknown ? kBlockAnyRow : pack_rows(low, high, region);
 }
 
+// The same with three AVX2 gathers of 32 bits at 2-byte steps (each row is the low half; the
+// last position's read reaches 2 bytes into the scratch's padding, thread_row_scratch).
+RASTERCMP_AVX2 uint32_t list_block_tile_rows_avx2(const uint32_t* indices, const int16_t* tile_rows, const PixelRect& region) {
+  const int* base = reinterpret_cast<const int*>(tile_rows);
+  __m256i r[3];
+  for (int j = 0; j < 3; ++j) {
+    const __m256i idx = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(indices + 8 * j));
+    const __m256i word = _mm256_i32gather_epi32(base, idx, 2);
+    r[j] = _mm256_srai_epi32(_mm256_slli_epi32(word, 16), 16);
+  }
+  __m256i lo = _mm256_min_epi32(r[0], _mm256_min_epi32(r[1], r[2]));
+  __m256i hi = _mm256_max_epi32(r[0], _mm256_max_epi32(r[1], r[2]));
+  lo = _mm256_min_epi32(lo, _mm256_permute2x128_si256(lo, lo, 0x01));
+  hi = _mm256_max_epi32(hi, _mm256_permute2x128_si256(hi, hi, 0x01));
+  lo = _mm256_min_epi32(lo, _mm256_shuffle_epi32(lo, 0x4E));
+  hi = _mm256_max_epi32(hi, _mm256_shuffle_epi32(hi, 0x4E));
+  lo = _mm256_min_epi32(lo, _mm256_shuffle_epi32(lo, 0xB1));
+  hi = _mm256_max_epi32(hi, _mm256_shuffle_epi32(hi, 0xB1));
+  const int32_t low = _mm256_cvtsi256_si32(lo), high = _mm256_cvtsi256_si32(hi);
+  return low == kRowUnknown ? kBlockAnyRow : pack_rows(low, high, region);
+}
+
 template <Topology T, bool Indexed>
 void measure_rows(FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end) {
   if constexpr (T == Topology::TriangleList && Indexed) {  // the full blocks of a mesh
@@ -62,6 +87,10 @@ void measure_rows(FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end) {
     const int16_t* tile_rows = frame.draws[d].tile_rows;
     uint32_t* block_rows = frame.draws[d].block_rows;
     const PixelRect region = frame.exact.region;
+    if (frame.raster.avx2) {
+      for (; begin < full_end; ++begin)
+        block_rows[begin] = list_block_tile_rows_avx2(indices + 24 * size_t(begin), tile_rows, region);
+    }
     for (; begin < full_end; ++begin)
       block_rows[begin] = list_block_tile_rows(indices + 24 * size_t(begin), tile_rows, region);
   }
