@@ -40,25 +40,9 @@ uint32_t block_tile_rows(const SmallBlockInput& in, const int16_t* tile_rows, co
 }
 
 // block_tile_rows for a full block of an indexed list: its 24 corners are consecutive in the
-// index buffer. kRowUnknown is INT16_MIN, below every row, so the minimum finds it without a
-// branch per corner; four independent minima and maxima keep the compare chains short (the
-// loop was bound by one chain of 24 dependent compares).
-uint32_t list_block_tile_rows(const uint32_t* indices, const int16_t* tile_rows, const PixelRect& region) {
-  int32_t lo[4], hi[4];
-  for (int j = 0; j < 4; ++j) lo[j] = hi[j] = tile_rows[indices[j]];
-#pragma GCC unroll 24
-  for (int k = 4; k < 24; ++k) {
-    const int32_t row = tile_rows[indices[k]];
-    lo[k & 3] = std::min(lo[k & 3], row);
-    hi[k & 3] = std::max(hi[k & 3], row);
-  }
-  const int32_t low = std::min(std::min(lo[0], lo[1]), std::min(lo[2], lo[3]));
-  const int32_t high = std::max(std::max(hi[0], hi[1]), std::max(hi[2], hi[3]));
-  return low == kRowUnknown ? kBlockAnyRow : pack_rows(low, high, region);
-}
-
-// The same with three AVX2 gathers of 32 bits at 2-byte steps (each row is the low half; the
-// last position's read reaches 2 bytes into the scratch's padding, thread_row_scratch).
+// index buffer; three AVX2 gathers of 32 bits at 2-byte steps fetch their rows (each row is the
+// low half; the last position's read reaches 2 bytes into the scratch's padding,
+// thread_row_scratch). kRowUnknown is INT16_MIN, below every row, so the minimum finds it.
 RASTERCMP_AVX2 uint32_t list_block_tile_rows_avx2(const uint32_t* indices, const int16_t* tile_rows, const PixelRect& region) {
   const int* base = reinterpret_cast<const int*>(tile_rows);
   __m256i r[3];
@@ -87,12 +71,9 @@ void measure_rows(FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end) {
     const int16_t* tile_rows = frame.draws[d].tile_rows;
     uint32_t* block_rows = frame.draws[d].block_rows;
     const PixelRect region = frame.exact.region;
-    if (frame.raster.avx2) {
-      for (; begin < full_end; ++begin)
-        block_rows[begin] = list_block_tile_rows_avx2(indices + 24 * size_t(begin), tile_rows, region);
-    }
+    // small_blocks draws exist on AVX2 hosts only (their set-up is setup_small_block_avx2)
     for (; begin < full_end; ++begin)
-      block_rows[begin] = list_block_tile_rows(indices + 24 * size_t(begin), tile_rows, region);
+      block_rows[begin] = list_block_tile_rows_avx2(indices + 24 * size_t(begin), tile_rows, region);
   }
   SmallBlock block;
   for (uint32_t b = begin; b < end; ++b) {
