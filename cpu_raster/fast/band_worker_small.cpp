@@ -76,8 +76,10 @@ void measure_rows(FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end) {
       block_rows[begin] = list_block_tile_rows_avx2(indices + 24 * size_t(begin), tile_rows, region);
   }
   SmallBlock block;
+  fill_block_draw(frame, d, block);
+  const uint32_t count = primitive_count(frame.scene->draws[d]);
   for (uint32_t b = begin; b < end; ++b) {
-    fill_block_input<T, Indexed>(frame, d, b, block);
+    fill_block_corners<T, Indexed>(frame.scene->draws[d].indices.data(), count, b, block);
     frame.draws[d].block_rows[b] = block_tile_rows(block.in, frame.draws[d].tile_rows, frame.exact.region);
   }
 }
