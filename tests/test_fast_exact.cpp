@@ -79,6 +79,41 @@ TEST_P(FastSmallMeshes, MatchExactPath) {
 INSTANTIATE_TEST_SUITE_P(Seeds, FastSmallMeshes, ::testing::Range<uint64_t>(1, 41),
                          [](const ::testing::TestParamInfo<uint64_t>& info) { return "seed_" + std::to_string(info.param); });
 
+// Meshes of cells of about a pixel: most blocks' grid lanes fit in 4x4 pixels and take the packed
+// layout (small_triangles.hpp, grid_words); read as strips and fans the same indices make
+// triangles that overlap inside a block, so the lanes' order decides pixels.
+TEST(FastTinyMeshes, PackedGridLayoutMatchesExactPath) {
+  for (uint64_t seed = 1; seed <= 12; ++seed) {
+    fast_test::Random r(seed);
+    Scene scene;
+    scene.name = "test.fast.tiny_mesh." + std::to_string(seed);
+    scene.width = 40 + r.below(60);
+    scene.height = 70 + r.below(70);  // two or more tile rows
+    scene.depth_format = DepthFormat(seed % 4);
+    const uint32_t columns = uint32_t(float(scene.width) / float(r.range(0.7, 1.6)));
+    const uint32_t rows = uint32_t(float(scene.height) / float(r.range(0.7, 1.6)));
+    Draw draw;
+    for (uint32_t j = 0; j <= rows; ++j)
+      for (uint32_t i = 0; i <= columns; ++i)
+        draw.positions_clip.emplace_back(-1.0f + 2.0f * (float(i) + float(r.range(-0.3, 0.3))) / float(columns),
+                                         -1.0f + 2.0f * (float(j) + float(r.range(-0.3, 0.3))) / float(rows),
+                                         float(r.range(0.0, 1.0)), 1.0f);
+    for (uint32_t j = 0; j < rows; ++j)
+      for (uint32_t i = 0; i < columns; ++i) {
+        const uint32_t v = j * (columns + 1) + i;
+        for (uint32_t k : {v, v + 1, v + columns + 2, v, v + columns + 2, v + columns + 1}) draw.indices.push_back(k);
+      }
+    draw.topology = seed % 3 == 0 ? Topology::TriangleList : seed % 3 == 1 ? Topology::TriangleStrip : Topology::TriangleFan;
+    if (seed % 6 == 0) draw.topology = Topology::TriangleList;
+    draw.state.depth.compare_op = CompareOp((seed / 4) % 8);
+    draw.state.depth.write_enable = seed % 5 != 0;
+    scene.draws.push_back(draw);
+    draw.state.depth.compare_op = CompareOp::LessOrEqual;  // a second pass over the same mesh
+    scene.draws.push_back(std::move(draw));
+    expect_fast_matches(scene, seed % 2 == 0, {1u, 2u});
+  }
+}
+
 // The fast clear skips a tile's clear only when the first triangle replaces every value of it.
 TEST(FastClear, TilesKeepTheirClearValuesUnderDepthWritesOff) {
   for (const DepthFormat format : {DepthFormat::D16Unorm, DepthFormat::X8D24Unorm, DepthFormat::D32Sfloat}) {

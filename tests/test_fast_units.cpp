@@ -14,6 +14,7 @@
 #include "cpu_raster/fast/bench_stats.hpp"
 #include "cpu_raster/fast/cpu_features.hpp"
 #include "cpu_raster/fast/fast_vertices.hpp"
+#include "cpu_raster/fast/small_triangles.hpp"
 #include "cpu_raster/fast/tile_depth_bounds.hpp"
 #include "cpu_raster/fast/tile_edges.hpp"
 #include "cpu_raster/fixed_point.hpp"
@@ -91,6 +92,48 @@ TEST(FastVertices, Avx2PassEqualsScalarPass) {
 }
 
 // G > 0 exactly where the exact 64-bit edge value E > 0, over random rectangles of a tile.
+// Eight triangles of about a pixel: the block takes the packed 4x4 layout, and grid_words holds
+// each grid lane's 16 bits (lane 4w + k at bit 16k of word w) equal to its grid_bits.
+TEST(FastSmallTriangles, PackedGridWordsHoldEachLanesBits) {
+  if (!host_has_avx2_fma()) GTEST_SKIP() << "host without AVX2/FMA: the eight-wide set-up does not run";
+  fast_test::Random r(11);
+  for (int trial = 0; trial < 200; ++trial) {
+    std::vector<FastVertex> vertices;
+    std::vector<uint32_t> corners[3];
+    for (int l = 0; l < 8; ++l) {
+      const float cx = float(r.range(4.0, 60.0)), cy = float(r.range(4.0, 60.0));
+      for (int k = 0; k < 3; ++k) {
+        FastVertex v{};
+        v.x = cx + float(r.range(-1.2, 1.2));
+        v.y = cy + float(r.range(-1.2, 1.2));
+        v.z = float(r.range(0.0, 1.0));
+        v.x_fixed = int32_t(std::nearbyint((v.x - 0.5f) * 256.0f));
+        v.y_fixed = int32_t(std::nearbyint((v.y - 0.5f) * 256.0f));
+        corners[k].push_back(uint32_t(vertices.size()));
+        vertices.push_back(v);
+      }
+    }
+    SmallBlockInput in;
+    in.vertices = vertices.data();
+    for (int k = 0; k < 3; ++k) in.corners[k] = corners[k].data();
+    in.count = 8;
+    in.region = PixelRect{0, 0, 63, 63};
+    in.depth.format = DepthFormat::D32Sfloat;
+    SmallBlockOutput out;
+    setup_small_block_avx2(in, out);
+    if (out.grid_mask == 0) continue;
+    bool fits = true;
+    for (int l = 0; l < 8; ++l)
+      if ((out.grid_mask >> l) & 1u) fits = fits && out.x1[l] - out.x0[l] < kSmallGridSide && out.y1[l] - out.y0[l] < kSmallGridSide;
+    ASSERT_EQ(out.grid_shift, fits ? kSmallGridShift : 3) << "trial " << trial;
+    if (!fits) continue;
+    for (int l = 0; l < 8; ++l) {
+      if (!((out.grid_mask >> l) & 1u)) continue;
+      EXPECT_EQ((out.grid_words[l / 4] >> (16 * (l % 4))) & 0xFFFFu, out.grid_bits[l]) << "trial " << trial << " lane " << l;
+    }
+  }
+}
+
 TEST(FastTileEdges, GFormAgreesWithExactEdgeValues) {
   fast_test::Random r(11);
   for (int trial = 0; trial < 400; ++trial) {

@@ -108,14 +108,17 @@ void BandWorker::walk_triangles(uint32_t d) {
 template <Topology T, bool Indexed>
 void BandWorker::walk_small_blocks(uint32_t d) {
   const FastDraw& fd = frame_.draws[d];
-  const uint32_t blocks = (primitive_count(frame_.scene->draws[d]) + 7) / 8;
+  const Draw& draw = frame_.scene->draws[d];
+  const uint32_t count = primitive_count(draw);
+  const uint32_t blocks = (count + 7) / 8;
+  fill_block_draw(frame_, d, block_);
   for (uint32_t b = 0; b < blocks; ++b) {
     const uint32_t rows = fd.block_rows ? fd.block_rows[b] : kBlockAnyRow;  // null: one worker owns every row
     if (rows != kBlockAnyRow) {
       const int32_t lo = int32_t(rows & 0xFFFFu), hi = int32_t(rows >> 16);
       if (lo > hi || !owns_tile_rows(lo, hi)) continue;
     }
-    fill_block_input<T, Indexed>(frame_, d, b, block_);
+    fill_block_corners<T, Indexed>(draw.indices.data(), count, b, block_);
     setup_small_block_avx2(block_.in, block_.out);
     draw_block(d, block_);
   }

@@ -1,10 +1,14 @@
 // BandWorker's small-triangle blocks: drawing a set-up block into the worker's rows, and the
 // phase before the walks that measures which tile rows each block may reach.
+#include <immintrin.h>
+
 #include <algorithm>
 #include <bit>
 #include <climits>
 
+#include "cpu_raster/assemble.hpp"
 #include "cpu_raster/fast/band_worker.hpp"
+#include "cpu_raster/fast/cpu_features.hpp"
 #include "cpu_raster/fast/small_block_input.hpp"
 #include "model/render_result.hpp"
 
@@ -35,11 +39,47 @@ uint32_t block_tile_rows(const SmallBlockInput& in, const int16_t* tile_rows, co
   return pack_rows(lo, hi, region);
 }
 
+// block_tile_rows for a full block of an indexed list: its 24 corners are consecutive in the
+// index buffer; three AVX2 gathers of 32 bits at 2-byte steps fetch their rows (each row is the
+// low half; the last position's read reaches 2 bytes into the scratch's padding,
+// thread_row_scratch). kRowUnknown is INT16_MIN, below every row, so the minimum finds it.
+RASTERCMP_AVX2 uint32_t list_block_tile_rows_avx2(const uint32_t* indices, const int16_t* tile_rows, const PixelRect& region) {
+  const int* base = reinterpret_cast<const int*>(tile_rows);
+  __m256i r[3];
+  for (int j = 0; j < 3; ++j) {
+    const __m256i idx = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(indices + 8 * j));
+    const __m256i word = _mm256_i32gather_epi32(base, idx, 2);
+    r[j] = _mm256_srai_epi32(_mm256_slli_epi32(word, 16), 16);
+  }
+  __m256i lo = _mm256_min_epi32(r[0], _mm256_min_epi32(r[1], r[2]));
+  __m256i hi = _mm256_max_epi32(r[0], _mm256_max_epi32(r[1], r[2]));
+  lo = _mm256_min_epi32(lo, _mm256_permute2x128_si256(lo, lo, 0x01));
+  hi = _mm256_max_epi32(hi, _mm256_permute2x128_si256(hi, hi, 0x01));
+  lo = _mm256_min_epi32(lo, _mm256_shuffle_epi32(lo, 0x4E));
+  hi = _mm256_max_epi32(hi, _mm256_shuffle_epi32(hi, 0x4E));
+  lo = _mm256_min_epi32(lo, _mm256_shuffle_epi32(lo, 0xB1));
+  hi = _mm256_max_epi32(hi, _mm256_shuffle_epi32(hi, 0xB1));
+  const int32_t low = _mm256_cvtsi256_si32(lo), high = _mm256_cvtsi256_si32(hi);
+  return low == kRowUnknown ? kBlockAnyRow : pack_rows(low, high, region);
+}
+
 template <Topology T, bool Indexed>
 void measure_rows(FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end) {
+  if constexpr (T == Topology::TriangleList && Indexed) {  // the full blocks of a mesh
+    const uint32_t full_end = std::min(end, primitive_count(frame.scene->draws[d]) / 8);
+    const uint32_t* indices = frame.scene->draws[d].indices.data();
+    const int16_t* tile_rows = frame.draws[d].tile_rows;
+    uint32_t* block_rows = frame.draws[d].block_rows;
+    const PixelRect region = frame.exact.region;
+    // small_blocks draws exist on AVX2 hosts only (their set-up is setup_small_block_avx2)
+    for (; begin < full_end; ++begin)
+      block_rows[begin] = list_block_tile_rows_avx2(indices + 24 * size_t(begin), tile_rows, region);
+  }
   SmallBlock block;
+  fill_block_draw(frame, d, block);
+  const uint32_t count = primitive_count(frame.scene->draws[d]);
   for (uint32_t b = begin; b < end; ++b) {
-    fill_block_input<T, Indexed>(frame, d, b, block);
+    fill_block_corners<T, Indexed>(frame.scene->draws[d].indices.data(), count, b, block);
     frame.draws[d].block_rows[b] = block_tile_rows(block.in, frame.draws[d].tile_rows, frame.exact.region);
   }
 }
@@ -66,14 +106,7 @@ void BandWorker::draw_block(uint32_t d, const SmallBlock& block) {
 bool BandWorker::draw_grid_block(const SmallBlock& block, uint32_t owner_of_lane_0, const DrawRaster& raster) {
   const SmallBlockOutput& out = block.out;
   if (out.grid_mask == 0) return true;
-  int32_t x0 = INT32_MAX, y0 = INT32_MAX, x1 = INT32_MIN, y1 = INT32_MIN;
-  for (uint32_t lanes = out.grid_mask; lanes != 0; lanes &= lanes - 1) {
-    const int l = std::countr_zero(lanes);
-    x0 = std::min(x0, out.x0[l]);
-    y0 = std::min(y0, out.y0[l]);
-    x1 = std::max(x1, out.x1[l]);
-    y1 = std::max(y1, out.y1[l]);
-  }
+  const int32_t x0 = out.grid_x0, y0 = out.grid_y0, x1 = out.grid_x1, y1 = out.grid_y1;
   const int32_t ty = y0 >> kTileOrder;
   if (ty != (y1 >> kTileOrder)) return false;
   if (!owns_tile_row(ty)) return true;

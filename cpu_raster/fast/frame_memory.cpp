@@ -37,7 +37,8 @@ FastVertex* VertexScratch::acquire(size_t count) {
 
 int16_t* thread_row_scratch(size_t count) {
   thread_local std::vector<int16_t> rows;
-  if (rows.size() < count + 8) rows.resize(count + 8);  // + 8: the AVX2 pass stores 8 rows at a time
+  // + 8: the AVX2 pass stores 8 rows at a time; the block-row gathers read 2 bytes past a position
+  if (rows.size() < count + 8) rows.resize(count + 8);
   return rows.data();
 }
 

@@ -21,20 +21,23 @@ inline std::array<uint32_t, 3> vertex_numbers(uint32_t i) {
   return {i + 1, i + 2, 0};  // fan
 }
 
-// Lane l's corners: through the index buffer for full blocks of indexed lists, else copied.
-template <Topology T, bool Indexed>
-inline void fill_block_input(const FastFrame& frame, uint32_t d, uint32_t block, SmallBlock& slot) {
+// What every block of draw d shares: the vertex array, region, face and cull state, depth.
+inline void fill_block_draw(const FastFrame& frame, uint32_t d, SmallBlock& slot) {
   const Draw& draw = frame.scene->draws[d];
-  const FastDraw& fd = frame.draws[d];
-  const uint32_t* indices = draw.indices.data();
-  const uint32_t count = primitive_count(draw);
   SmallBlockInput& in = slot.in;
-  slot.first = block * 8;
-  in.vertices = fd.vertices;
+  in.vertices = frame.draws[d].vertices;
   in.region = frame.exact.region;
   in.front_ccw = draw.state.front_face == FrontFace::CounterClockwise;
   in.cull = draw.state.cull_mode;
-  in.depth = fd.raster.kernel;
+  in.depth = frame.draws[d].raster.kernel;
+}
+
+// Lane l's corners of block `block` of a draw of `count` primitives: through the index buffer for
+// full blocks of indexed lists, else copied. The rest of slot.in comes from fill_block_draw.
+template <Topology T, bool Indexed>
+inline void fill_block_corners(const uint32_t* indices, uint32_t count, uint32_t block, SmallBlock& slot) {
+  SmallBlockInput& in = slot.in;
+  slot.first = block * 8;
   in.count = std::min(count - slot.first, 8u);
   if (T == Topology::TriangleList && Indexed && in.count == 8) {
     for (int k = 0; k < 3; ++k) in.corners[k] = indices + 3 * size_t(slot.first) + k;

@@ -45,10 +45,10 @@ inline bool scatter_bits(const SmallBlockOutput& b, int l, uint64_t bits, uint32
   const size_t origin = size_t(b.y0[l]) * size_t(t.width) + size_t(b.x0[l]);
   for (; bits != 0; bits &= bits - 1) {
     const int p = std::countr_zero(bits);
-    const int dy = p / kGridSide, dx = p % kGridSide;
+    const int dy = p >> b.grid_shift, dx = p & ((1 << b.grid_shift) - 1);
     const size_t i = origin + size_t(dy) * size_t(t.width) + size_t(dx);
     if constexpr (F != DepthFormat::None) {
-      const uint32_t raw = b.grid_raw[dy * b.grid_columns + dx][l];
+      const uint32_t raw = b.grid_raw[p][l];
       if (!passes<F, Op>(raw, t.depth[i])) continue;
       if (depth_write) t.depth[i] = raw;
     }
@@ -64,13 +64,44 @@ bool scatter(const SmallBlockOutput& b, int l, uint32_t owner, int32_t row_lo, i
   // Rows outside [row_lo, row_hi] belong to another worker: their bits are dropped up front.
   uint64_t bits = b.grid_bits[l];
   const int32_t first_row = row_lo - b.y0[l], last_row = row_hi - b.y0[l];
-  if (first_row > 0) bits &= ~uint64_t(0) << (first_row * kGridSide);
-  if (last_row < kGridSide - 1) bits &= (uint64_t(1) << ((last_row + 1) * kGridSide)) - 1u;
+  if (first_row > 0) bits &= ~uint64_t(0) << (first_row << b.grid_shift);
+  if (last_row < kGridSide - 1) bits &= (uint64_t(1) << ((last_row + 1) << b.grid_shift)) - 1u;
   return scatter_bits<F, Op>(b, l, bits, owner, depth_write, t);
+}
+
+// The 4x4 layout: every covered pixel of the block in one loop per four lanes (bit 16*k + p of
+// grid_words[w] is lane 4w + k's pixel p), lanes in order and each lane's pixels in raster order,
+// as scatter_bits lane by lane but without a loop exit to predict per lane.
+template <DepthFormat F, CompareOp Op>
+bool scatter_words(const SmallBlockOutput& b, uint32_t owner_of_lane_0, bool depth_write, const TileTarget& t) {
+  alignas(32) int32_t origin[8];
+  for (int l = 0; l < 8; ++l) origin[l] = b.y0[l] * t.width + b.x0[l];  // < 2^28: sides <= 16384
+  bool wrote = false;
+  for (int w = 0; w < 2; ++w) {
+    uint64_t bits = b.grid_words[w];
+    if (((b.grid_mask >> (4 * w)) & 0xFu) != 0xFu) {  // lanes that are not grid lanes drop out
+      for (int k = 0; k < 4; ++k)
+        if (!((b.grid_mask >> (4 * w + k)) & 1u)) bits &= ~(uint64_t(0xFFFF) << (16 * k));
+    }
+    for (; bits != 0; bits &= bits - 1) {
+      const int q = std::countr_zero(bits);
+      const int l = 4 * w + (q >> 4), p = q & 15;
+      const size_t i = size_t(origin[l] + (p >> kSmallGridShift) * t.width + (p & (kSmallGridSide - 1)));
+      if constexpr (F != DepthFormat::None) {
+        const uint32_t raw = b.grid_raw[p][l];
+        if (!passes<F, Op>(raw, t.depth[i])) continue;
+        if (depth_write) t.depth[i] = raw;
+      }
+      t.owner[i] = owner_of_lane_0 + uint32_t(l);
+      wrote = true;
+    }
+  }
+  return wrote;
 }
 
 template <DepthFormat F, CompareOp Op>
 bool scatter_block(const SmallBlockOutput& b, uint32_t owner_of_lane_0, bool depth_write, const TileTarget& t) {
+  if (b.grid_shift == kSmallGridShift) return scatter_words<F, Op>(b, owner_of_lane_0, depth_write, t);
   bool wrote = false;
   for (uint32_t lanes = b.grid_mask; lanes != 0; lanes &= lanes - 1) {
     const int l = std::countr_zero(lanes);

@@ -29,6 +29,8 @@ namespace rastercmp::cpu::fast {
 inline constexpr int32_t kSmallWidth = 8;    // pixels: one 8-lane span per row
 inline constexpr int32_t kSmallHeight = 16;  // rows
 inline constexpr int32_t kGridSide = 8;      // candidate pixels per side of a grid lane
+inline constexpr int32_t kSmallGridShift = 2;  // blocks whose grid lanes all fit in 4x4 pixels
+inline constexpr int32_t kSmallGridSide = 1 << kSmallGridShift;
 
 struct SmallBlockInput {
   const FastVertex* vertices = nullptr;
@@ -52,10 +54,14 @@ struct SmallBlockOutput {
   alignas(32) int32_t x0[8], y0[8], x1[8], y1[8], origin_x[8];
   alignas(32) int32_t g_minus_1[3][8], gx[3][8], gy[3][8];
   alignas(32) float a0[8], dzdx[8], dzdy[8];
-  // Grid lanes: bit dy*kGridSide + dx is set when pixel (x0 + dx, y0 + dy) is covered; its raw
-  // depth is grid_raw[dy*grid_columns + dx][lane] (only the block's window is written).
-  int32_t grid_columns = 0;
+  // Grid lanes: with side = 1 << grid_shift (kSmallGridSide when every grid lane's rectangle fits
+  // in it, else kGridSide), bit p = dy*side + dx is set when pixel (x0 + dx, y0 + dy) is covered;
+  // its raw depth is grid_raw[p][lane] (only the block's window is written). With the small side,
+  // grid_words[w] also holds lanes 4w..4w+3's bits, 16 per lane (scatter_block's single loop).
+  int32_t grid_shift = 3;
+  int32_t grid_x0 = 0, grid_y0 = 0, grid_x1 = -1, grid_y1 = -1;  // the union of the grid lanes' rectangles
   alignas(32) uint64_t grid_bits[8];
+  uint64_t grid_words[2];
   alignas(32) uint32_t grid_raw[kGridSide * kGridSide][8];
 
   // The lane's job (offset 0: draws with depth bias take the scalar set-up).

@@ -3,6 +3,7 @@
 #include <immintrin.h>
 
 #include <algorithm>
+#include <climits>
 
 #include "cpu_raster/fast/avx2_depth.hpp"
 #include "cpu_raster/fast/cpu_features.hpp"
@@ -125,52 +126,87 @@ RASTERCMP_AVX2 void store_job_edges(const Edge8 (&edges)[3], __m256i ox, __m256i
 struct GridLanes {
   __m256i mask, x0, y0, w, h;  // w, h: rectangle width and height minus 1
   int columns, rows;           // the largest over the grid lanes
+  int shift;                   // log2 of the side of the bit layout (SmallBlockOutput::grid_shift)
 };
 
 // Coverage and raw depth of every candidate pixel of the grid lanes, one pixel position per step.
-template <DepthFormat F>
+// Bit p = dy << Shift + dx (SmallBlockOutput::grid_shift), over the block's columns x rows. A row's coverage is
+// gathered as bits dx (a blend on the sign of e0|e1|e2, i.e. all three E - 1 >= 0), then cut to
+// the lanes that reach the row and shifted into place.
+template <DepthFormat F, int Shift>
 RASTERCMP_AVX2 void evaluate_grid(const GridLanes& g, const Edge8 (&edges)[3], const Plane8& plane,
                                   const KernelDepth& depth, SmallBlockOutput& out) {
+  const int columns = g.columns, rows = g.rows;
   __m256i row_e[3], gx[3], gy[3];
   for (int i = 0; i < 3; ++i) {
     row_e[i] = edge_at(edges[i], g.x0, g.y0);
     gx[i] = step_x(edges[i]);
     gy[i] = step_y(edges[i]);
   }
-  // The inner FMA?(dzdx, px, a0) depends on the column only.
+  // Per column: bit dx in the lanes whose rectangle reaches it; the inner FMA?(dzdx, px, a0),
+  // which depends on the column only.
+  __m256i column_bit[kGridSide];
   __m256 inner[kGridSide];
-  if constexpr (F != DepthFormat::None) {
-    for (int dx = 0; dx < g.columns; ++dx) {
+  for (int dx = 0; dx < columns; ++dx) {
+    column_bit[dx] = _mm256_andnot_si256(_mm256_cmpgt_epi32(_mm256_set1_epi32(dx), g.w), _mm256_set1_epi32(1 << dx));
+    if constexpr (F != DepthFormat::None) {
       const __m256 px = _mm256_cvtepi32_ps(_mm256_add_epi32(g.x0, _mm256_set1_epi32(dx)));
       inner[dx] = mul_add8(plane.dzdx, px, plane.a0, depth.fma);
     }
   }
   // Coverage bits per lane: positions 0-31 in bits_lo, 32-63 in bits_hi (32-bit lanes).
   __m256i bits_lo = _mm256_setzero_si256(), bits_hi = _mm256_setzero_si256();
-  for (int dy = 0; dy < g.rows; ++dy) {
+  for (int dy = 0; dy < rows; ++dy) {
     const __m256i in_y = _mm256_andnot_si256(_mm256_cmpgt_epi32(_mm256_set1_epi32(dy), g.h), g.mask);
     const __m256 py = _mm256_cvtepi32_ps(_mm256_add_epi32(g.y0, _mm256_set1_epi32(dy)));
     __m256i e[3] = {row_e[0], row_e[1], row_e[2]};
-    for (int dx = 0; dx < g.columns; ++dx) {
-      const int p = dy * kGridSide + dx;
-      const __m256i in_xy = _mm256_andnot_si256(_mm256_cmpgt_epi32(_mm256_set1_epi32(dx), g.w), in_y);
-      const __m256i covered = _mm256_andnot_si256(_mm256_srai_epi32(_mm256_or_si256(_mm256_or_si256(e[0], e[1]), e[2]), 31), in_xy);
-      const __m256i bit = _mm256_and_si256(covered, _mm256_set1_epi32(int32_t(1u << (p & 31))));
-      if (p < 32) bits_lo = _mm256_or_si256(bits_lo, bit);
-      else bits_hi = _mm256_or_si256(bits_hi, bit);
+    __m256 row_bits = _mm256_setzero_ps();
+    for (int dx = 0; dx < columns; ++dx) {
+      const __m256 outside = _mm256_castsi256_ps(_mm256_or_si256(_mm256_or_si256(e[0], e[1]), e[2]));  // sign: some E <= 0
+      row_bits = _mm256_blendv_ps(_mm256_or_ps(row_bits, _mm256_castsi256_ps(column_bit[dx])), row_bits, outside);
       if constexpr (F != DepthFormat::None) {
         // + o with o = 0 (draws with depth bias take the scalar set-up); the add turns -0 into +0
         const __m256 z = finish_depth8(mul_add8(plane.dzdy, py, inner[dx], depth.fma), _mm256_setzero_ps(), depth);
-        _mm256_store_si256(reinterpret_cast<__m256i*>(out.grid_raw[dy * g.columns + dx]), to_raw<F>(z));
+        _mm256_store_si256(reinterpret_cast<__m256i*>(out.grid_raw[(dy << Shift) + dx]), to_raw<F>(z));
       }
       for (int i = 0; i < 3; ++i) e[i] = _mm256_add_epi32(e[i], gx[i]);
     }
+    const int p0 = dy << Shift;  // the row's first position
+    const __m256i placed = _mm256_sll_epi32(_mm256_and_si256(_mm256_castps_si256(row_bits), in_y), _mm_cvtsi32_si128(p0 & 31));
+    if (p0 < 32) bits_lo = _mm256_or_si256(bits_lo, placed);
+    else bits_hi = _mm256_or_si256(bits_hi, placed);
     for (int i = 0; i < 3; ++i) row_e[i] = _mm256_add_epi32(row_e[i], gy[i]);
   }
   // Interleave into 64-bit lanes: grid_bits[l] = lo[l] | hi[l] << 32.
   const __m256i lo4 = _mm256_unpacklo_epi32(bits_lo, bits_hi), hi4 = _mm256_unpackhi_epi32(bits_lo, bits_hi);
   _mm256_store_si256(reinterpret_cast<__m256i*>(out.grid_bits), _mm256_permute2x128_si256(lo4, hi4, 0x20));
   _mm256_store_si256(reinterpret_cast<__m256i*>(out.grid_bits + 4), _mm256_permute2x128_si256(lo4, hi4, 0x31));
+  if constexpr (Shift == kSmallGridShift) {  // 16 bits per lane: lanes 0-3 and 4-7 packed into one word each
+    const __m256i packed = _mm256_packus_epi32(bits_lo, _mm256_setzero_si256());  // bits < 2^16: no saturation
+    out.grid_words[0] = uint64_t(_mm_cvtsi128_si64(_mm256_castsi256_si128(packed)));
+    out.grid_words[1] = uint64_t(_mm_cvtsi128_si64(_mm256_extracti128_si256(packed, 1)));
+  }
+}
+
+template <DepthFormat F>
+RASTERCMP_AVX2 void evaluate_grid(const GridLanes& g, const Edge8 (&edges)[3], const Plane8& plane,
+                                  const KernelDepth& depth, SmallBlockOutput& out) {
+  if (g.shift == kSmallGridShift) evaluate_grid<F, kSmallGridShift>(g, edges, plane, depth, out);
+  else evaluate_grid<F, 3>(g, edges, plane, depth, out);
+}
+
+// Smallest and largest lane of v.
+RASTERCMP_AVX2 int min_of_lanes(__m256i m) {
+  m = _mm256_min_epi32(m, _mm256_permute2x128_si256(m, m, 0x01));
+  m = _mm256_min_epi32(m, _mm256_shuffle_epi32(m, 0x4E));
+  m = _mm256_min_epi32(m, _mm256_shuffle_epi32(m, 0xB1));
+  return _mm256_cvtsi256_si32(m);
+}
+RASTERCMP_AVX2 int max_of_lanes(__m256i m) {
+  m = _mm256_max_epi32(m, _mm256_permute2x128_si256(m, m, 0x01));
+  m = _mm256_max_epi32(m, _mm256_shuffle_epi32(m, 0x4E));
+  m = _mm256_max_epi32(m, _mm256_shuffle_epi32(m, 0xB1));
+  return _mm256_cvtsi256_si32(m);
 }
 
 // Largest value of v (>= 0) among the lanes set in `mask`, 0 when none is.
@@ -239,8 +275,17 @@ RASTERCMP_AVX2 void setup_small_block_avx2(const SmallBlockInput& in, SmallBlock
   _mm256_store_si256(reinterpret_cast<__m256i*>(out.x1), x1);
   _mm256_store_si256(reinterpret_cast<__m256i*>(out.y1), y1);
   if (out.grid_mask) {
-    const GridLanes g{grid, x0, y0, w, h, max_lane(w, grid) + 1, max_lane(h, grid) + 1};
-    out.grid_columns = g.columns;
+    const int columns = max_lane(w, grid) + 1, rows = max_lane(h, grid) + 1;
+    const int shift = columns <= kSmallGridSide && rows <= kSmallGridSide ? kSmallGridShift : 3;
+    const GridLanes g{grid, x0, y0, w, h, columns, rows, shift};
+    out.grid_shift = shift;
+    // The union of the grid lanes' rectangles (lanes past in.count repeat a lane's primitive, so
+    // they add nothing to it).
+    const __m256i none_low = _mm256_set1_epi32(INT32_MAX), none_high = _mm256_set1_epi32(INT32_MIN);
+    out.grid_x0 = min_of_lanes(_mm256_blendv_epi8(none_low, x0, grid));
+    out.grid_y0 = min_of_lanes(_mm256_blendv_epi8(none_low, y0, grid));
+    out.grid_x1 = max_of_lanes(_mm256_blendv_epi8(none_high, x1, grid));
+    out.grid_y1 = max_of_lanes(_mm256_blendv_epi8(none_high, y1, grid));
     switch (in.depth.format) {
       case DepthFormat::None: evaluate_grid<DepthFormat::None>(g, edges, plane, in.depth, out); break;
       case DepthFormat::D16Unorm: evaluate_grid<DepthFormat::D16Unorm>(g, edges, plane, in.depth, out); break;

@@ -1,12 +1,28 @@
 #include "cpu_raster/fast/worker_pool.hpp"
 
+#include <immintrin.h>
 #include <pthread.h>
 #include <sched.h>
 
+#include <chrono>
 #include <map>
 #include <memory>
 
 namespace rastercmp::cpu::fast {
+namespace {
+
+// Spins (with pause) until done() or kSpinMicros have passed; true when done() held.
+template <class Done>
+bool spin_until(Done done) {
+  const auto limit = std::chrono::steady_clock::now() + std::chrono::microseconds(WorkerPool::kSpinMicros);
+  for (uint32_t i = 1;; ++i) {
+    if (done()) return true;
+    _mm_pause();
+    if ((i & 63) == 0 && std::chrono::steady_clock::now() > limit) return false;
+  }
+}
+
+}  // namespace
 
 WorkerPool::WorkerPool(uint32_t workers) {
   for (uint32_t i = 1; i < workers; ++i) threads_.emplace_back([this, i] { thread_loop(i); });
@@ -56,6 +72,7 @@ void WorkerPool::run(const std::function<void(uint32_t)>& job) {
   }
   start_.notify_all();
   call(job, 0);
+  spin_until([this] { return pending_.load(std::memory_order_acquire) == 0; });
   std::unique_lock<std::mutex> lock(mutex_);
   done_.wait(lock, [this] { return pending_ == 0; });
   job_ = nullptr;
@@ -66,6 +83,7 @@ void WorkerPool::thread_loop(uint32_t index) {
   uint64_t seen = 0;
   for (;;) {
     const std::function<void(uint32_t)>* job = nullptr;
+    if (seen != 0) spin_until([&] { return generation_.load(std::memory_order_acquire) != seen; });
     {
       std::unique_lock<std::mutex> lock(mutex_);
       start_.wait(lock, [&] { return stop_ || generation_ != seen; });

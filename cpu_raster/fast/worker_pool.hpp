@@ -7,8 +7,13 @@
 // caller moves): woken right after other threads of the process were busy, a pool thread was
 // otherwise placed on the caller's CPU and the two workers shared one core for the whole render
 // (measured: 13.8 ms instead of 7.0 ms for two 7 ms jobs).
+// A render runs the pool three times in a row (render_fast.cpp's phases). Waking a thread that
+// sleeps on the condition variable cost 0.2-0.5 ms per run in this VM (measured, docs/
+// performance.md), so a pool thread that has finished a job, and the caller waiting for the others,
+// first spin for up to kSpinMicros on the atomic counters before they sleep.
 #pragma once
 
+#include <atomic>
 #include <condition_variable>
 #include <cstdint>
 #include <exception>
@@ -21,6 +26,8 @@ namespace rastercmp::cpu::fast {
 
 class WorkerPool {
  public:
+  static constexpr int kSpinMicros = 100;
+
   explicit WorkerPool(uint32_t workers);
   ~WorkerPool();
   WorkerPool(const WorkerPool&) = delete;
@@ -38,8 +45,9 @@ class WorkerPool {
   std::mutex mutex_;
   std::condition_variable start_, done_;
   const std::function<void(uint32_t)>* job_ = nullptr;
-  uint64_t generation_ = 0;
-  uint32_t pending_ = 0;
+  // Changed under mutex_ (the condition variables' predicates); read without it while spinning.
+  std::atomic<uint64_t> generation_{0};
+  std::atomic<uint32_t> pending_{0};
   bool stop_ = false;
   std::exception_ptr error_;
   std::vector<std::thread> threads_;
