@@ -14,20 +14,6 @@
 namespace rastercmp {
 namespace {
 
-RenderResult to_render_result(cpu::RenderTargets&& targets, bool fma) {
-  RenderResult result;
-  result.backend = "cpu";
-  result.device = kLavapipeProfileDevice;
-  result.fma = fma;
-  result.width = targets.width;
-  result.height = targets.height;
-  result.samples = targets.samples;
-  result.depth_format = targets.depth_format;
-  result.owner = std::move(targets.owner);
-  result.depth_raw = std::move(targets.depth_raw);
-  return result;
-}
-
 // The exact path, in the order of the specification's chapters: for each draw, the geometry
 // stages (assemble, clip test, clip, viewport, set-up: cpu::run_front_end), then rasterization,
 // the depth test and the writes (cpu::rasterize_primitive). options.skips: cpu_raster/work_skips.hpp.
@@ -43,7 +29,9 @@ RenderResult render_lavapipe(const Scene& scene, const CpuOptions& options) {
       if (outcome.rasterized()) cpu::rasterize_primitive(outcome.raster, depth, targets, options.skips);
     });
   }
-  return to_render_result(std::move(targets), options.fma);
+  RenderResult result;
+  cpu::move_into_result(std::move(targets), kLavapipeProfileDevice, options.fma, result);
+  return result;
 }
 
 }  // namespace

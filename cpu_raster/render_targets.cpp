@@ -17,4 +17,17 @@ RenderTargets make_render_targets(const Scene& scene) {
   return targets;
 }
 
+void move_into_result(RenderTargets&& targets, const std::string& device, bool fma, RenderResult& result) {
+  result.backend = "cpu";
+  result.device = device;
+  result.fma = fma;
+  result.width = targets.width;
+  result.height = targets.height;
+  result.samples = targets.samples;
+  result.depth_format = targets.depth_format;
+  result.owner = std::move(targets.owner);
+  result.depth_raw = std::move(targets.depth_raw);
+  result.coverage_class.clear();
+}
+
 }  // namespace rastercmp::cpu

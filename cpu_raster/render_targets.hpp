@@ -3,8 +3,10 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
+#include "model/render_result.hpp"
 #include "model/scene.hpp"
 
 namespace rastercmp::cpu {
@@ -21,5 +23,9 @@ struct RenderTargets {
 };
 
 RenderTargets make_render_targets(const Scene& scene);
+
+// Moves the attachments into `result` as a CPU render: backend "cpu", `device`, `fma`, the sizes,
+// owner ids and raw depth (any coverage classes left from an earlier render are cleared).
+void move_into_result(RenderTargets&& targets, const std::string& device, bool fma, RenderResult& result);
 
 }  // namespace rastercmp::cpu

@@ -55,20 +55,6 @@ void draw_with_zbuffer(const std::vector<ClassicPrimitive>& primitives, const Cl
   }
 }
 
-RenderResult to_render_result(cpu::RenderTargets&& targets, const CpuOptions& options) {
-  RenderResult result;
-  result.backend = "cpu";
-  result.device = describe_methods(options);
-  result.fma = options.fma;
-  result.width = targets.width;
-  result.height = targets.height;
-  result.samples = targets.samples;
-  result.depth_format = targets.depth_format;
-  result.owner = std::move(targets.owner);
-  result.depth_raw = std::move(targets.depth_raw);
-  return result;
-}
-
 }  // namespace
 
 bool uses_classic_methods(const CpuOptions& options) { return names_classic_stage(options.methods); }
@@ -87,7 +73,9 @@ RenderResult render_classic(const Scene& scene, const CpuOptions& options) {
     for (const PaintedFragment& painted : back_to_front_fragments(primitives, chosen, frame.region))
       write_fragment(painted.fragment, primitives[painted.primitive], false, targets);
   }
-  return to_render_result(std::move(targets), options);
+  RenderResult result;
+  cpu::move_into_result(std::move(targets), describe_methods(options), options.fma, result);
+  return result;
 }
 
 }  // namespace rastercmp

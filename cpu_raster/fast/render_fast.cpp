@@ -213,19 +213,6 @@ void run_workers(FastFrame& frame) {
   worker_pool(frame.workers).run([&frame](uint32_t w) { BandWorker(frame, w).run(); });
 }
 
-void fill_result(RenderResult& result, RenderTargets&& targets, bool fma) {
-  result.backend = "cpu";  // as render_cpu.cpp fills it
-  result.device = kLavapipeProfileDevice;
-  result.fma = fma;
-  result.width = targets.width;
-  result.height = targets.height;
-  result.samples = targets.samples;
-  result.depth_format = targets.depth_format;
-  result.owner = std::move(targets.owner);
-  result.depth_raw = std::move(targets.depth_raw);
-  result.coverage_class.clear();
-}
-
 }  // namespace
 
 void render_fast_into(const Scene& scene, const CpuOptions& options, const FastConfig& config, RenderResult& result) {
@@ -248,7 +235,7 @@ void render_fast_into(const Scene& scene, const CpuOptions& options, const FastC
   transform_all_vertices(frame, check_pending);
   if (frame.workers > 1) measure_all_block_rows(frame);
   run_workers(frame);
-  fill_result(result, std::move(frame.targets), options.fma);
+  move_into_result(std::move(frame.targets), kLavapipeProfileDevice, options.fma, result);
 }
 
 RenderResult render_fast(const Scene& scene, const CpuOptions& options, const FastConfig& config) {
