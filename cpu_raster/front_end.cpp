@@ -95,8 +95,7 @@ FrameContext make_frame_context(const Scene& scene, bool fma, const SetupMethods
   return frame;
 }
 
-void run_front_end(const FrameContext& frame, uint32_t draw_index, const OutcomeSink& sink) {
-  const Draw& draw = frame.scene->draws[draw_index];
+SetupContext make_setup_context(const FrameContext& frame, uint32_t draw_index) {
   SetupContext ctx;
   ctx.framebuffer = frame.framebuffer;
   ctx.region = frame.region;
@@ -105,8 +104,14 @@ void run_front_end(const FrameContext& frame, uint32_t draw_index, const Outcome
   ctx.methods = frame.methods;
   ctx.skips = frame.skips;
   ctx.depth_format = frame.scene->depth_format;
-  ctx.state = &draw.state;
+  ctx.state = &frame.scene->draws[draw_index].state;
   ctx.draw_index = draw_index;
+  return ctx;
+}
+
+void run_front_end(const FrameContext& frame, uint32_t draw_index, const OutcomeSink& sink) {
+  const Draw& draw = frame.scene->draws[draw_index];
+  const SetupContext ctx = make_setup_context(frame, draw_index);
   PrimitiveOutcome base;
   base.draw_index = draw_index;
   base.is_line = is_line_topology(draw.topology);

@@ -58,6 +58,9 @@ struct PrimitiveOutcome {
 using OutcomeSink = std::function<void(const PrimitiveOutcome&)>;
 
 // Runs draw `draw_index` of the frame's scene through the geometry stages, in primitive order.
+// The set-up context of one draw of the frame (the same for the exact and the fast path).
+SetupContext make_setup_context(const FrameContext& frame, uint32_t draw_index);
+
 void run_front_end(const FrameContext& frame, uint32_t draw_index, const OutcomeSink& sink);
 
 }  // namespace rastercmp::cpu

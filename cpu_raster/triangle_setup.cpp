@@ -26,6 +26,15 @@ int64_t doubled_area(const std::array<FixedPoint, 3>& v) {
   return dx01 * dy20 - dx20 * dy01;
 }
 
+// do_triangle_ccw: x0 = min >> 8, x1 = (max - 1) >> 8 (bottom_edge_rule = 0).
+PixelRect triangle_bbox(const std::array<FixedPoint, 3>& v) {
+  const auto [min_x, max_x] = std::minmax({v[0].x.raw, v[1].x.raw, v[2].x.raw});
+  const auto [min_y, max_y] = std::minmax({v[0].y.raw, v[1].y.raw, v[2].y.raw});
+  return PixelRect{min_x >> kFixedOrder, min_y >> kFixedOrder, (max_x - 1) >> kFixedOrder, (max_y - 1) >> kFixedOrder};
+}
+
+}  // namespace
+
 bool face_culled(bool front_facing, CullMode cull) {
   switch (cull) {
     case CullMode::None: return false;
@@ -35,15 +44,6 @@ bool face_culled(bool front_facing, CullMode cull) {
   }
   return false;
 }
-
-// do_triangle_ccw: x0 = min >> 8, x1 = (max - 1) >> 8 (bottom_edge_rule = 0).
-PixelRect triangle_bbox(const std::array<FixedPoint, 3>& v) {
-  const auto [min_x, max_x] = std::minmax({v[0].x.raw, v[1].x.raw, v[2].x.raw});
-  const auto [min_y, max_y] = std::minmax({v[0].y.raw, v[1].y.raw, v[2].y.raw});
-  return PixelRect{min_x >> kFixedOrder, min_y >> kFixedOrder, (max_x - 1) >> kFixedOrder, (max_y - 1) >> kFixedOrder};
-}
-
-}  // namespace
 
 TriangleSetup setup_triangle(const std::array<WindowVertex, 3>& window_in, uint32_t owner, const SetupContext& ctx) {
   TriangleSetup setup;

@@ -30,6 +30,9 @@ struct TriangleSetup {
   RasterPrimitive raster;   // valid when Rasterized (and partly filled before)
 };
 
+// Whether the cull mode drops a triangle of this facing (§2.3).
+bool face_culled(bool front_facing, CullMode cull);
+
 TriangleSetup setup_triangle(const std::array<WindowVertex, 3>& window, uint32_t owner, const SetupContext& context);
 
 }  // namespace rastercmp::cpu

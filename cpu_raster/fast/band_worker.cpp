@@ -16,16 +16,6 @@
 namespace rastercmp::cpu::fast {
 namespace {
 
-bool face_culled(bool front_facing, CullMode cull) {
-  switch (cull) {
-    case CullMode::None: return false;
-    case CullMode::Front: return front_facing;
-    case CullMode::Back: return !front_facing;
-    case CullMode::FrontAndBack: return true;
-  }
-  return false;
-}
-
 WindowVertex window_of(const FastVertex& v) { return WindowVertex{v.x, v.y, v.z}; }
 
 FastTriangle from_raster_primitive(const RasterPrimitive& p, const PixelRect& region) {

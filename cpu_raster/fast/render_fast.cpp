@@ -28,19 +28,6 @@ namespace {
 
 constexpr size_t kVertexBlock = 16384;  // positions per task of the vertex phase
 
-SetupContext make_setup_context(const FrameContext& frame, uint32_t d) {
-  SetupContext ctx;  // as front_end.cpp run_front_end builds it
-  ctx.framebuffer = frame.framebuffer;
-  ctx.region = frame.region;
-  ctx.multisample = frame.multisample;
-  ctx.fma = frame.fma;
-  ctx.methods = frame.methods;
-  ctx.depth_format = frame.scene->depth_format;
-  ctx.state = &frame.scene->draws[d].state;
-  ctx.draw_index = d;
-  return ctx;
-}
-
 // Stored depth values keep the order the bounds rely on (tile_depth_bounds.hpp) in every draw.
 bool frame_bounds_usable(const Scene& scene, const std::vector<FastDraw>& draws) {
   if (!scene.has_depth() || scene.samples != 1) return false;
