@@ -1,6 +1,7 @@
 // The fast CPU path against the exact path: identical owner and depth bytes, at 1 and 2 threads,
-// with the AVX2 kernels and with their scalar twins, on seeded random scenes, on every built-in
-// scene and on small versions of the benchmark scenes (docs/performance.md).
+// with every instruction set the host runs (the scalar twins, AVX2, AVX-512), on seeded random
+// scenes, on every built-in scene and on small versions of the benchmark scenes
+// (docs/performance.md).
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -21,14 +22,17 @@ using fast_test::render_exact;
 using fast_test::render_fast;
 using fast_test::same_bytes;
 
-// Every fast variant against the exact result.
+// Every fast variant against the exact result: the scalar twins and the host's best kernels at
+// every thread count; on an AVX-512 host the AVX2 kernels too, at 2 threads (what an AVX2 host's
+// render_cpu_fast runs; once is enough to keep them honest, and the suite's time counts in CI).
 void expect_fast_matches(const Scene& scene, bool fma, std::initializer_list<uint32_t> thread_counts = {1u, 2u}) {
   const RenderResult exact = render_exact(scene, fma);
   for (const uint32_t threads : thread_counts) {
-    for (const bool avx2 : {true, false}) {
-      SCOPED_TRACE(scene.name + " threads=" + std::to_string(threads) + (avx2 ? " avx2" : " scalar") +
+    for (const fast_test::FastIsa isa : fast_test::host_isas()) {
+      if (isa != fast_test::best_isa() && isa != fast_test::FastIsa::Scalar && threads != 2) continue;
+      SCOPED_TRACE(scene.name + " threads=" + std::to_string(threads) + " " + fast_test::isa_name(isa) +
                    (fma ? " fma" : " no-fma"));
-      EXPECT_TRUE(same_bytes(exact, render_fast(scene, fma, threads, avx2)));
+      EXPECT_TRUE(same_bytes(exact, render_fast(scene, fma, threads, isa)));
     }
   }
 }
@@ -79,39 +83,50 @@ TEST_P(FastSmallMeshes, MatchExactPath) {
 INSTANTIATE_TEST_SUITE_P(Seeds, FastSmallMeshes, ::testing::Range<uint64_t>(1, 41),
                          [](const ::testing::TestParamInfo<uint64_t>& info) { return "seed_" + std::to_string(info.param); });
 
-// Meshes of cells of about a pixel: most blocks' grid lanes fit in 4x4 pixels and take the packed
-// layout (small_triangles.hpp, grid_words); read as strips and fans the same indices make
-// triangles that overlap inside a block, so the lanes' order decides pixels.
+// A jittered mesh of cells of cell_min..cell_max pixels, a list, strip or fan over the same
+// indices (read as strips and fans they make triangles that overlap inside a block, so the lanes'
+// order decides pixels), drawn twice; the format and first op follow the seed.
+Scene jittered_mesh(uint64_t seed, double cell_min, double cell_max) {
+  fast_test::Random r(seed);
+  Scene scene;
+  scene.name = "test.fast.mesh." + std::to_string(seed);
+  scene.width = 40 + r.below(60);
+  scene.height = 70 + r.below(70);  // two or more tile rows
+  scene.depth_format = DepthFormat(seed % 4);
+  const uint32_t columns = uint32_t(float(scene.width) / float(r.range(cell_min, cell_max)));
+  const uint32_t rows = uint32_t(float(scene.height) / float(r.range(cell_min, cell_max)));
+  Draw draw;
+  for (uint32_t j = 0; j <= rows; ++j)
+    for (uint32_t i = 0; i <= columns; ++i)
+      draw.positions_clip.emplace_back(-1.0f + 2.0f * (float(i) + float(r.range(-0.3, 0.3))) / float(columns),
+                                       -1.0f + 2.0f * (float(j) + float(r.range(-0.3, 0.3))) / float(rows),
+                                       float(r.range(0.0, 1.0)), 1.0f);
+  for (uint32_t j = 0; j < rows; ++j)
+    for (uint32_t i = 0; i < columns; ++i) {
+      const uint32_t v = j * (columns + 1) + i;
+      for (uint32_t k : {v, v + 1, v + columns + 2, v, v + columns + 2, v + columns + 1}) draw.indices.push_back(k);
+    }
+  draw.topology = seed % 3 == 0 ? Topology::TriangleList : seed % 3 == 1 ? Topology::TriangleStrip : Topology::TriangleFan;
+  if (seed % 6 == 0) draw.topology = Topology::TriangleList;
+  draw.state.depth.compare_op = CompareOp((seed / 4) % 8);
+  draw.state.depth.write_enable = seed % 5 != 0;
+  scene.draws.push_back(draw);
+  draw.state.depth.compare_op = CompareOp((seed / 4 + 1) % 8);  // a second pass over the same mesh
+  scene.draws.push_back(std::move(draw));
+  return scene;
+}
+
+// Cells of about a pixel: most blocks' grid lanes fit in 4x4 pixels and take the packed layout
+// (small_triangles.hpp, grid_words).
 TEST(FastTinyMeshes, PackedGridLayoutMatchesExactPath) {
-  for (uint64_t seed = 1; seed <= 12; ++seed) {
-    fast_test::Random r(seed);
-    Scene scene;
-    scene.name = "test.fast.tiny_mesh." + std::to_string(seed);
-    scene.width = 40 + r.below(60);
-    scene.height = 70 + r.below(70);  // two or more tile rows
-    scene.depth_format = DepthFormat(seed % 4);
-    const uint32_t columns = uint32_t(float(scene.width) / float(r.range(0.7, 1.6)));
-    const uint32_t rows = uint32_t(float(scene.height) / float(r.range(0.7, 1.6)));
-    Draw draw;
-    for (uint32_t j = 0; j <= rows; ++j)
-      for (uint32_t i = 0; i <= columns; ++i)
-        draw.positions_clip.emplace_back(-1.0f + 2.0f * (float(i) + float(r.range(-0.3, 0.3))) / float(columns),
-                                         -1.0f + 2.0f * (float(j) + float(r.range(-0.3, 0.3))) / float(rows),
-                                         float(r.range(0.0, 1.0)), 1.0f);
-    for (uint32_t j = 0; j < rows; ++j)
-      for (uint32_t i = 0; i < columns; ++i) {
-        const uint32_t v = j * (columns + 1) + i;
-        for (uint32_t k : {v, v + 1, v + columns + 2, v, v + columns + 2, v + columns + 1}) draw.indices.push_back(k);
-      }
-    draw.topology = seed % 3 == 0 ? Topology::TriangleList : seed % 3 == 1 ? Topology::TriangleStrip : Topology::TriangleFan;
-    if (seed % 6 == 0) draw.topology = Topology::TriangleList;
-    draw.state.depth.compare_op = CompareOp((seed / 4) % 8);
-    draw.state.depth.write_enable = seed % 5 != 0;
-    scene.draws.push_back(draw);
-    draw.state.depth.compare_op = CompareOp::LessOrEqual;  // a second pass over the same mesh
-    scene.draws.push_back(std::move(draw));
-    expect_fast_matches(scene, seed % 2 == 0, {1u, 2u});
-  }
+  for (uint64_t seed = 1; seed <= 12; ++seed) expect_fast_matches(jittered_mesh(seed, 0.7, 1.6), seed % 2 == 0, {1u, 2u});
+}
+
+// Cells of 2-4 pixels: blocks in the 8x8 layout, which an AVX-512 host draws with the window
+// compositor (small_window.hpp), also across tile rows (workers' rows cut the window); every
+// format and compare op.
+TEST(FastWindowMeshes, WindowCompositorMatchesExactPath) {
+  for (uint64_t seed = 1; seed <= 32; ++seed) expect_fast_matches(jittered_mesh(seed, 2.0, 4.0), seed % 2 == 0, {1u, 2u, 3u});
 }
 
 // The fast clear skips a tile's clear only when the first triangle replaces every value of it.
@@ -133,7 +148,7 @@ TEST(FastClear, TilesKeepTheirClearValuesUnderDepthWritesOff) {
     }
     expect_fast_matches(scene, true);
     scene.draws.pop_back();  // writes off alone: the depth buffer must still hold the clear value
-    const RenderResult fast = render_fast(scene, true, 2, true);
+    const RenderResult fast = render_fast(scene, true, 2, fast_test::best_isa());
     EXPECT_TRUE(same_bytes(render_exact(scene, true), fast));
   }
 }
@@ -190,7 +205,7 @@ TEST(FastBuiltinScenes, EverySupportedSceneMatchesExactPath) {
 
 TEST(FastBuiltinScenes, NotSupportedStaysNotSupported) {
   const Scene scene = load_scene_file(std::string(RASTERCMP_SOURCE_DIR) + "/scenes/not_supported/point_list.json");
-  EXPECT_THROW(render_fast(scene, true, 2, true), NotSupportedError);
+  EXPECT_THROW(render_fast(scene, true, 2, fast_test::best_isa()), NotSupportedError);
 }
 
 }  // namespace

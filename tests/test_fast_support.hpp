@@ -8,8 +8,10 @@
 #include <cstdint>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "cpu_raster/cpu_raster.hpp"
+#include "cpu_raster/fast/cpu_features.hpp"
 #include "cpu_raster/fast/render_fast.hpp"
 #include "model/render_result.hpp"
 #include "model/scene.hpp"
@@ -203,12 +205,34 @@ inline RenderResult render_exact(const Scene& scene, bool fma) {
   return render_cpu(scene, options);
 }
 
-inline RenderResult render_fast(const Scene& scene, bool fma, uint32_t threads, bool avx2) {
+// The fast path's instruction sets, each with its own kernels: the scalar twins, AVX2, and
+// AVX2 with the AVX-512 set-up and window compositor.
+enum class FastIsa { Scalar, Avx2, Avx512 };
+
+inline const char* isa_name(FastIsa isa) {
+  return isa == FastIsa::Scalar ? "scalar" : isa == FastIsa::Avx2 ? "avx2" : "avx512";
+}
+
+// Every variant this host runs (the scalar one always).
+inline std::vector<FastIsa> host_isas() {
+  std::vector<FastIsa> isas{FastIsa::Scalar};
+  if (cpu::fast::host_has_avx2_fma()) isas.push_back(FastIsa::Avx2);
+  if (cpu::fast::host_has_avx512()) isas.push_back(FastIsa::Avx512);
+  return isas;
+}
+
+// The variant render_cpu_fast picks on this host.
+inline FastIsa best_isa() { return host_isas().back(); }
+
+inline RenderResult render_fast(const Scene& scene, bool fma, uint32_t threads, FastIsa isa) {
   CpuOptions options;
   options.fma = fma;
   options.threads = threads;
-  // every_thread: the workers really split the rows, even on scenes one worker would take alone
-  return cpu::fast::render_fast(scene, options, cpu::fast::FastConfig{avx2, true});
+  cpu::fast::FastConfig config;
+  config.allow_avx2 = isa != FastIsa::Scalar;
+  config.allow_avx512 = isa == FastIsa::Avx512;
+  config.every_thread = true;  // the workers really split the rows, even on scenes one worker would take alone
+  return cpu::fast::render_fast(scene, options, config);
 }
 
 // Identical owner and depth bytes; on failure names the first differing sample.

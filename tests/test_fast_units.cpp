@@ -15,6 +15,7 @@
 #include "cpu_raster/fast/cpu_features.hpp"
 #include "cpu_raster/fast/fast_vertices.hpp"
 #include "cpu_raster/fast/small_triangles.hpp"
+#include "cpu_raster/fast/small_window.hpp"
 #include "cpu_raster/fast/tile_depth_bounds.hpp"
 #include "cpu_raster/fast/tile_edges.hpp"
 #include "cpu_raster/fixed_point.hpp"
@@ -132,6 +133,74 @@ TEST(FastSmallTriangles, PackedGridWordsHoldEachLanesBits) {
       EXPECT_EQ((out.grid_words[l / 4] >> (16 * (l % 4))) & 0xFFFFu, out.grid_bits[l]) << "trial " << trial << " lane " << l;
     }
   }
+}
+
+// Eight overlapping triangles of a few pixels, in the 8x8 layout: the AVX-512 set-up hands the
+// block to the window compositor, whose result equals the grid lanes' scatter (the same set-up
+// without window_ok) for every depth format and compare op, with and without depth writes, clamp
+// and FMA, also when only some of the block's rows are drawn (another worker's rows).
+TEST(FastSmallTriangles, WindowCompositorEqualsGridScatter) {
+  if (!host_has_avx512()) GTEST_SKIP() << "host without AVX-512: the window compositor does not run";
+  fast_test::Random r(23);
+  constexpr int32_t kSide = 48;
+  int windows = 0;
+  for (int trial = 0; trial < 600; ++trial) {
+    std::vector<FastVertex> vertices;
+    std::vector<uint32_t> corners[3];
+    const float bx = float(r.range(8.0, 20.0)), by = float(r.range(8.0, 30.0));
+    for (int l = 0; l < 8; ++l) {  // a row of cells of about 3 px, jittered enough to overlap
+      const float cx = bx + 3.0f * float(l / 2) + float(r.range(-1.0, 1.0)), cy = by + float(r.range(-1.0, 1.0));
+      for (int k = 0; k < 3; ++k) {
+        FastVertex v{};
+        v.x = cx + float(r.range(-3.0, 3.0));
+        v.y = cy + float(r.range(-3.0, 3.0));
+        v.z = float(r.range(-0.2, 1.2));
+        v.x_fixed = int32_t(std::nearbyint((v.x - 0.5f) * 256.0f));
+        v.y_fixed = int32_t(std::nearbyint((v.y - 0.5f) * 256.0f));
+        corners[k].push_back(uint32_t(vertices.size()));
+        vertices.push_back(v);
+      }
+    }
+    SmallBlockInput in;
+    in.vertices = vertices.data();
+    for (int k = 0; k < 3; ++k) in.corners[k] = corners[k].data();
+    in.count = 8;
+    in.region = PixelRect{0, 0, kSide - 1, kSide - 1};
+    in.depth.format = DepthFormat(trial % 4);
+    in.depth.op = in.depth.format == DepthFormat::None ? CompareOp::Always : CompareOp(r.below(8));
+    in.depth.write = in.depth.format != DepthFormat::None && !r.chance(0.2);
+    in.depth.clamp = r.chance(0.3);
+    in.depth.zmin = 0.2f, in.depth.zmax = 0.7f;
+    in.depth.fma = r.chance(0.5);
+    SmallBlockOutput grid, window;
+    setup_small_block_avx512(in, grid);  // window_ok false: the grid evaluation
+    in.window_ok = true;
+    setup_small_block_avx512(in, window);
+    ASSERT_FALSE(grid.window);
+    if (!window.window) continue;
+    ++windows;
+    std::vector<uint32_t> stored(kSide * kSide);
+    for (uint32_t& v : stored) {
+      const float z = float(r.range(0.0, 1.0));
+      v = in.depth.format == DepthFormat::D32Sfloat ? std::bit_cast<uint32_t>(z)
+          : in.depth.format == DepthFormat::D16Unorm ? uint32_t(z * 65535.0f) : uint32_t(z * 16777215.0f);
+    }
+    std::vector<uint32_t> owner_a(kSide * kSide, kOwnerBackground), owner_b = owner_a, depth_a = stored, depth_b = stored;
+    const TileTarget a{owner_a.data(), in.depth.format == DepthFormat::None ? nullptr : depth_a.data(), kSide, kSide};
+    const TileTarget b{owner_b.data(), in.depth.format == DepthFormat::None ? nullptr : depth_b.data(), kSide, kSide};
+    // every row, or a cut at a row inside the block (the rows of the other worker are not drawn)
+    int32_t row_lo = window.grid_y0, row_hi = window.grid_y1;
+    if (trial % 3 == 1) row_lo = std::min(row_hi, row_lo + 2);
+    if (trial % 3 == 2) row_hi = std::max(row_lo, row_hi - 2);
+    for (uint32_t lanes = grid.grid_mask; lanes != 0; lanes &= lanes - 1) {
+      const int l = std::countr_zero(lanes);
+      select_grid_scatter(in.depth.format, in.depth.op)(grid, l, 100 + uint32_t(l), row_lo, row_hi, in.depth.write, a);
+    }
+    select_window_block_avx512(in.depth.format, in.depth.op)(window, 100, row_lo, row_hi, in.depth, b);
+    ASSERT_EQ(owner_a, owner_b) << "trial " << trial;
+    ASSERT_EQ(depth_a, depth_b) << "trial " << trial;
+  }
+  EXPECT_GT(windows, 300);  // most blocks of this shape take the window
 }
 
 TEST(FastTileEdges, GFormAgreesWithExactEdgeValues) {

@@ -109,7 +109,7 @@ void BandWorker::walk_small_blocks(uint32_t d) {
       if (lo > hi || !owns_tile_rows(lo, hi)) continue;
     }
     fill_block_corners<T, Indexed>(draw.indices.data(), count, b, block_);
-    setup_small_block_avx2(block_.in, block_.out);
+    frame_.raster.small_setup(block_.in, block_.out);
     draw_block(d, block_);
   }
 }

@@ -106,39 +106,49 @@ void BandWorker::draw_block(uint32_t d, const SmallBlock& block) {
 bool BandWorker::draw_grid_block(const SmallBlock& block, uint32_t owner_of_lane_0, const DrawRaster& raster) {
   const SmallBlockOutput& out = block.out;
   if (out.grid_mask == 0) return true;
+  if (out.window) {
+    draw_window_block(out, owner_of_lane_0, raster);
+    return true;
+  }
   const int32_t x0 = out.grid_x0, y0 = out.grid_y0, x1 = out.grid_x1, y1 = out.grid_y1;
   const int32_t ty = y0 >> kTileOrder;
   if (ty != (y1 >> kTileOrder)) return false;
   if (!owns_tile_row(ty)) return true;
-  if (!batch_.empty()) flush(raster);  // keep submission order: earlier batched triangles first
-  for (int32_t tx = x0 >> kTileOrder; tx <= x1 >> kTileOrder; ++tx) {
-    TileState& tile = frame_.raster.tile(tx, ty);
-    if (!tile.cleared) {
-      clear_tile(tx, ty, frame_.raster);
-      tile.cleared = true;
-    }
-    if (raster.depth.write) tile.bounds.state = BoundsState::Unknown;
-  }
+  prepare_small_tiles(x0, x1, y0, y1, raster);
   raster.grid_block_fn(out, owner_of_lane_0, raster.kernel.write, frame_.raster.target);
   return true;
 }
 
-// A small triangle: a grid lane (which may reach into a neighbouring tile row or column: only
-// this worker's rows are written) or a kernel job inside one tile. Its tiles are cleared first;
-// their depth bounds become unknown when depth is written.
-void BandWorker::draw_small(const SmallBlockOutput& block, int lane, uint32_t owner, const DrawRaster& raster) {
-  int32_t row_lo = block.y0[lane], row_hi = block.y1[lane];
+// A window block (small_window.hpp): its union's rows in this worker's tile rows (at most two
+// tile rows: the union is at most kWindowHeight <= kTileSize rows), their tiles prepared, then the
+// compositor over them.
+void BandWorker::draw_window_block(const SmallBlockOutput& out, uint32_t owner_of_lane_0, const DrawRaster& raster) {
+  static_assert(kWindowHeight <= kTileSize);
+  int32_t row_lo = out.grid_y0, row_hi = out.grid_y1;
+  if (!owned_row_range(row_lo, row_hi)) return;
+  prepare_small_tiles(out.grid_x0, out.grid_x1, row_lo, row_hi, raster);
+  raster.window_block_fn(out, owner_of_lane_0, row_lo, row_hi, raster.kernel, frame_.raster.target);
+}
+
+// Cuts rows [row_lo, row_hi], which reach at most two tile rows, to this worker's; false when none is.
+bool BandWorker::owned_row_range(int32_t& row_lo, int32_t& row_hi) const {
   const int32_t ty0 = row_lo >> kTileOrder, ty1 = row_hi >> kTileOrder;
   if (!owns_tile_row(ty0)) {
-    if (ty1 == ty0 || !owns_tile_row(ty1)) return;
+    if (ty1 == ty0 || !owns_tile_row(ty1)) return false;
     row_lo = ty1 << kTileOrder;
   } else if (ty1 != ty0 && !owns_tile_row(ty1)) {
     row_hi = (ty1 << kTileOrder) - 1;
   }
-  if (!batch_.empty()) flush(raster);  // keep submission order: earlier batched triangles first
-  const int32_t tx0 = block.x0[lane] >> kTileOrder, tx1 = block.x1[lane] >> kTileOrder;
+  return true;
+}
+
+// Before small triangles write into columns [x0, x1] of rows [row_lo, row_hi]: earlier batched
+// triangles drawn first (submission order), the tiles cleared, their depth bounds unknown when
+// depth is written.
+void BandWorker::prepare_small_tiles(int32_t x0, int32_t x1, int32_t row_lo, int32_t row_hi, const DrawRaster& raster) {
+  if (!batch_.empty()) flush(raster);
   for (int32_t ty = row_lo >> kTileOrder; ty <= row_hi >> kTileOrder; ++ty) {
-    for (int32_t tx = tx0; tx <= tx1; ++tx) {
+    for (int32_t tx = x0 >> kTileOrder; tx <= x1 >> kTileOrder; ++tx) {
       TileState& tile = frame_.raster.tile(tx, ty);
       if (!tile.cleared) {
         clear_tile(tx, ty, frame_.raster);
@@ -147,6 +157,15 @@ void BandWorker::draw_small(const SmallBlockOutput& block, int lane, uint32_t ow
       if (raster.depth.write) tile.bounds.state = BoundsState::Unknown;  // before any write lands
     }
   }
+}
+
+// A small triangle: a grid lane (which may reach into a neighbouring tile row or column: only
+// this worker's rows are written) or a kernel job inside one tile. Its tiles are cleared first;
+// their depth bounds become unknown when depth is written.
+void BandWorker::draw_small(const SmallBlockOutput& block, int lane, uint32_t owner, const DrawRaster& raster) {
+  int32_t row_lo = block.y0[lane], row_hi = block.y1[lane];  // a lane spans at most two tile rows
+  if (!owned_row_range(row_lo, row_hi)) return;
+  prepare_small_tiles(block.x0[lane], block.x1[lane], row_lo, row_hi, raster);
   if ((block.grid_mask >> lane) & 1u) {
     raster.grid_fn(block, lane, owner, row_lo, row_hi, raster.kernel.write, frame_.raster.target);
   } else {

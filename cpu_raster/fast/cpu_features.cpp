@@ -10,4 +10,13 @@ bool host_has_avx2_fma() {
   return has;
 }
 
+bool host_has_avx512() {
+  static const bool has = [] {
+    __builtin_cpu_init();
+    return host_has_avx2_fma() && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
+           __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq");
+  }();
+  return has;
+}
+
 }  // namespace rastercmp::cpu::fast

@@ -83,17 +83,19 @@ void init_frame(FastFrame& frame, const Scene& scene, const CpuOptions& options,
     const Draw& draw = scene.draws[d];
     fd.fast = scene.samples == 1 && is_triangle_topology(draw.topology);
     fd.setup = make_setup_context(frame.exact, d);
-    fd.raster = make_draw_raster(make_depth_test_state(scene, draw, frame.exact.viewport, options.fma), false, false);
+    fd.raster = make_draw_raster(make_depth_test_state(scene, draw, frame.exact.viewport, options.fma), false, false, false);
   }
   const bool bounds = frame_bounds_usable(scene, frame.draws);
   const bool avx2 = config.allow_avx2 && host_has_avx2_fma();
-  for (FastDraw& fd : frame.draws) fd.raster = make_draw_raster(fd.raster.depth, bounds, avx2);
+  const bool avx512 = avx2 && config.allow_avx512 && host_has_avx512();
+  for (FastDraw& fd : frame.draws) fd.raster = make_draw_raster(fd.raster.depth, bounds, avx2, avx512);
   FrameRaster& raster = frame.raster;
   raster.target = TileTarget{frame.targets.owner.data(), scene.has_depth() ? frame.targets.depth_raw.data() : nullptr,
                              int32_t(scene.width), int32_t(scene.height)};
   raster.tiles_x = int32_t((scene.width + kTileSize - 1) / kTileSize);
   raster.tiles_y = int32_t((scene.height + kTileSize - 1) / kTileSize);
   raster.avx2 = avx2;
+  raster.small_setup = avx512 ? setup_small_block_avx512 : avx2 ? setup_small_block_avx2 : nullptr;
   raster.bounds = bounds;
   const uint32_t clear = raster.depth_clear_raw;
   TileState tile;

@@ -30,6 +30,7 @@ inline void fill_block_draw(const FastFrame& frame, uint32_t d, SmallBlock& slot
   in.front_ccw = draw.state.front_face == FrontFace::CounterClockwise;
   in.cull = draw.state.cull_mode;
   in.depth = frame.draws[d].raster.kernel;
+  in.window_ok = frame.draws[d].raster.window_block_fn != nullptr;
 }
 
 // Lane l's corners of block `block` of a draw of `count` primitives: through the index buffer for

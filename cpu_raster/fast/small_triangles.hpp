@@ -31,6 +31,8 @@ inline constexpr int32_t kSmallHeight = 16;  // rows
 inline constexpr int32_t kGridSide = 8;      // candidate pixels per side of a grid lane
 inline constexpr int32_t kSmallGridShift = 2;  // blocks whose grid lanes all fit in 4x4 pixels
 inline constexpr int32_t kSmallGridSide = 1 << kSmallGridShift;
+inline constexpr int32_t kWindowWidth = 32;   // window blocks: two 16-pixel strips per row
+inline constexpr int32_t kWindowHeight = 16;
 
 struct SmallBlockInput {
   const FastVertex* vertices = nullptr;
@@ -45,6 +47,7 @@ struct SmallBlockInput {
   bool front_ccw = true;
   CullMode cull = CullMode::None;
   KernelDepth depth;  // format None: no depth test
+  bool window_ok = false;  // blocks may be left to the window compositor (AVX-512 set-up only)
 };
 
 struct SmallBlockOutput {
@@ -63,12 +66,21 @@ struct SmallBlockOutput {
   alignas(32) uint64_t grid_bits[8];
   uint64_t grid_words[2];
   alignas(32) uint32_t grid_raw[kGridSide * kGridSide][8];
+  // A window block (small_window.hpp): grid lanes only, their union at most
+  // kWindowWidth x kWindowHeight; grid_bits and grid_raw are not filled, the compositor evaluates
+  // each lane from e_window (E - 1 at column grid_x0 of the lane's first row y0), gx, gy and the
+  // plane (a0, dzdx, dzdy).
+  bool window = false;
+  alignas(32) int32_t e_window[3][8];
 
   // The lane's job (offset 0: draws with depth bias take the scalar set-up).
   KernelJob job(int lane, uint32_t owner, CompareOp op) const;
 };
 
+// The eight-wide set-up (small_setup_simd.inl), for AVX2 hosts and for AVX-512 hosts.
+using SmallSetupFn = void (*)(const SmallBlockInput& in, SmallBlockOutput& out);
 void setup_small_block_avx2(const SmallBlockInput& in, SmallBlockOutput& out);
+void setup_small_block_avx512(const SmallBlockInput& in, SmallBlockOutput& out);
 
 struct SmallBlock {
   uint32_t first = 0;  // first primitive of the block

@@ -33,7 +33,7 @@ void update_bounds(TileBounds& tile, bool ranged, const FragmentRange& f, DepthV
 
 }  // namespace
 
-DrawRaster make_draw_raster(const DepthTestState& depth, bool frame_bounds, bool avx2) {
+DrawRaster make_draw_raster(const DepthTestState& depth, bool frame_bounds, bool avx2, bool avx512) {
   DrawRaster draw;
   draw.depth = depth;
   draw.kernel = KernelDepth{depth.active ? depth.format : DepthFormat::None, depth.op, depth.write,
@@ -46,6 +46,7 @@ DrawRaster make_draw_raster(const DepthTestState& depth, bool frame_bounds, bool
     draw.small_fn = select_small_kernel_avx2(draw.kernel.format, depth.op);
     draw.grid_fn = select_grid_scatter(draw.kernel.format, depth.op);
     draw.grid_block_fn = select_grid_block(draw.kernel.format, depth.op);
+    if (avx512) draw.window_block_fn = select_window_block_avx512(draw.kernel.format, depth.op);
   }
   return draw;
 }

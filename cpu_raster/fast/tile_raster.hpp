@@ -8,6 +8,7 @@
 
 #include "cpu_raster/fast/fast_triangle.hpp"
 #include "cpu_raster/fast/small_triangles.hpp"
+#include "cpu_raster/fast/small_window.hpp"
 #include "cpu_raster/fast/tile_depth_bounds.hpp"
 #include "cpu_raster/fast/tile_kernel.hpp"
 #include "cpu_raster/rasterize.hpp"
@@ -24,6 +25,7 @@ struct DrawRaster {
   SmallKernelFn small_fn = nullptr;
   GridScatterFn grid_fn = nullptr;
   GridBlockFn grid_block_fn = nullptr;
+  WindowBlockFn window_block_fn = nullptr;  // set when the host has AVX-512 (small_window.hpp)
 };
 
 // Shared by the workers of a frame; a tile (and its bounds) is only touched by the worker that
@@ -33,6 +35,7 @@ struct FrameRaster {
   int32_t tiles_x = 0, tiles_y = 0;
   TileState* tiles = nullptr;  // tiles_x * tiles_y, row-major
   bool avx2 = false;
+  SmallSetupFn small_setup = nullptr;  // the eight-wide set-up for this host (AVX2 hosts)
   bool bounds = false;  // depth bounds usable in this frame (tile_depth_bounds.hpp)
   uint32_t depth_clear_raw = 0;  // clear_depth_raw of the scene's clear value
 
@@ -41,7 +44,8 @@ struct FrameRaster {
   }
 };
 
-DrawRaster make_draw_raster(const DepthTestState& depth, bool frame_bounds, bool avx2);
+// avx512 (which implies avx2): the window compositor too.
+DrawRaster make_draw_raster(const DepthTestState& depth, bool frame_bounds, bool avx2, bool avx512);
 
 // Rectangle r lies inside tile (tile_x, tile_y) and inside the triangle's rect.
 void raster_in_tile(const FastTriangle& t, const PixelRect& r, int32_t tile_x, int32_t tile_y,
