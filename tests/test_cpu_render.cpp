@@ -162,5 +162,25 @@ TEST(CpuRender, ScenesOutsideTheModelsPreconditionsAreInputErrors) {
   EXPECT_THROW(render_cpu(bad_index, CpuOptions{}), InputError);
 }
 
+// The index check names the first index out of range, on the exact and on the fast path.
+TEST(CpuRender, FirstIndexOutOfRangeIsNamed) {
+  Scene scene = small_scene();
+  scene.source_path = "mesh.json";
+  Draw draw = full_screen(0.5f);
+  draw.indices = {0, 1, 2, 3, 4, 5, 0, 6, 99, 1, 2, 3};  // 6 positions: 6 is the first index out of range
+  scene.draws.push_back(draw);
+  for (const uint32_t threads : {0u, 2u}) {
+    CpuOptions options;
+    options.threads = threads;
+    try {
+      render_cpu(scene, options);
+      ADD_FAILURE() << "expected InputError, threads " << threads;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.file(), "mesh.json");
+      EXPECT_EQ(e.json_path(), "$.draws[0].indices[7]") << "threads " << threads;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace rastercmp
