@@ -203,6 +203,62 @@ TEST(FastBuiltinScenes, EverySupportedSceneMatchesExactPath) {
   EXPECT_GT(compared, scenes.size() / 2);
 }
 
+// The JSON path of the InputError a render throws ("" when it throws none).
+template <class Render>
+std::string input_error_path(Render render) {
+  try {
+    render();
+  } catch (const InputError& e) {
+    return e.json_path();
+  }
+  return "";
+}
+
+// With several workers the fast path checks the index range where its block-row phase reads the
+// indices (render_fast.cpp): the error is the exact path's, naming the first index out of range,
+// wherever it lies (a whole block, the last block, a list's tail that makes no triangle, a strip,
+// a fan), also when a later draw is not supported.
+TEST(FastIndexCheck, SameErrorAsTheExactPath) {
+  struct Case {
+    Topology topology;
+    size_t bad;      // the index made out of range (from the end when tail)
+    bool tail;       // two indices appended past the last whole triangle, the second one bad
+    bool point_draw; // a second draw of points, not supported (reported only after the indices)
+  };
+  const Case cases[] = {{Topology::TriangleList, 100, false, false}, {Topology::TriangleList, 3 * 3200 - 2, false, false},
+                        {Topology::TriangleList, 0, true, false},    {Topology::TriangleStrip, 4000, false, false},
+                        {Topology::TriangleFan, 7, false, false},    {Topology::TriangleList, 2000, false, true}};
+  for (const Case& c : cases) {
+    Scene scene = bench::grid_scene(40, 256);  // 3200 triangles
+    scene.source_path = "mesh.json";
+    Draw& draw = scene.draws[0];
+    draw.topology = c.topology;
+    const uint32_t positions = uint32_t(draw.positions_clip.size());
+    if (c.tail) {
+      draw.indices.push_back(0);
+      draw.indices.push_back(positions);
+    } else {
+      draw.indices[c.bad] = positions + 5;
+      if (c.bad + 30 < draw.indices.size()) draw.indices[c.bad + 30] = positions;  // a later one too
+    }
+    if (c.point_draw) {
+      Draw points;
+      points.topology = Topology::PointList;
+      points.positions_clip = {{0, 0, 0.5f, 1}};
+      scene.draws.push_back(points);
+    }
+    const std::string expected = input_error_path([&] { render_exact(scene, true); });
+    ASSERT_EQ(expected, "$.draws[0].indices[" + std::to_string(c.tail ? draw.indices.size() - 1 : c.bad) + "]");
+    for (const uint32_t threads : {1u, 2u}) {
+      for (const fast_test::FastIsa isa : fast_test::host_isas()) {
+        SCOPED_TRACE(std::string(fast_test::isa_name(isa)) + " threads=" + std::to_string(threads) + " bad " +
+                     std::to_string(c.bad));
+        EXPECT_EQ(input_error_path([&] { render_fast(scene, true, threads, isa); }), expected);
+      }
+    }
+  }
+}
+
 TEST(FastBuiltinScenes, NotSupportedStaysNotSupported) {
   const Scene scene = load_scene_file(std::string(RASTERCMP_SOURCE_DIR) + "/scenes/not_supported/point_list.json");
   EXPECT_THROW(render_fast(scene, true, 2, fast_test::best_isa()), NotSupportedError);

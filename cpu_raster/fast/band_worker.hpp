@@ -17,8 +17,9 @@
 namespace rastercmp::cpu::fast {
 
 // Fills frame.draws[d].block_rows[begin, end) (the workers share the blocks out before the walk:
-// each block is measured once, by one of them).
-void measure_block_rows(FastFrame& frame, uint32_t draw_index, uint32_t begin, uint32_t end);
+// each block is measured once, by one of them). False when a corner of these blocks names no
+// position: the draw's index range is checked here, where its indices are read anyway.
+bool measure_block_rows(FastFrame& frame, uint32_t draw_index, uint32_t begin, uint32_t end);
 
 class BandWorker {
  public:

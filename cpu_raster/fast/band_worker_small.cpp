@@ -25,12 +25,18 @@ uint32_t pack_rows(int32_t lo, int32_t hi, const PixelRect& region) {
 
 // The tile rows a block's triangles may reach, from the corners' tile rows (fast_vertices.hpp):
 // the bounding boxes lie within them. kBlockAnyRow when a corner needs clipping or failed to snap
-// (its window position says nothing then).
-uint32_t block_tile_rows(const SmallBlockInput& in, const int16_t* tile_rows, const PixelRect& region) {
+// (its window position says nothing then), or names no position (`bad` is set then).
+uint32_t block_tile_rows(const SmallBlockInput& in, const int16_t* tile_rows, uint32_t positions, const PixelRect& region,
+                         bool& bad) {
   int32_t lo = INT32_MAX, hi = INT32_MIN;
   for (uint32_t l = 0; l < in.count; ++l) {
     for (int k = 0; k < 3; ++k) {
-      const int16_t row = tile_rows[in.corners[k][l * in.stride]];
+      const uint32_t position = in.corners[k][l * in.stride];
+      if (position >= positions) {
+        bad = true;
+        return kBlockAnyRow;
+      }
+      const int16_t row = tile_rows[position];
       if (row == kRowUnknown) return kBlockAnyRow;
       lo = std::min(lo, int32_t(row));
       hi = std::max(hi, int32_t(row));
@@ -42,13 +48,22 @@ uint32_t block_tile_rows(const SmallBlockInput& in, const int16_t* tile_rows, co
 // block_tile_rows for a full block of an indexed list: its 24 corners are consecutive in the
 // index buffer; three AVX2 gathers of 32 bits at 2-byte steps fetch their rows (each row is the
 // low half; the last position's read reaches 2 bytes into the scratch's padding,
-// thread_row_scratch). kRowUnknown is INT16_MIN, below every row, so the minimum finds it.
-RASTERCMP_AVX2 uint32_t list_block_tile_rows_avx2(const uint32_t* indices, const int16_t* tile_rows, const PixelRect& region) {
+// thread_row_scratch). kRowUnknown is INT16_MIN, below every row, so the minimum finds it. The
+// indices are checked against `positions` (> 0) before any gather.
+RASTERCMP_AVX2 uint32_t list_block_tile_rows_avx2(const uint32_t* indices, const int16_t* tile_rows, uint32_t positions,
+                                                  const PixelRect& region, bool& bad) {
+  __m256i idx[3];
+  for (int j = 0; j < 3; ++j) idx[j] = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(indices + 8 * j));
+  const __m256i largest = _mm256_max_epu32(idx[0], _mm256_max_epu32(idx[1], idx[2]));
+  const __m256i last = _mm256_set1_epi32(int32_t(positions - 1));
+  if (!_mm256_testc_si256(_mm256_cmpeq_epi32(_mm256_max_epu32(largest, last), last), _mm256_set1_epi32(-1))) {
+    bad = true;  // some index > positions - 1
+    return kBlockAnyRow;
+  }
   const int* base = reinterpret_cast<const int*>(tile_rows);
   __m256i r[3];
   for (int j = 0; j < 3; ++j) {
-    const __m256i idx = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(indices + 8 * j));
-    const __m256i word = _mm256_i32gather_epi32(base, idx, 2);
+    const __m256i word = _mm256_i32gather_epi32(base, idx[j], 2);
     r[j] = _mm256_srai_epi32(_mm256_slli_epi32(word, 16), 16);
   }
   __m256i lo = _mm256_min_epi32(r[0], _mm256_min_epi32(r[1], r[2]));
@@ -64,7 +79,10 @@ RASTERCMP_AVX2 uint32_t list_block_tile_rows_avx2(const uint32_t* indices, const
 }
 
 template <Topology T, bool Indexed>
-void measure_rows(FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end) {
+bool measure_rows(FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end) {
+  bool bad = false;
+  const uint32_t positions = uint32_t(frame.scene->draws[d].positions_clip.size());
+  if (positions == 0) return begin == end;  // every corner would be out of range
   if constexpr (T == Topology::TriangleList && Indexed) {  // the full blocks of a mesh
     const uint32_t full_end = std::min(end, primitive_count(frame.scene->draws[d]) / 8);
     const uint32_t* indices = frame.scene->draws[d].indices.data();
@@ -73,15 +91,16 @@ void measure_rows(FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end) {
     const PixelRect region = frame.exact.region;
     // small_blocks draws exist on AVX2 hosts only (their set-up is setup_small_block_avx2)
     for (; begin < full_end; ++begin)
-      block_rows[begin] = list_block_tile_rows_avx2(indices + 24 * size_t(begin), tile_rows, region);
+      block_rows[begin] = list_block_tile_rows_avx2(indices + 24 * size_t(begin), tile_rows, positions, region, bad);
   }
   SmallBlock block;
   fill_block_draw(frame, d, block);
   const uint32_t count = primitive_count(frame.scene->draws[d]);
   for (uint32_t b = begin; b < end; ++b) {
     fill_block_corners<T, Indexed>(frame.scene->draws[d].indices.data(), count, b, block);
-    frame.draws[d].block_rows[b] = block_tile_rows(block.in, frame.draws[d].tile_rows, frame.exact.region);
+    frame.draws[d].block_rows[b] = block_tile_rows(block.in, frame.draws[d].tile_rows, positions, frame.exact.region, bad);
   }
+  return !bad;
 }
 
 }  // namespace
@@ -173,23 +192,20 @@ void BandWorker::draw_small(const SmallBlockOutput& block, int lane, uint32_t ow
   }
 }
 
-void measure_block_rows(FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end) {
+bool measure_block_rows(FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end) {
   const Draw& draw = frame.scene->draws[d];
   const bool indexed = !draw.indices.empty();
   switch (draw.topology) {
     case Topology::TriangleList:
-      indexed ? measure_rows<Topology::TriangleList, true>(frame, d, begin, end)
-              : measure_rows<Topology::TriangleList, false>(frame, d, begin, end);
-      break;
+      return indexed ? measure_rows<Topology::TriangleList, true>(frame, d, begin, end)
+                     : measure_rows<Topology::TriangleList, false>(frame, d, begin, end);
     case Topology::TriangleStrip:
-      indexed ? measure_rows<Topology::TriangleStrip, true>(frame, d, begin, end)
-              : measure_rows<Topology::TriangleStrip, false>(frame, d, begin, end);
-      break;
+      return indexed ? measure_rows<Topology::TriangleStrip, true>(frame, d, begin, end)
+                     : measure_rows<Topology::TriangleStrip, false>(frame, d, begin, end);
     case Topology::TriangleFan:
-      indexed ? measure_rows<Topology::TriangleFan, true>(frame, d, begin, end)
-              : measure_rows<Topology::TriangleFan, false>(frame, d, begin, end);
-      break;
-    default: break;
+      return indexed ? measure_rows<Topology::TriangleFan, true>(frame, d, begin, end)
+                     : measure_rows<Topology::TriangleFan, false>(frame, d, begin, end);
+    default: return true;
   }
 }
 

@@ -112,9 +112,9 @@ struct VertexTask {
 };
 
 // Phase 2: every fast draw's positions transformed and snapped, in blocks shared out between the
-// workers. With several workers, worker 0 first runs the profile check when it is still pending
-// (its index scan is a pass over the whole index buffer) while the others start on the
-// vertices, which read no index: everything that does comes after this phase.
+// workers. With several workers, worker 0 first runs the profile check but its index scans
+// (check_pending) while the others start on the vertices, which read no index: everything that
+// does comes after this phase, and the scans come later (check_index_ranges, the block-row phase).
 void transform_all_vertices(FastFrame& frame, bool check_pending) {
   size_t total = 0;
   for (uint32_t d = 0; d < frame.draws.size(); ++d)
@@ -140,12 +140,12 @@ void transform_all_vertices(FastFrame& frame, bool check_pending) {
                                    : transform_vertices_scalar(job, task.begin, task.end, fd.vertices, fd.tile_rows);
   };
   if (frame.workers == 1 || tasks.size() <= 1) {
-    if (check_pending) check_lavapipe_profile_support(*frame.scene);
+    if (check_pending) check_lavapipe_profile_support_but_indices(*frame.scene);
     for (VertexTask& task : tasks) run(task);
   } else {
     std::atomic<size_t> next{0};
     worker_pool(frame.workers).run([&](uint32_t w) {
-      if (w == 0 && check_pending) check_lavapipe_profile_support(*frame.scene);
+      if (w == 0 && check_pending) check_lavapipe_profile_support_but_indices(*frame.scene);
       for (size_t i = next++; i < tasks.size(); i = next++) run(tasks[i]);
     });
   }
@@ -170,8 +170,26 @@ struct RowTask {
   uint32_t draw, begin, end;
 };
 
+// Whether the block-row phase reads every index of the draw (a list's indices past its last
+// whole triangle, or those of a draw without a primitive, belong to no block).
+bool blocks_read_every_index(const FastDraw& fd, const Draw& draw) {
+  const uint32_t count = primitive_count(draw);
+  return fd.small_blocks && count > 0 && (draw.topology != Topology::TriangleList || 3 * size_t(count) == draw.indices.size());
+}
+
+// The index scans the profile check left out, for the draws the block-row phase does not read
+// whole (it checks the indices it reads). A bad index: the full check, which throws the error it
+// would have thrown first.
+void check_index_ranges(const FastFrame& frame) {
+  for (uint32_t d = 0; d < frame.draws.size(); ++d) {
+    const Draw& draw = frame.scene->draws[d];
+    if (!blocks_read_every_index(frame.draws[d], draw) && !indices_in_range(draw)) check_lavapipe_profile_support(*frame.scene);
+  }
+}
+
 // Phase 3 (several workers): which tile rows each block of small triangles may reach, measured
-// once, so that a worker sets up only the blocks it may draw into.
+// once, so that a worker sets up only the blocks it may draw into. Each block's indices are
+// checked before they are read through; a bad one: the full profile check, which throws.
 void measure_all_block_rows(FastFrame& frame) {
   constexpr uint32_t kRowTaskBlocks = 4096;
   size_t blocks = 0;
@@ -188,9 +206,12 @@ void measure_all_block_rows(FastFrame& frame) {
     for (uint32_t b = 0; b < count; b += kRowTaskBlocks) tasks.push_back({d, b, std::min(count, b + kRowTaskBlocks)});
   }
   std::atomic<size_t> next{0};
+  std::atomic<bool> bad_index{false};
   worker_pool(frame.workers).run([&](uint32_t) {
-    for (size_t i = next++; i < tasks.size(); i = next++) measure_block_rows(frame, tasks[i].draw, tasks[i].begin, tasks[i].end);
+    for (size_t i = next++; i < tasks.size(); i = next++)
+      if (!measure_block_rows(frame, tasks[i].draw, tasks[i].begin, tasks[i].end)) bad_index = true;
   });
+  if (bad_index) check_lavapipe_profile_support(*frame.scene);
 }
 
 // Phase 4: every worker walks every draw into its own tile rows.
@@ -211,8 +232,9 @@ void render_fast_into(const Scene& scene, const CpuOptions& options, const FastC
     result = render_cpu(scene, exact);
     return;
   }
-  // The sizes first (they decide the allocations); with several workers the full check, with its
-  // index scan, runs beside the vertex phase.
+  // The sizes first (they decide the allocations); with several workers the check runs beside
+  // the vertex phase, and the index scans later, folded into the block-row phase where it reads
+  // them (an index buffer is read once instead of twice before the walks).
   const bool sizes_ok = scene.width >= 1 && scene.width <= kMaxFramebufferSide && scene.height >= 1 &&
                         scene.height <= kMaxFramebufferSide && (scene.samples == 1 || scene.samples == 4) &&
                         scene.draws.size() <= kMaxDraws;
@@ -222,7 +244,10 @@ void render_fast_into(const Scene& scene, const CpuOptions& options, const FastC
   FastFrame frame;
   init_frame(frame, scene, options, config, result);
   transform_all_vertices(frame, check_pending);
-  if (frame.workers > 1) measure_all_block_rows(frame);
+  if (check_pending) {
+    check_index_ranges(frame);
+    measure_all_block_rows(frame);
+  }
   run_workers(frame);
   move_into_result(std::move(frame.targets), kLavapipeProfileDevice, options.fma, result);
 }
