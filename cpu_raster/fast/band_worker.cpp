@@ -128,16 +128,17 @@ void BandWorker::triangle(uint32_t d, uint32_t primitive, uint32_t a, uint32_t b
   }
   if (flags & kVertexSnapFailed) return;  // SetupFate::NonFinite
   const PixelRect& region = frame_.exact.region;
+  const int32_t fy[3] = {snap_fixed(v0.y), snap_fixed(v1.y), snap_fixed(v2.y)};  // §2.2
   // triangle_bbox (x0 = min >> 8, x1 = (max - 1) >> 8) ∩ draw region; coverage lies inside it.
-  const int32_t y0 = std::max(std::min({v0.y_fixed, v1.y_fixed, v2.y_fixed}) >> kFixedOrder, region.y0);
-  const int32_t y1 = std::min((std::max({v0.y_fixed, v1.y_fixed, v2.y_fixed}) - 1) >> kFixedOrder, region.y1);
+  const int32_t y0 = std::max(std::min({fy[0], fy[1], fy[2]}) >> kFixedOrder, region.y0);
+  const int32_t y1 = std::min((std::max({fy[0], fy[1], fy[2]}) - 1) >> kFixedOrder, region.y1);
   if (y0 > y1 || !owns_rows(y0, y1)) return;
-  const int32_t x0 = std::max(std::min({v0.x_fixed, v1.x_fixed, v2.x_fixed}) >> kFixedOrder, region.x0);
-  const int32_t x1 = std::min((std::max({v0.x_fixed, v1.x_fixed, v2.x_fixed}) - 1) >> kFixedOrder, region.x1);
+  const int32_t fx[3] = {snap_fixed(v0.x), snap_fixed(v1.x), snap_fixed(v2.x)};
+  const int32_t x0 = std::max(std::min({fx[0], fx[1], fx[2]}) >> kFixedOrder, region.x0);
+  const int32_t x1 = std::min((std::max({fx[0], fx[1], fx[2]}) - 1) >> kFixedOrder, region.x1);
   if (x0 > x1) return;
   // area = dx01*dy20 - dx20*dy01 (§2.3), int64
-  const int64_t area = int64_t(v0.x_fixed - v1.x_fixed) * int64_t(v2.y_fixed - v0.y_fixed) -
-                       int64_t(v2.x_fixed - v0.x_fixed) * int64_t(v0.y_fixed - v1.y_fixed);
+  const int64_t area = int64_t(fx[0] - fx[1]) * int64_t(fy[2] - fy[0]) - int64_t(fx[2] - fx[0]) * int64_t(fy[0] - fy[1]);
   if (area == 0) return;  // always dropped
   const RasterState& state = frame_.scene->draws[d].state;
   if (face_culled((area > 0) == (state.front_face == FrontFace::CounterClockwise), state.cull_mode)) return;
@@ -145,11 +146,12 @@ void BandWorker::triangle(uint32_t d, uint32_t primitive, uint32_t a, uint32_t b
       pipeline_cull_drops(pipeline_cull_determinant({window_of(v0), window_of(v1), window_of(v2)}), state.cull_mode,
                           state.front_face))
     return;
-  const FastVertex& w1 = area < 0 ? v2 : v1;  // rotate_fixed_position_12: (v0, v2, v1)
-  const FastVertex& w2 = area < 0 ? v1 : v2;
+  const int k1 = area < 0 ? 2 : 1, k2 = 3 - k1;  // rotate_fixed_position_12: (v0, v2, v1)
+  const FastVertex& w1 = k1 == 1 ? v1 : v2;
+  const FastVertex& w2 = k1 == 1 ? v2 : v1;
   FastTriangle t;
-  t.x_fixed[0] = v0.x_fixed, t.x_fixed[1] = w1.x_fixed, t.x_fixed[2] = w2.x_fixed;
-  t.y_fixed[0] = v0.y_fixed, t.y_fixed[1] = w1.y_fixed, t.y_fixed[2] = w2.y_fixed;
+  t.x_fixed[0] = fx[0], t.x_fixed[1] = fx[k1], t.x_fixed[2] = fx[k2];
+  t.y_fixed[0] = fy[0], t.y_fixed[1] = fy[k1], t.y_fixed[2] = fy[k2];
   t.rect = PixelRect{x0, y0, x1, y1};
   t.owner = encode_owner(d, primitive);
   if (fd.setup.depth_active()) {

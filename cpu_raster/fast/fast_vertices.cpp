@@ -15,18 +15,11 @@ uint32_t transform_vertices_scalar(const VertexJob& job, size_t begin, size_t en
     v.y = w.y;
     v.z = w.z;
     v.flags = clip_mask(p, job.depth_clip);
-    v.unused[0] = v.unused[1] = 0;
     const auto x = snap_vertex(w.x, 0.5f, SnapRounding::NearestEven);  // §2.2, single sample
     const auto y = snap_vertex(w.y, 0.5f, SnapRounding::NearestEven);
-    if (!x || !y) {
-      v.flags |= kVertexSnapFailed;
-      v.x_fixed = v.y_fixed = 0;
-    } else {
-      v.x_fixed = x->raw;
-      v.y_fixed = y->raw;
-    }
-    // |y_fixed| <= 2^25 (Fixed24_8::kMaxMagnitude), so the row fits 16 bits
-    rows[k] = v.flags ? kRowUnknown : int16_t(v.y_fixed >> (kFixedOrder + 6));
+    if (!x || !y) v.flags |= kVertexSnapFailed;
+    // |y->raw| <= 2^25 (Fixed24_8::kMaxMagnitude), so the row fits 16 bits
+    rows[k] = v.flags ? kRowUnknown : int16_t(y->raw >> (kFixedOrder + 6));
     all_flags |= v.flags;
   }
   return all_flags;

@@ -56,29 +56,18 @@ RASTERCMP_AVX2 inline __m256i snap8(__m256 window, __m256& ok) {
   return _mm256_and_si256(_mm256_cvtps_epi32(_mm256_and_ps(rounded, ok)), _mm256_castps_si256(ok));
 }
 
-// Columns (x_fixed, y_fixed, x, y, z, flags, 0, 0) of eight vertices → eight 32-byte rows.
-RASTERCMP_AVX2 inline void store_vertices(__m256i fx, __m256i fy, __m256 x, __m256 y, __m256 z, __m256i flags,
-                                          FastVertex* out) {
-  const __m256 c0 = _mm256_castsi256_ps(fx), c1 = _mm256_castsi256_ps(fy), c5 = _mm256_castsi256_ps(flags);
-  const __m256 zero = _mm256_setzero_ps();
-  // rows of 4x4 blocks: t0..t3 from columns 0-3, t4..t7 from columns 4-7
-  const __m256 a0 = _mm256_unpacklo_ps(c0, c1), a1 = _mm256_unpackhi_ps(c0, c1);
-  const __m256 a2 = _mm256_unpacklo_ps(x, y), a3 = _mm256_unpackhi_ps(x, y);
-  const __m256 a4 = _mm256_unpacklo_ps(z, c5), a5 = _mm256_unpackhi_ps(z, c5);
-  const __m256 a6 = _mm256_unpacklo_ps(zero, zero), a7 = zero;
-  const __m256 t0 = _mm256_shuffle_ps(a0, a2, 0x44), t1 = _mm256_shuffle_ps(a0, a2, 0xEE);
-  const __m256 t2 = _mm256_shuffle_ps(a1, a3, 0x44), t3 = _mm256_shuffle_ps(a1, a3, 0xEE);
-  const __m256 t4 = _mm256_shuffle_ps(a4, a6, 0x44), t5 = _mm256_shuffle_ps(a4, a6, 0xEE);
-  const __m256 t6 = _mm256_shuffle_ps(a5, a7, 0x44), t7 = _mm256_shuffle_ps(a5, a7, 0xEE);
+// Columns (x, y, z, flags) of eight vertices → eight 16-byte rows: a 4x8 transpose.
+RASTERCMP_AVX2 inline void store_vertices(__m256 x, __m256 y, __m256 z, __m256i flags, FastVertex* out) {
+  const __m256 f = _mm256_castsi256_ps(flags);
+  const __m256 a0 = _mm256_unpacklo_ps(x, y), a1 = _mm256_unpackhi_ps(x, y);  // x0 y0 x1 y1 | x4 y4 x5 y5; 2, 3 | 6, 7
+  const __m256 b0 = _mm256_unpacklo_ps(z, f), b1 = _mm256_unpackhi_ps(z, f);
+  const __m256 v04 = _mm256_shuffle_ps(a0, b0, 0x44), v15 = _mm256_shuffle_ps(a0, b0, 0xEE);  // vertex 0 | vertex 4, ...
+  const __m256 v26 = _mm256_shuffle_ps(a1, b1, 0x44), v37 = _mm256_shuffle_ps(a1, b1, 0xEE);
   float* o = reinterpret_cast<float*>(out);
-  _mm256_storeu_ps(o + 0, _mm256_permute2f128_ps(t0, t4, 0x20));
-  _mm256_storeu_ps(o + 8, _mm256_permute2f128_ps(t1, t5, 0x20));
-  _mm256_storeu_ps(o + 16, _mm256_permute2f128_ps(t2, t6, 0x20));
-  _mm256_storeu_ps(o + 24, _mm256_permute2f128_ps(t3, t7, 0x20));
-  _mm256_storeu_ps(o + 32, _mm256_permute2f128_ps(t0, t4, 0x31));
-  _mm256_storeu_ps(o + 40, _mm256_permute2f128_ps(t1, t5, 0x31));
-  _mm256_storeu_ps(o + 48, _mm256_permute2f128_ps(t2, t6, 0x31));
-  _mm256_storeu_ps(o + 56, _mm256_permute2f128_ps(t3, t7, 0x31));
+  _mm256_storeu_ps(o + 0, _mm256_permute2f128_ps(v04, v15, 0x20));
+  _mm256_storeu_ps(o + 8, _mm256_permute2f128_ps(v26, v37, 0x20));
+  _mm256_storeu_ps(o + 16, _mm256_permute2f128_ps(v04, v15, 0x31));
+  _mm256_storeu_ps(o + 24, _mm256_permute2f128_ps(v26, v37, 0x31));
 }
 
 }  // namespace
@@ -88,7 +77,6 @@ RASTERCMP_AVX2 uint32_t transform_vertices_avx2(const VertexJob& job, size_t beg
   const ViewportTransform& vp = job.viewport;
   size_t k = begin;
   __m256i all_flags = _mm256_setzero_si256();
-  alignas(32) int32_t fx[8], fy[8];
   for (; k + 8 <= end; k += 8) {
     const Columns p = load_columns(&job.pos_clip[k].x);
     const __m256 oow = _mm256_div_ps(_mm256_set1_ps(1.0f), p.w);
@@ -96,21 +84,19 @@ RASTERCMP_AVX2 uint32_t transform_vertices_avx2(const VertexJob& job, size_t beg
     const __m256 y = to_window(p.y, oow, vp.scale[1], vp.translate[1], job.fma);
     const __m256 z = to_window(p.z, oow, vp.scale[2], vp.translate[2], job.fma);
     __m256 ok_x, ok_y;
-    _mm256_store_si256(reinterpret_cast<__m256i*>(fx), snap8(x, ok_x));
-    _mm256_store_si256(reinterpret_cast<__m256i*>(fy), snap8(y, ok_y));
+    snap8(x, ok_x);  // only whether it succeeds: the set-up snaps again (snap_fixed)
+    const __m256i fy = snap8(y, ok_y);
     const __m256i failed = _mm256_andnot_si256(_mm256_castps_si256(_mm256_and_ps(ok_x, ok_y)),
                                                _mm256_set1_epi32(int(kVertexSnapFailed)));
     const __m256i lane_flags = _mm256_or_si256(clip_mask8(p, job.depth_clip), failed);
     all_flags = _mm256_or_si256(all_flags, lane_flags);
     // the tile row of y (kRowUnknown where a flag is set), packed to 16 bits
-    const __m256i row = _mm256_blendv_epi8(_mm256_srai_epi32(_mm256_load_si256(reinterpret_cast<const __m256i*>(fy)), kFixedOrder + 6),
+    const __m256i row = _mm256_blendv_epi8(_mm256_srai_epi32(fy, kFixedOrder + 6),
                                            _mm256_set1_epi32(kRowUnknown),
                                            _mm256_xor_si256(_mm256_cmpeq_epi32(lane_flags, _mm256_setzero_si256()), _mm256_set1_epi32(-1)));
     const __m128i row16 = _mm_packs_epi32(_mm256_castsi256_si128(row), _mm256_extracti128_si256(row, 1));
     _mm_storeu_si128(reinterpret_cast<__m128i*>(rows + k), row16);
-    // Eight FastVertex {x_fixed, y_fixed, x, y, z, flags, 0, 0}: an 8x8 transpose, one store per vertex.
-    store_vertices(_mm256_load_si256(reinterpret_cast<const __m256i*>(fx)), _mm256_load_si256(reinterpret_cast<const __m256i*>(fy)),
-                   x, y, z, lane_flags, out + k);
+    store_vertices(x, y, z, lane_flags, out + k);  // eight FastVertex {x, y, z, flags}
   }
   alignas(32) uint32_t lanes[8];
   _mm256_store_si256(reinterpret_cast<__m256i*>(lanes), all_flags);

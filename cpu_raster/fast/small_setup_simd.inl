@@ -22,26 +22,27 @@ struct Corners {  // one triangle corner of eight lanes
   __m256 x, y, z;
 };
 
-// Eight FastVertex (32 bytes each) → one register per field: an 8x8 transpose.
+// snap_fixed of eight lanes: fl(c - 0.5) * 256 (exact), converted rounding to nearest even.
+// Lanes whose vertex failed to snap get INT32_MIN; they are special lanes, never drawn here.
+RASTERCMP_SMALL_TARGET inline __m256i snap_fixed8(__m256 c) {
+  return _mm256_cvtps_epi32(_mm256_mul_ps(_mm256_sub_ps(c, _mm256_set1_ps(0.5f)), _mm256_set1_ps(256.0f)));
+}
+
+// Eight FastVertex (16 bytes each) → one register per field (a 4x8 transpose), and the snap.
 RASTERCMP_SMALL_TARGET inline Corners load_corners(const FastVertex* v, const uint32_t* index, uint32_t stride) {
-  __m256 r[8];
-  for (uint32_t k = 0; k < 8; ++k) r[k] = _mm256_loadu_ps(reinterpret_cast<const float*>(v + index[k * stride]));
-  __m256 u[8];
-  for (int k = 0; k < 8; k += 4) {
-    const __m256 t0 = _mm256_unpacklo_ps(r[k], r[k + 1]), t1 = _mm256_unpackhi_ps(r[k], r[k + 1]);
-    const __m256 t2 = _mm256_unpacklo_ps(r[k + 2], r[k + 3]), t3 = _mm256_unpackhi_ps(r[k + 2], r[k + 3]);
-    u[k] = _mm256_shuffle_ps(t0, t2, 0x44);
-    u[k + 1] = _mm256_shuffle_ps(t0, t2, 0xEE);
-    u[k + 2] = _mm256_shuffle_ps(t1, t3, 0x44);
-    u[k + 3] = _mm256_shuffle_ps(t1, t3, 0xEE);
-  }
+  __m256 r[4];  // vertices k and k + 4
+  for (uint32_t k = 0; k < 4; ++k)
+    r[k] = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(reinterpret_cast<const float*>(v + index[k * stride]))),
+                                _mm_loadu_ps(reinterpret_cast<const float*>(v + index[(k + 4) * stride])), 1);
+  const __m256 t0 = _mm256_unpacklo_ps(r[0], r[1]), t1 = _mm256_unpackhi_ps(r[0], r[1]);  // x0 x1 y0 y1, z0 z1 f0 f1
+  const __m256 t2 = _mm256_unpacklo_ps(r[2], r[3]), t3 = _mm256_unpackhi_ps(r[2], r[3]);
   Corners c;
-  c.x_fixed = _mm256_castps_si256(_mm256_permute2f128_ps(u[0], u[4], 0x20));
-  c.y_fixed = _mm256_castps_si256(_mm256_permute2f128_ps(u[1], u[5], 0x20));
-  c.x = _mm256_permute2f128_ps(u[2], u[6], 0x20);
-  c.y = _mm256_permute2f128_ps(u[3], u[7], 0x20);
-  c.z = _mm256_permute2f128_ps(u[0], u[4], 0x31);
-  c.flags = _mm256_castps_si256(_mm256_permute2f128_ps(u[1], u[5], 0x31));
+  c.x = _mm256_shuffle_ps(t0, t2, 0x44);
+  c.y = _mm256_shuffle_ps(t0, t2, 0xEE);
+  c.z = _mm256_shuffle_ps(t1, t3, 0x44);
+  c.flags = _mm256_castps_si256(_mm256_shuffle_ps(t1, t3, 0xEE));
+  c.x_fixed = snap_fixed8(c.x);
+  c.y_fixed = snap_fixed8(c.y);
   return c;
 }
 
