@@ -28,14 +28,21 @@ RASTERCMP_AVX512 inline __m512 mul_add16(__m512 a, __m512 b, __m512 c, bool fma)
   return fma ? _mm512_fmadd_ps(a, b, c) : _mm512_add_ps(_mm512_mul_ps(a, b), c);
 }
 
+// The draw's depth state in registers (KernelDepth's fields, read once per block: the
+// compositor's stores go to memory the compiler cannot tell apart from a KernelDepth).
+struct Depth16 {
+  bool fma, clamp, write;
+  __m512 zmin, zmax;
+};
+
 // finish_depth8 with o = 0 (window blocks come from draws without depth bias): min(z, 1),
 // max(z, 0), the depth clamp; vminps/vmaxps return their second operand on NaN and when both
 // operands are zeros. finish_depth8's z + 0 is left out: it changes only -0 (into +0), and
 // max(min(-0, 1), +0) is already the second operand, +0; NaN stays NaN through it and becomes 1
 // through min(z, 1) either way.
-RASTERCMP_AVX512 inline __m512 finish_depth16(__m512 z, const KernelDepth& d) {
+RASTERCMP_AVX512 inline __m512 finish_depth16(__m512 z, const Depth16& d) {
   z = _mm512_max_ps(_mm512_min_ps(z, _mm512_set1_ps(1.0f)), _mm512_setzero_ps());
-  if (d.clamp) z = _mm512_max_ps(_mm512_min_ps(z, _mm512_set1_ps(d.zmax)), _mm512_set1_ps(d.zmin));
+  if (d.clamp) z = _mm512_max_ps(_mm512_min_ps(z, d.zmax), d.zmin);
   return z;
 }
 
@@ -87,8 +94,9 @@ struct Window {
 
 template <DepthFormat F, CompareOp Op>
 RASTERCMP_AVX512 void composite(const SmallBlockOutput& b, uint32_t owner_of_lane_0, int32_t row_lo, int32_t row_hi,
-                                const KernelDepth& depth, const TileTarget& t) {
+                                const KernelDepth& kernel, const TileTarget& t) {
   constexpr bool kDepth = F != DepthFormat::None;
+  const Depth16 depth{kernel.fma, kernel.clamp, kernel.write, _mm512_set1_ps(kernel.zmin), _mm512_set1_ps(kernel.zmax)};
   const int32_t wx0 = b.grid_x0, wy0 = row_lo;
   const int32_t width = b.grid_x1 - wx0 + 1, height = row_hi - wy0 + 1;  // <= kWindowWidth, kWindowHeight
   const int strips = width > kStrip ? 2 : 1;
