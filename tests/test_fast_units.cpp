@@ -90,31 +90,40 @@ TEST(FastVertices, Avx2PassEqualsScalarPass) {
   }
 }
 
-// G > 0 exactly where the exact 64-bit edge value E > 0, over random rectangles of a tile.
+// Eight triangles for the eight-wide set-up: lane l's corner k is the l-th vertex added for k.
+struct EightTriangles {
+  std::vector<FastVertex> vertices;
+  std::vector<uint32_t> corners[3];
+  void add(int k, float x, float y, float z) {
+    corners[k].push_back(uint32_t(vertices.size()));
+    vertices.push_back(FastVertex{x, y, z, 0});
+  }
+  // The block over the eight lanes (depth state left at its defaults); valid while this lives.
+  SmallBlockInput input(const PixelRect& region) const {
+    SmallBlockInput in;
+    in.vertices = vertices.data();
+    for (int k = 0; k < 3; ++k) in.corners[k] = corners[k].data();
+    in.count = 8;
+    in.region = region;
+    return in;
+  }
+};
+
 // Eight triangles of about a pixel: the block takes the packed 4x4 layout, and grid_words holds
 // each grid lane's 16 bits (lane 4w + k at bit 16k of word w) equal to its grid_bits.
 TEST(FastSmallTriangles, PackedGridWordsHoldEachLanesBits) {
   if (!host_has_avx2_fma()) GTEST_SKIP() << "host without AVX2/FMA: the eight-wide set-up does not run";
   fast_test::Random r(11);
   for (int trial = 0; trial < 200; ++trial) {
-    std::vector<FastVertex> vertices;
-    std::vector<uint32_t> corners[3];
+    EightTriangles block;
     for (int l = 0; l < 8; ++l) {
       const float cx = float(r.range(4.0, 60.0)), cy = float(r.range(4.0, 60.0));
       for (int k = 0; k < 3; ++k) {
-        FastVertex v{};
-        v.x = cx + float(r.range(-1.2, 1.2));
-        v.y = cy + float(r.range(-1.2, 1.2));
-        v.z = float(r.range(0.0, 1.0));
-        corners[k].push_back(uint32_t(vertices.size()));
-        vertices.push_back(v);
+        const float x = cx + float(r.range(-1.2, 1.2)), y = cy + float(r.range(-1.2, 1.2));
+        block.add(k, x, y, float(r.range(0.0, 1.0)));
       }
     }
-    SmallBlockInput in;
-    in.vertices = vertices.data();
-    for (int k = 0; k < 3; ++k) in.corners[k] = corners[k].data();
-    in.count = 8;
-    in.region = PixelRect{0, 0, 63, 63};
+    SmallBlockInput in = block.input(PixelRect{0, 0, 63, 63});
     in.depth.format = DepthFormat::D32Sfloat;
     SmallBlockOutput out;
     setup_small_block_avx2(in, out);
@@ -141,25 +150,16 @@ TEST(FastSmallTriangles, WindowCompositorEqualsGridScatter) {
   constexpr int32_t kSide = 48;
   int windows = 0;
   for (int trial = 0; trial < 600; ++trial) {
-    std::vector<FastVertex> vertices;
-    std::vector<uint32_t> corners[3];
+    EightTriangles block;
     const float bx = float(r.range(8.0, 20.0)), by = float(r.range(8.0, 30.0));
     for (int l = 0; l < 8; ++l) {  // a row of cells of about 3 px, jittered enough to overlap
       const float cx = bx + 3.0f * float(l / 2) + float(r.range(-1.0, 1.0)), cy = by + float(r.range(-1.0, 1.0));
       for (int k = 0; k < 3; ++k) {
-        FastVertex v{};
-        v.x = cx + float(r.range(-3.0, 3.0));
-        v.y = cy + float(r.range(-3.0, 3.0));
-        v.z = float(r.range(-0.2, 1.2));
-        corners[k].push_back(uint32_t(vertices.size()));
-        vertices.push_back(v);
+        const float x = cx + float(r.range(-3.0, 3.0)), y = cy + float(r.range(-3.0, 3.0));
+        block.add(k, x, y, float(r.range(-0.2, 1.2)));
       }
     }
-    SmallBlockInput in;
-    in.vertices = vertices.data();
-    for (int k = 0; k < 3; ++k) in.corners[k] = corners[k].data();
-    in.count = 8;
-    in.region = PixelRect{0, 0, kSide - 1, kSide - 1};
+    SmallBlockInput in = block.input(PixelRect{0, 0, kSide - 1, kSide - 1});
     in.depth.format = DepthFormat(trial % 4);
     in.depth.op = in.depth.format == DepthFormat::None ? CompareOp::Always : CompareOp(r.below(8));
     in.depth.write = in.depth.format != DepthFormat::None && !r.chance(0.2);
@@ -198,6 +198,7 @@ TEST(FastSmallTriangles, WindowCompositorEqualsGridScatter) {
   EXPECT_GT(windows, 300);  // most blocks of this shape take the window
 }
 
+// G > 0 exactly where the exact 64-bit edge value E > 0, over random rectangles of a tile.
 TEST(FastTileEdges, GFormAgreesWithExactEdgeValues) {
   fast_test::Random r(11);
   for (int trial = 0; trial < 400; ++trial) {
