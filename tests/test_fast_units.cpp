@@ -198,6 +198,96 @@ TEST(FastSmallTriangles, WindowCompositorEqualsGridScatter) {
   EXPECT_GT(windows, 300);  // most blocks of this shape take the window
 }
 
+// What a set-up output says about lane l that the drawing reads: its rectangle, and by class the
+// covered pixels with their raw depth (grid lanes, decoded with the output's own layout), the
+// kernel job, or the compositor's edge values and plane (window blocks).
+std::vector<int64_t> lane_meaning(const SmallBlockOutput& o, int l, DepthFormat format) {
+  const auto bits = [](float f) { return int64_t(std::bit_cast<uint32_t>(f)); };
+  std::vector<int64_t> m{o.x0[l], o.y0[l], o.x1[l], o.y1[l]};
+  if (o.window) {
+    for (int k = 0; k < 3; ++k) m.insert(m.end(), {o.e_window[k][l], o.gx[k][l], o.gy[k][l]});
+    m.insert(m.end(), {bits(o.a0[l]), bits(o.dzdx[l]), bits(o.dzdy[l])});
+  } else if ((o.grid_mask >> l) & 1u) {
+    const int side = 1 << o.grid_shift;
+    for (uint64_t b = o.grid_bits[l]; b != 0; b &= b - 1) {
+      const int p = std::countr_zero(b);
+      m.insert(m.end(), {p % side, p / side, format == DepthFormat::None ? 0 : int64_t(o.grid_raw[p][l])});
+    }
+    // the packed words, where the layout has them, hold the same bits
+    m.push_back(o.grid_shift != kSmallGridShift || ((o.grid_words[l / 4] >> (16 * (l % 4))) & 0xFFFFu) == o.grid_bits[l]);
+  } else {
+    const KernelJob j = o.job(l, 1, CompareOp::Less);
+    m.insert(m.end(), {j.origin_x, bits(j.a0), bits(j.dzdx), bits(j.dzdy)});
+    for (int k = 0; k < 3; ++k) m.insert(m.end(), {j.g_minus_1[k], j.gx[k], j.gy[k]});
+  }
+  return m;
+}
+
+// The sixteen-wide set-up describes each of its two blocks as the eight-wide set-up does: the
+// same lane classes, rectangles, covered pixels and raw depths, kernel jobs and window blocks,
+// over triangles of every size class, flagged corners, cut regions, partial second blocks, every
+// depth format, cull mode and winding.
+TEST(FastSmallTriangles, PairSetupEqualsTwoBlocks) {
+  if (!host_has_avx512()) GTEST_SKIP() << "host without AVX-512: the sixteen-wide set-up does not run";
+  fast_test::Random r(31);
+  int seen[4] = {0, 0, 0, 0};  // scalar, job, grid, window lanes
+  for (int trial = 0; trial < 6000; ++trial) {
+    EightTriangles blocks[2];
+    const float spread = float(trial % 4 == 0 ? 1.2 : trial % 4 == 1 ? 3.0 : trial % 4 == 2 ? 6.0 : 20.0);
+    for (EightTriangles& block : blocks) {
+      const float bx = float(r.range(-8.0, 120.0)), by = float(r.range(-8.0, 120.0));
+      for (int l = 0; l < 8; ++l) {
+        const float cx = bx + float(r.range(-4.0, 4.0)), cy = by + float(r.range(-4.0, 4.0));
+        const float lane_spread = r.chance(0.1) ? 12.0f : spread;
+        for (int k = 0; k < 3; ++k)
+          block.add(k, cx + float(r.range(-lane_spread, lane_spread)), cy + float(r.range(-lane_spread, lane_spread)),
+                    float(r.range(-0.2, 1.2)));
+        if (r.chance(0.05)) block.vertices.back().flags = r.chance(0.5) ? kVertexSnapFailed : 1u;
+      }
+    }
+    const int32_t rx = int32_t(r.below(24)), ry = int32_t(r.below(24));
+    SmallBlockInput in0 = blocks[0].input(PixelRect{rx, ry, rx + 40 + int32_t(r.below(80)), ry + 40 + int32_t(r.below(80))});
+    in0.depth.format = DepthFormat(r.below(4));
+    in0.depth.op = in0.depth.format == DepthFormat::None ? CompareOp::Always : CompareOp(r.below(8));
+    in0.depth.write = r.chance(0.8);
+    in0.depth.clamp = r.chance(0.3);
+    in0.depth.zmin = 0.2f, in0.depth.zmax = 0.7f;
+    in0.depth.fma = r.chance(0.5);
+    in0.cull = CullMode(r.below(4));
+    in0.front_ccw = r.chance(0.5);
+    in0.window_ok = r.chance(0.7);
+    SmallBlockInput in1 = in0;
+    for (int k = 0; k < 3; ++k) in1.corners[k] = blocks[1].corners[k].data();
+    in1.count = r.chance(0.7) ? 8 : 1 + r.below(8);
+    for (uint32_t l = in1.count; l < 8; ++l)  // lanes past count repeat the block's first (fill_block_corners)
+      for (auto& corners : blocks[1].corners) corners[l] = corners[0];
+    SmallBlockOutput single[2], pair[2];
+    setup_small_block_avx512(in0, single[0]);
+    setup_small_block_avx512(in1, single[1]);
+    setup_small_pair_avx512(in0, in1, pair[0], pair[1]);
+    for (int b = 0; b < 2; ++b) {
+      const SmallBlockOutput &s = single[b], &p = pair[b];
+      ASSERT_EQ(s.scalar_mask, p.scalar_mask) << "trial " << trial << " block " << b;
+      ASSERT_EQ(s.job_mask, p.job_mask) << "trial " << trial << " block " << b;
+      ASSERT_EQ(s.grid_mask, p.grid_mask) << "trial " << trial << " block " << b;
+      seen[0] += std::popcount(s.scalar_mask), seen[1] += std::popcount(s.job_mask);
+      if (s.grid_mask == 0) continue;
+      ASSERT_EQ(s.window, p.window) << "trial " << trial << " block " << b;
+      seen[s.window ? 3 : 2] += std::popcount(s.grid_mask);
+      EXPECT_EQ(std::vector<int32_t>({s.grid_x0, s.grid_y0, s.grid_x1, s.grid_y1}),
+                std::vector<int32_t>({p.grid_x0, p.grid_y0, p.grid_x1, p.grid_y1}))
+          << "trial " << trial << " block " << b;
+      for (int l = 0; l < 8; ++l) {
+        if (((s.grid_mask | s.job_mask) >> l) & 1u) {
+          ASSERT_EQ(lane_meaning(s, l, in0.depth.format), lane_meaning(p, l, in0.depth.format))
+              << "trial " << trial << " block " << b << " lane " << l;
+        }
+      }
+    }
+  }
+  for (int c = 0; c < 4; ++c) EXPECT_GT(seen[c], 500) << "lane class " << c;
+}
+
 // G > 0 exactly where the exact 64-bit edge value E > 0, over random rectangles of a tile.
 TEST(FastTileEdges, GFormAgreesWithExactEdgeValues) {
   fast_test::Random r(11);

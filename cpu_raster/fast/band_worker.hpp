@@ -58,7 +58,7 @@ class BandWorker {
   uint32_t index_, workers_;
   std::vector<FastTriangle> batch_;
   std::vector<uint8_t> owned_rows_;  // per tile row: 1 when this worker draws it
-  SmallBlock block_;  // the small-triangle block being set up and drawn
+  SmallBlock block_, next_block_;  // the small-triangle blocks being set up and drawn
 };
 
 }  // namespace rastercmp::cpu::fast

@@ -82,6 +82,15 @@ using SmallSetupFn = void (*)(const SmallBlockInput& in, SmallBlockOutput& out);
 void setup_small_block_avx2(const SmallBlockInput& in, SmallBlockOutput& out);
 void setup_small_block_avx512(const SmallBlockInput& in, SmallBlockOutput& out);
 
+// The sixteen-wide set-up (small_pair_avx512.cpp, AVX-512 hosts): two blocks of one draw at once
+// (in1's corners and count are its own, the draw state is in0's). Each output describes what
+// setup_small_block_avx512 gives for its block: the same lane classes, rectangles, covered pixels
+// and raw depths, jobs and windows; its grid_shift may be the wider layout of the two blocks'.
+using SmallPairSetupFn = void (*)(const SmallBlockInput& in0, const SmallBlockInput& in1, SmallBlockOutput& out0,
+                                  SmallBlockOutput& out1);
+void setup_small_pair_avx512(const SmallBlockInput& in0, const SmallBlockInput& in1, SmallBlockOutput& out0,
+                             SmallBlockOutput& out1);
+
 struct SmallBlock {
   uint32_t first = 0;  // first primitive of the block
   SmallBlockInput in;

@@ -1,5 +1,5 @@
 // The window compositor (small_window.hpp), sixteen pixels per AVX-512 step. The depth arithmetic
-// is avx2_depth.hpp's, operation for operation, on sixteen lanes.
+// is avx512_depth.hpp's (avx2_depth.hpp's, operation for operation, on sixteen lanes).
 #include <immintrin.h>
 
 // GCC 12's own AVX-512 headers pass _mm512_undefined_ps() as the merge source of vminps and
@@ -14,6 +14,7 @@
 #include <bit>
 #include <utility>
 
+#include "cpu_raster/fast/avx512_depth.hpp"
 #include "cpu_raster/fast/cpu_features.hpp"
 #include "cpu_raster/fast/small_window.hpp"
 
@@ -22,42 +23,6 @@ namespace {
 
 constexpr int kStrip = 16;  // pixels per step; a window row is kWindowWidth / kStrip strips
 static_assert(kWindowWidth == 2 * kStrip && kGridSide <= kStrip);
-
-// FMA?(a, b, c) (mul_add8).
-RASTERCMP_AVX512 inline __m512 mul_add16(__m512 a, __m512 b, __m512 c, bool fma) {
-  return fma ? _mm512_fmadd_ps(a, b, c) : _mm512_add_ps(_mm512_mul_ps(a, b), c);
-}
-
-// The draw's depth state in registers (KernelDepth's fields, read once per block: the
-// compositor's stores go to memory the compiler cannot tell apart from a KernelDepth).
-struct Depth16 {
-  bool fma, clamp, write;
-  __m512 zmin, zmax;
-};
-
-// finish_depth8 with o = 0 (window blocks come from draws without depth bias): min(z, 1),
-// max(z, 0), the depth clamp; vminps/vmaxps return their second operand on NaN and when both
-// operands are zeros. finish_depth8's z + 0 is left out: it changes only -0 (into +0), and
-// max(min(-0, 1), +0) is already the second operand, +0; NaN stays NaN through it and becomes 1
-// through min(z, 1) either way.
-RASTERCMP_AVX512 inline __m512 finish_depth16(__m512 z, const Depth16& d) {
-  z = _mm512_max_ps(_mm512_min_ps(z, _mm512_set1_ps(1.0f)), _mm512_setzero_ps());
-  if (d.clamp) z = _mm512_max_ps(_mm512_min_ps(z, d.zmax), d.zmin);
-  return z;
-}
-
-// to_raw (§3.5): D24 by cvtps2dq (nearest even), D16 by the magic add.
-template <DepthFormat F>
-RASTERCMP_AVX512 inline __m512i to_raw16(__m512 z) {
-  if constexpr (F == DepthFormat::D32Sfloat) {
-    return _mm512_castps_si512(z);
-  } else if constexpr (F == DepthFormat::X8D24Unorm) {
-    return _mm512_cvtps_epi32(_mm512_mul_ps(z, _mm512_set1_ps(16777215.0f)));
-  } else {
-    const __m512 magic = _mm512_add_ps(_mm512_mul_ps(z, _mm512_set1_ps(0.9999847412109375f)), _mm512_set1_ps(128.0f));
-    return _mm512_and_si512(_mm512_castps_si512(magic), _mm512_set1_epi32(0xFFFF));
-  }
-}
 
 // depth_test_passes (§3.6) on the covered lanes: D32 with the unordered predicates (true whenever
 // NaN is involved), UNORM unsigned.
@@ -96,7 +61,7 @@ template <DepthFormat F, CompareOp Op>
 RASTERCMP_AVX512 void composite(const SmallBlockOutput& b, uint32_t owner_of_lane_0, int32_t row_lo, int32_t row_hi,
                                 const KernelDepth& kernel, const TileTarget& t) {
   constexpr bool kDepth = F != DepthFormat::None;
-  const Depth16 depth{kernel.fma, kernel.clamp, kernel.write, _mm512_set1_ps(kernel.zmin), _mm512_set1_ps(kernel.zmax)};
+  const Depth16 depth = depth16(kernel);
   const int32_t wx0 = b.grid_x0, wy0 = row_lo;
   const int32_t width = b.grid_x1 - wx0 + 1, height = row_hi - wy0 + 1;  // <= kWindowWidth, kWindowHeight
   const int strips = width > kStrip ? 2 : 1;

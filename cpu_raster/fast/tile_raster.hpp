@@ -36,6 +36,7 @@ struct FrameRaster {
   TileState* tiles = nullptr;  // tiles_x * tiles_y, row-major
   bool avx2 = false;
   SmallSetupFn small_setup = nullptr;  // the eight-wide set-up for this host (AVX2 hosts)
+  SmallPairSetupFn small_pair_setup = nullptr;  // the sixteen-wide one (AVX-512 hosts)
   bool bounds = false;  // depth bounds usable in this frame (tile_depth_bounds.hpp)
   uint32_t depth_clear_raw = 0;  // clear_depth_raw of the scene's clear value
 

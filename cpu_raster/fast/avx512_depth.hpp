@@ -1,0 +1,53 @@
+// Depth arithmetic of sixteen lanes, shared by the AVX-512 translation units (include only from
+// code compiled for AVX-512: every function carries RASTERCMP_AVX512): avx2_depth.hpp's
+// operations, one IEEE operation per intrinsic, on sixteen lanes.
+#pragma once
+
+#include <immintrin.h>
+
+#include "cpu_raster/fast/cpu_features.hpp"
+#include "cpu_raster/fast/tile_kernel.hpp"
+
+namespace rastercmp::cpu::fast {
+
+// FMA?(a, b, c) (mul_add8).
+RASTERCMP_AVX512 inline __m512 mul_add16(__m512 a, __m512 b, __m512 c, bool fma) {
+  return fma ? _mm512_fmadd_ps(a, b, c) : _mm512_add_ps(_mm512_mul_ps(a, b), c);
+}
+
+// The draw's depth state in registers (KernelDepth's fields, read once per block: stores to
+// the attachments go to memory the compiler cannot tell apart from a KernelDepth).
+struct Depth16 {
+  bool fma, clamp, write;
+  __m512 zmin, zmax;
+};
+
+RASTERCMP_AVX512 inline Depth16 depth16(const KernelDepth& d) {
+  return Depth16{d.fma, d.clamp, d.write, _mm512_set1_ps(d.zmin), _mm512_set1_ps(d.zmax)};
+}
+
+// finish_depth8 with o = 0 (small triangles come from draws without depth bias): min(z, 1),
+// max(z, 0), the depth clamp; vminps/vmaxps return their second operand on NaN and when both
+// operands are zeros. finish_depth8's z + 0 is left out: it changes only -0 (into +0), and
+// max(min(-0, 1), +0) is already the second operand, +0; NaN stays NaN through it and becomes 1
+// through min(z, 1) either way.
+RASTERCMP_AVX512 inline __m512 finish_depth16(__m512 z, const Depth16& d) {
+  z = _mm512_max_ps(_mm512_min_ps(z, _mm512_set1_ps(1.0f)), _mm512_setzero_ps());
+  if (d.clamp) z = _mm512_max_ps(_mm512_min_ps(z, d.zmax), d.zmin);
+  return z;
+}
+
+// to_raw (§3.5): D24 by cvtps2dq (nearest even), D16 by the magic add.
+template <DepthFormat F>
+RASTERCMP_AVX512 inline __m512i to_raw16(__m512 z) {
+  if constexpr (F == DepthFormat::D32Sfloat) {
+    return _mm512_castps_si512(z);
+  } else if constexpr (F == DepthFormat::X8D24Unorm) {
+    return _mm512_cvtps_epi32(_mm512_mul_ps(z, _mm512_set1_ps(16777215.0f)));
+  } else {
+    const __m512 magic = _mm512_add_ps(_mm512_mul_ps(z, _mm512_set1_ps(0.9999847412109375f)), _mm512_set1_ps(128.0f));
+    return _mm512_and_si512(_mm512_castps_si512(magic), _mm512_set1_epi32(0xFFFF));
+  }
+}
+
+}  // namespace rastercmp::cpu::fast
