@@ -89,7 +89,7 @@ bool measure_rows(FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end) {
     const int16_t* tile_rows = frame.draws[d].tile_rows;
     uint32_t* block_rows = frame.draws[d].block_rows;
     const PixelRect region = frame.exact.region;
-    // small_blocks draws exist on AVX2 hosts only (their set-up is setup_small_block_avx2)
+    // small_blocks draws exist on AVX2 hosts only (AVX-512 hosts are AVX2 hosts too)
     for (; begin < full_end; ++begin)
       block_rows[begin] = list_block_tile_rows_avx2(indices + 24 * size_t(begin), tile_rows, positions, region, bad);
   }

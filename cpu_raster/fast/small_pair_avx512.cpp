@@ -225,15 +225,8 @@ RASTERCMP_AVX512 void evaluate_grid16(const GridLanes16& g, const Edge16 (&edges
   else evaluate_grid16<F, 3>(g, edges, plane, depth, pair);
 }
 
-// window_block (small_setup_simd.inl): grid lanes only, in the 8x8 layout, their union within
-// kWindowWidth x kWindowHeight.
-inline bool window_block(const SmallBlockOutput& out, int shift) {
-  return shift != kSmallGridShift && (out.job_mask | out.scalar_mask) == 0 && out.grid_x1 - out.grid_x0 < kWindowWidth &&
-         out.grid_y1 - out.grid_y0 < kWindowHeight;
-}
-
-// Block h's grid lanes: the union of their rectangles (the grid_x0.. fields) and the side their
-// own layout would take (columns and rows stored in `columns`, `rows`).
+// One block's grid lanes (`grid`: lanes of its half only): the union of their rectangles (the
+// grid_x0.. fields), and the columns and rows their own layout would take.
 RASTERCMP_AVX512 void measure_grid_half(Lanes grid, __m512i x0, __m512i y0, __m512i x1, __m512i y1, __m512i w, __m512i h,
                                         SmallBlockOutput& out, int& columns, int& rows) {
   out.grid_x0 = _mm512_mask_reduce_min_epi32(grid, x0);
@@ -315,7 +308,7 @@ RASTERCMP_AVX512 void setup_small_pair_avx512(const SmallBlockInput& in0, const 
     measure_grid_half(grid & kHalf[b], x0, y0, x1, y1, w, h, out, block_columns, block_rows);
     const int shift = block_columns <= kSmallGridSide && block_rows <= kSmallGridSide ? kSmallGridShift : 3;
     out.grid_shift = shift;
-    if (in0.window_ok && window_block(out, shift)) {
+    if (in0.window_ok && goes_to_window(out, shift)) {
       out.window = true;
       window |= kHalf[b];
       continue;

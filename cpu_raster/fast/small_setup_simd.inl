@@ -225,14 +225,6 @@ RASTERCMP_SMALL_TARGET int max_lane(__m256i v, __m256i mask) {
 }
 
 #ifdef RASTERCMP_SMALL_WINDOW
-// The block goes to the window compositor (small_window.hpp): grid lanes only, in the 8x8
-// layout (pixel-sized lanes keep the packed 4x4 scatter: measured, the compositor costs more on
-// them), their union within kWindowWidth x kWindowHeight.
-inline bool window_block(const SmallBlockOutput& out, int shift) {
-  return shift != kSmallGridShift && (out.job_mask | out.scalar_mask) == 0 && out.grid_x1 - out.grid_x0 < kWindowWidth &&
-         out.grid_y1 - out.grid_y0 < kWindowHeight;
-}
-
 // What the compositor evaluates each lane from: E - 1 at (grid_x0, y0), the steps, the plane.
 RASTERCMP_SMALL_TARGET inline void store_window_lanes(const Edge8 (&edges)[3], const Plane8& plane, SmallBlockOutput& out) {
   const __m256i ox = _mm256_set1_epi32(out.grid_x0), oy = _mm256_load_si256(reinterpret_cast<const __m256i*>(out.y0));
@@ -318,7 +310,7 @@ RASTERCMP_SMALL_TARGET void RASTERCMP_SMALL_SETUP(const SmallBlockInput& in, Sma
     out.grid_x1 = max_of_lanes(_mm256_blendv_epi8(none_high, x1, grid));
     out.grid_y1 = max_of_lanes(_mm256_blendv_epi8(none_high, y1, grid));
 #ifdef RASTERCMP_SMALL_WINDOW
-    if (in.window_ok && window_block(out, shift)) {
+    if (in.window_ok && goes_to_window(out, shift)) {
       store_window_lanes(edges, plane, out);
       return;
     }

@@ -77,6 +77,15 @@ struct SmallBlockOutput {
   KernelJob job(int lane, uint32_t owner, CompareOp op) const;
 };
 
+// Whether a set-up block goes to the window compositor (small_window.hpp, AVX-512 set-ups): grid
+// lanes only, in the 8x8 layout (`shift` is the block's own; pixel-sized lanes keep the packed 4x4
+// scatter: measured, the compositor costs more on them), their union within kWindowWidth x
+// kWindowHeight.
+inline bool goes_to_window(const SmallBlockOutput& out, int shift) {
+  return shift != kSmallGridShift && (out.job_mask | out.scalar_mask) == 0 && out.grid_x1 - out.grid_x0 < kWindowWidth &&
+         out.grid_y1 - out.grid_y0 < kWindowHeight;
+}
+
 // The eight-wide set-up (small_setup_simd.inl), for AVX2 hosts and for AVX-512 hosts.
 using SmallSetupFn = void (*)(const SmallBlockInput& in, SmallBlockOutput& out);
 void setup_small_block_avx2(const SmallBlockInput& in, SmallBlockOutput& out);
