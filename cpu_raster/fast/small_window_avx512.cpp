@@ -50,20 +50,40 @@ RASTERCMP_AVX512 inline __mmask16 passing(__mmask16 covered, __m512i fragment, _
   }
 }
 
-// The attachments' window, row r strip s at [r][kStrip * s], 64-byte aligned so that a lane's
-// full-width store is forwarded to the next lane's load of the same strip.
+// The attachments' window in units of 8 columns x 2 rows, one zmm register each: unit (u, c) at
+// [u][kUnit * c] holds window rows 2u (lanes 0-7) and 2u + 1 (lanes 8-15), columns 8c..8c+7. A
+// triangle of a few pixels meets fewer units than 16-pixel row strips. 64-byte aligned, so
+// that a lane's full-width store is forwarded to the next lane's load of the same unit.
+constexpr int kUnitColumns = 8, kUnit = 16;
 struct Window {
-  alignas(64) uint32_t owner[kWindowHeight][kWindowWidth];
-  alignas(64) uint32_t depth[kWindowHeight][kWindowWidth];
+  alignas(64) uint32_t owner[kWindowHeight / 2][kWindowWidth * 2];
+  alignas(64) uint32_t depth[kWindowHeight / 2][kWindowWidth * 2];
 };
 
-// What every lane's loop starts from, for the eight lanes at once: its rows within [row_lo, row_hi]
-// as window rows, its first and last strip, E - 1 at column 0 of its first strip on its first
-// row (e_window moved by whole rows and strips: 32-bit adds and multiplies wrap, so the order of
-// the moves does not change the values, which lie in the lane's own rows and the window), and
-// the first row's y. `lanes`: the grid lanes with at least one row here.
+// Window rows 2u and 2u + 1 of attachment `image` (16 columns from x, `columns` of them in the
+// window) to units (u, 2s) and (u, 2s + 1), and back; the second row only where `two_rows`.
+RASTERCMP_AVX512 inline void load_units(const uint32_t* image, size_t row_pitch, __mmask16 columns, bool two_rows,
+                                        uint32_t* unit) {
+  const __m512i upper = _mm512_maskz_loadu_epi32(columns, image);
+  const __m512i lower = two_rows ? _mm512_maskz_loadu_epi32(columns, image + row_pitch) : _mm512_setzero_si512();
+  _mm512_store_si512(unit, _mm512_shuffle_i64x2(upper, lower, _MM_SHUFFLE(1, 0, 1, 0)));
+  _mm512_store_si512(unit + kUnit, _mm512_shuffle_i64x2(upper, lower, _MM_SHUFFLE(3, 2, 3, 2)));
+}
+
+RASTERCMP_AVX512 inline void store_units(const uint32_t* unit, __mmask16 columns, bool two_rows, uint32_t* image,
+                                         size_t row_pitch) {
+  const __m512i left = _mm512_load_si512(unit), right = _mm512_load_si512(unit + kUnit);
+  _mm512_mask_storeu_epi32(image, columns, _mm512_shuffle_i64x2(left, right, _MM_SHUFFLE(1, 0, 1, 0)));
+  if (two_rows) _mm512_mask_storeu_epi32(image + row_pitch, columns, _mm512_shuffle_i64x2(left, right, _MM_SHUFFLE(3, 2, 3, 2)));
+}
+
+// What every lane's loop starts from, for the eight lanes at once: its first and last unit row
+// and column, E - 1 at the first unit's top-left pixel (e_window moved by whole rows and
+// columns: 32-bit adds and multiplies wrap, so the order of the moves does not change the values,
+// which lie in the window and at most one row above the lane's rows) and that pixel's y.
+// `lanes`: the grid lanes with at least one row here.
 struct LaneStarts {
-  alignas(32) int32_t first_row[8], last_row[8], first_strip[8], last_strip[8];
+  alignas(32) int32_t first_unit_row[8], last_unit_row[8], first_column[8], last_column[8];
   alignas(32) int32_t e[3][8];
   alignas(32) float first_y[8];
   uint32_t lanes = 0;
@@ -74,28 +94,32 @@ RASTERCMP_AVX512 inline void store(int32_t* p, __m256i v) { _mm256_store_si256(r
 
 RASTERCMP_AVX512 inline LaneStarts lane_starts(const SmallBlockOutput& b, int32_t row_lo, int32_t row_hi) {
   LaneStarts s;
-  const __m256i wx0 = _mm256_set1_epi32(b.grid_x0), y0 = load(b.y0);
-  const __m256i y_first = _mm256_max_epi32(y0, _mm256_set1_epi32(row_lo));
-  const __m256i y_last = _mm256_min_epi32(load(b.y1), _mm256_set1_epi32(row_hi));
-  const __m256i strip_first = _mm256_srai_epi32(_mm256_sub_epi32(load(b.x0), wx0), 4);  // x0 >= grid_x0
-  static_assert(kStrip == 1 << 4);
-  const __m256i rows_down = _mm256_sub_epi32(y_first, y0), columns_right = _mm256_slli_epi32(strip_first, 4);
+  const __m256i wx0 = _mm256_set1_epi32(b.grid_x0), wy0 = _mm256_set1_epi32(row_lo), y0 = load(b.y0);
+  const __m256i y_first = _mm256_max_epi32(y0, wy0), y_last = _mm256_min_epi32(load(b.y1), _mm256_set1_epi32(row_hi));
+  const __m256i unit_row_first = _mm256_srai_epi32(_mm256_sub_epi32(y_first, wy0), 1);  // y_first >= row_lo
+  const __m256i column_first = _mm256_srai_epi32(_mm256_sub_epi32(load(b.x0), wx0), 3);  // x0 >= grid_x0
+  static_assert(kUnitColumns == 1 << 3);
+  const __m256i top = _mm256_add_epi32(wy0, _mm256_slli_epi32(unit_row_first, 1));  // y_first or y_first - 1
+  const __m256i rows_down = _mm256_sub_epi32(top, y0), columns_right = _mm256_slli_epi32(column_first, 3);
   for (int k = 0; k < 3; ++k) {
     const __m256i down = _mm256_mullo_epi32(rows_down, load(b.gy[k]));
     const __m256i right = _mm256_mullo_epi32(columns_right, load(b.gx[k]));
     store(s.e[k], _mm256_add_epi32(_mm256_add_epi32(load(b.e_window[k]), down), right));
   }
-  const __m256i wy0 = _mm256_set1_epi32(row_lo);
-  store(s.first_row, _mm256_sub_epi32(y_first, wy0));
-  store(s.last_row, _mm256_sub_epi32(y_last, wy0));
-  store(s.first_strip, strip_first);
-  store(s.last_strip, _mm256_srai_epi32(_mm256_sub_epi32(load(b.x1), wx0), 4));
-  _mm256_store_ps(s.first_y, _mm256_cvtepi32_ps(y_first));  // exact: integers below 2^24
+  store(s.first_unit_row, unit_row_first);
+  store(s.last_unit_row, _mm256_srai_epi32(_mm256_sub_epi32(y_last, wy0), 1));
+  store(s.first_column, column_first);
+  store(s.last_column, _mm256_srai_epi32(_mm256_sub_epi32(load(b.x1), wx0), 3));
+  _mm256_store_ps(s.first_y, _mm256_cvtepi32_ps(top));  // exact: integers below 2^24
   const uint32_t empty = _mm256_cmpgt_epi32_mask(y_first, y_last);
   s.lanes = b.grid_mask & ~empty;
   return s;
 }
 
+// A unit's pixels can lie outside a lane's rows: above its first row (a unit row that starts
+// one row earlier) or below its last. There the lane covers nothing when the row is outside its
+// bounding box too; the one row it may cover is row_hi + 1 (the lane's box reaches into another
+// worker's rows), which is in the buffer (height odd: 2u + 1 = height <= 15) but never stored back.
 template <DepthFormat F, CompareOp Op>
 RASTERCMP_AVX512 void composite(const SmallBlockOutput& b, uint32_t owner_of_lane_0, int32_t row_lo, int32_t row_hi,
                                 const KernelDepth& kernel, const TileTarget& t) {
@@ -103,36 +127,43 @@ RASTERCMP_AVX512 void composite(const SmallBlockOutput& b, uint32_t owner_of_lan
   const Depth16 depth = depth16(kernel);
   const int32_t wx0 = b.grid_x0, wy0 = row_lo;
   const int32_t width = b.grid_x1 - wx0 + 1, height = row_hi - wy0 + 1;  // <= kWindowWidth, kWindowHeight
-  const int strips = width > kStrip ? 2 : 1;
+  const int strips = width > kStrip ? 2 : 1, unit_rows = (height + 1) / 2;
   const __mmask16 columns[2] = {__mmask16(width >= kStrip ? 0xFFFFu : (1u << width) - 1u),
                                 __mmask16(width > kStrip ? (1u << (width - kStrip)) - 1u : 0u)};
+  const size_t pitch = size_t(t.width);
   Window w;
-  for (int32_t r = 0; r < height; ++r) {
+  for (int u = 0; u < unit_rows; ++u) {
+    const bool two_rows = 2 * u + 1 < height;
     for (int s = 0; s < strips; ++s) {
-      const size_t i = size_t(wy0 + r) * size_t(t.width) + size_t(wx0 + kStrip * s);
-      _mm512_store_si512(&w.owner[r][kStrip * s], _mm512_maskz_loadu_epi32(columns[s], t.owner + i));
-      if constexpr (kDepth) _mm512_store_si512(&w.depth[r][kStrip * s], _mm512_maskz_loadu_epi32(columns[s], t.depth + i));
+      const size_t i = size_t(wy0 + 2 * u) * pitch + size_t(wx0 + kStrip * s);
+      load_units(t.owner + i, pitch, columns[s], two_rows, &w.owner[u][2 * kUnit * s]);
+      if constexpr (kDepth) load_units(t.depth + i, pitch, columns[s], two_rows, &w.depth[u][2 * kUnit * s]);
     }
   }
   const LaneStarts starts = lane_starts(b, row_lo, row_hi);
-  const __m512i iota = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
-  const __m512 px0 = _mm512_cvtepi32_ps(_mm512_add_epi32(_mm512_set1_epi32(wx0), iota));  // exact: < 2^24
+  const __m512i column_of = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 0, 1, 2, 3, 4, 5, 6, 7);
+  const __m512i row_of = _mm512_setr_epi32(0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1);
+  const __m512 px0 = _mm512_cvtepi32_ps(_mm512_add_epi32(_mm512_set1_epi32(wx0), column_of));  // exact: < 2^24
+  const __m512 row_of_ps = _mm512_cvtepi32_ps(row_of);
   for (uint32_t lanes = starts.lanes; lanes != 0; lanes &= lanes - 1) {
     const int l = std::countr_zero(lanes);
     const __m512i owner = _mm512_set1_epi32(int32_t(owner_of_lane_0 + uint32_t(l)));
-    __m512i e0[3], gy[3];
+    __m512i e0[3], gy2[3];
     for (int k = 0; k < 3; ++k) {
-      e0[k] = _mm512_add_epi32(_mm512_set1_epi32(starts.e[k][l]), _mm512_mullo_epi32(iota, _mm512_set1_epi32(b.gx[k][l])));
-      gy[k] = _mm512_set1_epi32(b.gy[k][l]);
+      const __m512i gx = _mm512_set1_epi32(b.gx[k][l]), gy = _mm512_set1_epi32(b.gy[k][l]);
+      const __m512i offsets = _mm512_add_epi32(_mm512_mullo_epi32(column_of, gx), _mm512_mullo_epi32(row_of, gy));
+      e0[k] = _mm512_add_epi32(_mm512_set1_epi32(starts.e[k][l]), offsets);
+      gy2[k] = _mm512_slli_epi32(gy, 1);
     }
     const __m512 a0 = _mm512_set1_ps(b.a0[l]), dzdx = _mm512_set1_ps(b.dzdx[l]), dzdy = _mm512_set1_ps(b.dzdy[l]);
-    const int32_t r_first = starts.first_row[l], r_last = starts.last_row[l];
-    for (int s = starts.first_strip[l];; ++s) {
-      const __m512 px = s == 0 ? px0 : _mm512_add_ps(px0, _mm512_set1_ps(float(kStrip)));  // exact
+    const __m512 py0 = _mm512_add_ps(_mm512_set1_ps(starts.first_y[l]), row_of_ps);  // exact: integers below 2^24
+    const int u_first = starts.first_unit_row[l], u_last = starts.last_unit_row[l];
+    for (int c = starts.first_column[l];; ++c) {
+      const __m512 px = _mm512_add_ps(px0, _mm512_set1_ps(float(kUnitColumns * c)));  // exact
       const __m512 inner = kDepth ? mul_add16(dzdx, px, a0, depth.fma) : __m512{};  // FMA?(dzdx, px, a0)
-      __m512 py = _mm512_set1_ps(starts.first_y[l]);  // exact: integers below 2^24
+      __m512 py = py0;
       __m512i e[3] = {e0[0], e0[1], e0[2]};
-      for (int32_t r = r_first; r <= r_last; ++r) {
+      for (int u = u_first; u <= u_last; ++u) {
         // covered: every E - 1 >= 0, i.e. the sign bit of e0 | e1 | e2 clear
         const __mmask16 covered = _mm512_cmpge_epi32_mask(_mm512_ternarylogic_epi32(e[0], e[1], e[2], 0xFE),
                                                           _mm512_setzero_si512());
@@ -140,25 +171,26 @@ RASTERCMP_AVX512 void composite(const SmallBlockOutput& b, uint32_t owner_of_lan
         if constexpr (kDepth) {
           const __m512 z = finish_depth16(mul_add16(dzdy, py, inner, depth.fma), depth);
           const __m512i raw = to_raw16<F>(z);
-          uint32_t* row = &w.depth[r][kStrip * s];
-          const __m512i stored = _mm512_load_si512(row);
+          uint32_t* unit = &w.depth[u][kUnit * c];
+          const __m512i stored = _mm512_load_si512(unit);
           pass = passing<F, Op>(covered, raw, stored);
-          if (depth.write) _mm512_store_si512(row, _mm512_mask_mov_epi32(stored, pass, raw));
+          if (depth.write) _mm512_store_si512(unit, _mm512_mask_mov_epi32(stored, pass, raw));
         }
-        uint32_t* owners = &w.owner[r][kStrip * s];
+        uint32_t* owners = &w.owner[u][kUnit * c];
         _mm512_store_si512(owners, _mm512_mask_mov_epi32(_mm512_load_si512(owners), pass, owner));
-        for (int k = 0; k < 3; ++k) e[k] = _mm512_add_epi32(e[k], gy[k]);
-        py = _mm512_add_ps(py, _mm512_set1_ps(1.0f));
+        for (int k = 0; k < 3; ++k) e[k] = _mm512_add_epi32(e[k], gy2[k]);
+        py = _mm512_add_ps(py, _mm512_set1_ps(2.0f));
       }
-      if (s == starts.last_strip[l]) break;
-      for (int k = 0; k < 3; ++k) e0[k] = _mm512_add_epi32(e0[k], _mm512_slli_epi32(_mm512_set1_epi32(b.gx[k][l]), 4));
+      if (c == starts.last_column[l]) break;
+      for (int k = 0; k < 3; ++k) e0[k] = _mm512_add_epi32(e0[k], _mm512_slli_epi32(_mm512_set1_epi32(b.gx[k][l]), 3));
     }
   }
-  for (int32_t r = 0; r < height; ++r) {
+  for (int u = 0; u < unit_rows; ++u) {
+    const bool two_rows = 2 * u + 1 < height;
     for (int s = 0; s < strips; ++s) {
-      const size_t i = size_t(wy0 + r) * size_t(t.width) + size_t(wx0 + kStrip * s);
-      _mm512_mask_storeu_epi32(t.owner + i, columns[s], _mm512_load_si512(&w.owner[r][kStrip * s]));
-      if (kDepth && depth.write) _mm512_mask_storeu_epi32(t.depth + i, columns[s], _mm512_load_si512(&w.depth[r][kStrip * s]));
+      const size_t i = size_t(wy0 + 2 * u) * pitch + size_t(wx0 + kStrip * s);
+      store_units(&w.owner[u][2 * kUnit * s], columns[s], two_rows, t.owner + i, pitch);
+      if (kDepth && depth.write) store_units(&w.depth[u][2 * kUnit * s], columns[s], two_rows, t.depth + i, pitch);
     }
   }
 }
