@@ -140,6 +140,37 @@ TEST(FastWindowMeshes, WindowCompositorMatchesExactPath) {
     expect_fast_matches(jittered_mesh(seed, 2.0, 4.0), seed % 2 == 0, {1u, 2u, 3u});
 }
 
+// Triangles whose leftmost and topmost corners lie on a pixel's sample or 1/256 px beside it, with a
+// vertical left edge, a horizontal top edge or neither, overlapping in depth: the fast path's
+// rectangle (x0 = (min + 255) >> 8, band_worker.cpp) leaves out only a column or row with no
+// sample in the triangle. A rectangle one column too narrow drops the covered samples of the
+// left and top edges that lie on sample positions.
+TEST(FastBoundingBox, CornersOnAndBesideSamplePositions) {
+  Scene scene;
+  scene.name = "fast.bbox.corners";
+  scene.width = scene.height = 256;
+  Draw draw;
+  draw.name = "corners";
+  const auto clip = [](double sample) { return float((sample + 0.5) / 128.0 - 1.0); };  // exact
+  int cell = 0;
+  for (int fx = -1; fx <= 1; ++fx) {
+    for (int fy = -1; fy <= 1; ++fy, ++cell) {
+      const double x = 10.0 + 80.0 * (cell % 3) + fx / 256.0, y = 10.0 + 80.0 * (cell / 3) + fy / 256.0;
+      const double shapes[3][3][2] = {{{x, y}, {x, y + 50}, {x + 50, y + 20}},          // vertical left edge
+                                      {{x, y}, {x + 50, y}, {x + 20, y + 50}},          // horizontal top edge
+                                      {{x, y + 7}, {x + 45, y}, {x + 30, y + 55}}};     // neither
+      for (int s = 0; s < 3; ++s) {
+        for (const auto& corner : shapes[s])
+          draw.positions_clip.emplace_back(clip(corner[0]), clip(corner[1]), 0.7f - 0.2f * float(s) + 0.001f * float(corner[0] - x),
+                                           1.0f);
+      }
+    }
+  }
+  scene.draws.push_back(std::move(draw));
+  expect_fast_matches(scene, true);
+  expect_fast_matches(scene, false);
+}
+
 // The fast clear skips a tile's clear only when the first triangle replaces every value of it.
 TEST(FastClear, TilesKeepTheirClearValuesUnderDepthWritesOff) {
   for (const DepthFormat format : {DepthFormat::D16Unorm, DepthFormat::X8D24Unorm, DepthFormat::D32Sfloat}) {

@@ -141,12 +141,15 @@ void BandWorker::triangle(uint32_t d, uint32_t primitive, uint32_t a, uint32_t b
   if (flags & kVertexSnapFailed) return;  // SetupFate::NonFinite
   const PixelRect& region = frame_.exact.region;
   const int32_t fy[3] = {snap_fixed(v0.y), snap_fixed(v1.y), snap_fixed(v2.y)};  // §2.2
-  // triangle_bbox (x0 = min >> 8, x1 = (max - 1) >> 8) ∩ draw region; coverage lies inside it.
-  const int32_t y0 = std::max(std::min({fy[0], fy[1], fy[2]}) >> kFixedOrder, region.y0);
+  // triangle_bbox (x0 = min >> 8, x1 = (max - 1) >> 8) ∩ draw region holds the coverage (§2.5);
+  // so does the tighter x0 = (min + 255) >> 8: the sample of pixel x lies at x * 256, and one left
+  // of (or above) every corner is outside the triangle. The tighter rectangle keeps a column or
+  // row that can hold no fragment out of the depth bounds' "values under r" (tile_raster.cpp).
+  const int32_t y0 = std::max((std::min({fy[0], fy[1], fy[2]}) + kFixedOne - 1) >> kFixedOrder, region.y0);
   const int32_t y1 = std::min((std::max({fy[0], fy[1], fy[2]}) - 1) >> kFixedOrder, region.y1);
   if (y0 > y1 || !owns_rows(y0, y1)) return;
   const int32_t fx[3] = {snap_fixed(v0.x), snap_fixed(v1.x), snap_fixed(v2.x)};
-  const int32_t x0 = std::max(std::min({fx[0], fx[1], fx[2]}) >> kFixedOrder, region.x0);
+  const int32_t x0 = std::max((std::min({fx[0], fx[1], fx[2]}) + kFixedOne - 1) >> kFixedOrder, region.x0);
   const int32_t x1 = std::min((std::max({fx[0], fx[1], fx[2]}) - 1) >> kFixedOrder, region.x1);
   if (x0 > x1) return;
   // area = dx01*dy20 - dx20*dy01 (§2.3), int64
