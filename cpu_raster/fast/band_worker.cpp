@@ -9,6 +9,8 @@
 #include "cpu_raster/clip_vertex.hpp"
 #include "cpu_raster/depth_plane.hpp"
 #include "cpu_raster/fast/small_block_input.hpp"
+#include "cpu_raster/fast/tile_depth_bounds.hpp"
+#include "cpu_raster/fast/tile_edges.hpp"
 #include "cpu_raster/pipeline_cull.hpp"
 #include "cpu_raster/triangle_setup.hpp"
 #include "model/render_result.hpp"
@@ -224,7 +226,8 @@ void BandWorker::raster_all_tiles(const FastTriangle& t, const DrawRaster& raste
   }
 }
 
-// Tile by tile over the batch's union, each tile's triangles in submission order.
+// Tile by tile over the batch's union, each tile's triangles in submission order, from the first
+// whose writes are not all replaced by a later one (first_visible).
 void BandWorker::flush(const DrawRaster& raster) {
   if (batch_.empty()) return;
   PixelRect all = batch_.front().rect;
@@ -235,6 +238,11 @@ void BandWorker::flush(const DrawRaster& raster) {
     if (!owns_tile_row(ty)) continue;
     for (int32_t tx = all.x0 >> kTileOrder; tx <= all.x1 >> kTileOrder; ++tx) {
       const PixelRect tile = tile_rect(tx, ty, frame_.raster.target);
+      if (may_hide(tile, raster)) {  // prepared once, drawn from the first visible
+        for (size_t i = first_visible(tile, raster); i < batch_.size(); ++i)
+          raster_prepared(batch_[i], prepared_[i], tx, ty, raster, frame_.raster);
+        continue;
+      }
       for (const FastTriangle& t : batch_) {
         const PixelRect r = intersect(t.rect, tile);
         if (!r.empty()) raster_in_tile(t, r, tx, ty, raster, frame_.raster);
@@ -242,6 +250,54 @@ void BandWorker::flush(const DrawRaster& raster) {
     }
   }
   batch_.clear();
+}
+
+// Whether a triangle of the batch may replace every value an earlier one leaves in the tile
+// (first_visible): depth bounds and writes on, and a triangle after the first that reaches the
+// tile whose rectangle holds the whole tile.
+bool BandWorker::may_hide(const PixelRect& tile, const DrawRaster& raster) const {
+  if (!raster.bounds || !raster.depth.write) return false;
+  bool earlier = false;
+  for (const FastTriangle& t : batch_) {
+    const PixelRect& r = t.rect;
+    if (r.x0 > tile.x1 || r.x1 < tile.x0 || r.y0 > tile.y1 || r.y1 < tile.y0) continue;
+    if (earlier && r.x0 <= tile.x0 && r.y0 <= tile.y0 && r.x1 >= tile.x1 && r.y1 >= tile.y1) return true;
+    earlier = true;
+  }
+  return false;
+}
+
+// The last triangle of the batch that covers every pixel of the tile and passes the depth test
+// against every fragment the batch's earlier triangles have in the tile (their ranges), with depth
+// writes on. Wherever an earlier triangle writes, the tile then holds one of those fragments when
+// this triangle comes, so it writes there too and replaces what the earlier one left; wherever no
+// earlier triangle writes, leaving them out changes nothing. Drawing from it therefore gives the
+// same bytes ("occluded batch triangles", docs/performance.md, log 52); it is itself drawn as
+// always, against what the tile holds. 0 when there is none or nothing can be proven. Fills
+// prepared_ with every triangle's edges and range in the tile (prepare_in_tile), which flush then
+// draws from.
+size_t BandWorker::first_visible(const PixelRect& tile, const DrawRaster& raster) {
+  prepared_.resize(batch_.size());
+  bool earlier = false, provable = true;
+  TileBounds fragments{UINT32_MAX, 0, BoundsState::Exact};  // range of the earlier triangles' fragments
+  size_t first = 0;
+  for (size_t i = 0; i < batch_.size(); ++i) {
+    TileTriangle& p = prepared_[i];
+    const PixelRect r = intersect(batch_[i].rect, tile);
+    p = r.empty() ? TileTriangle{} : prepare_in_tile(batch_[i], r, raster, true);  // TileTriangle{}: edges None
+    if (p.edges.fit == EdgeFit::None || !provable) continue;  // no sample of r in the triangle
+    if (!p.ranged) {
+      provable = false;  // nothing later can be proven
+      continue;
+    }
+    if (earlier && p.edges.all_in && r.x0 == tile.x0 && r.y0 == tile.y0 && r.x1 == tile.x1 && r.y1 == tile.y1 &&
+        classify_depth(raster.depth.op, p.fragment, fragments) == DepthVerdict::AllPass)
+      first = i;
+    fragments.zmin = std::min(fragments.zmin, p.fragment.lo);
+    fragments.zmax = std::max(fragments.zmax, p.fragment.hi);
+    earlier = true;
+  }
+  return first;
 }
 
 // Draws the fast path does not handle: the exact front end, each primitive's visit rectangle cut

@@ -52,11 +52,14 @@ class BandWorker {
   void submit(const FastTriangle& t, const DrawRaster& raster);
   void raster_all_tiles(const FastTriangle& t, const DrawRaster& raster);
   void flush(const DrawRaster& raster);
+  bool may_hide(const PixelRect& tile, const DrawRaster& raster) const;
+  size_t first_visible(const PixelRect& tile, const DrawRaster& raster);
   void prepare_tiles(const PixelRect& r, bool depth_write);
 
   FastFrame& frame_;
   uint32_t index_, workers_;
   std::vector<FastTriangle> batch_;
+  std::vector<TileTriangle> prepared_;  // flush: the batch's triangles in the current tile
   std::vector<uint8_t> owned_rows_;  // per tile row: 1 when this worker draws it
   SmallBlock block_, next_block_;  // the small-triangle blocks being set up and drawn
 };

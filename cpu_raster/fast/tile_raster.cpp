@@ -51,11 +51,26 @@ DrawRaster make_draw_raster(const DepthTestState& depth, bool frame_bounds, bool
   return draw;
 }
 
+TileTriangle prepare_in_tile(const FastTriangle& t, const PixelRect& r, const DrawRaster& draw, bool range_small) {
+  TileTriangle p;
+  p.r = r;
+  p.edges = setup_tile_edges(t, r, p.job);
+  if (p.edges.fit == EdgeFit::None) return p;
+  p.ranged = draw.bounds && (range_small || area(r) >= kBoundsMinArea) && fragment_range(t, r, draw.depth, p.fragment);
+  return p;
+}
+
 void raster_in_tile(const FastTriangle& t, const PixelRect& r, int32_t tile_x, int32_t tile_y,
                     const DrawRaster& draw, const FrameRaster& frame) {
-  KernelJob job;
-  const EdgeSetup edges = setup_tile_edges(t, r, job);
+  raster_prepared(t, prepare_in_tile(t, r, draw, false), tile_x, tile_y, draw, frame);
+}
+
+void raster_prepared(const FastTriangle& t, const TileTriangle& prepared, int32_t tile_x, int32_t tile_y,
+                     const DrawRaster& draw, const FrameRaster& frame) {
+  const EdgeSetup& edges = prepared.edges;
   if (edges.fit == EdgeFit::None) return;
+  const PixelRect& r = prepared.r;
+  KernelJob job = prepared.job;
   job.a0 = t.a0;
   job.dzdx = t.dzdx;
   job.dzdy = t.dzdy;
@@ -66,10 +81,10 @@ void raster_in_tile(const FastTriangle& t, const PixelRect& r, int32_t tile_x, i
   TileState& state = frame.tile(tile_x, tile_y);
   TileBounds& tile = state.bounds;
   const PixelRect whole_tile = tile_rect(tile_x, tile_y, frame.target);
-  FragmentRange fragment;
+  const FragmentRange& fragment = prepared.fragment;
   bool ranged = false;
   DepthVerdict verdict = DepthVerdict::PerPixel;
-  if (draw.bounds && area(r) >= kBoundsMinArea && fragment_range(t, r, draw.depth, fragment)) {
+  if (draw.bounds && area(r) >= kBoundsMinArea && prepared.ranged) {
     const bool whole = same_rect(r, whole_tile), measurable = area(r) >= kMeasureMinArea && state.cleared;
     if (tile.state != BoundsState::Exact && whole && measurable)
       measure_bounds(frame.target.depth, frame.target.width, whole_tile, frame.avx2, tile);

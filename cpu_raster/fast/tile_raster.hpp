@@ -10,6 +10,7 @@
 #include "cpu_raster/fast/small_triangles.hpp"
 #include "cpu_raster/fast/small_window.hpp"
 #include "cpu_raster/fast/tile_depth_bounds.hpp"
+#include "cpu_raster/fast/tile_edges.hpp"
 #include "cpu_raster/fast/tile_kernel.hpp"
 #include "cpu_raster/rasterize.hpp"
 
@@ -48,9 +49,23 @@ struct FrameRaster {
 // avx512 (which implies avx2): the window compositor too.
 DrawRaster make_draw_raster(const DepthTestState& depth, bool frame_bounds, bool avx2, bool avx512);
 
+// What raster_in_tile computes first for a triangle and a rectangle of a tile: the kernel job's
+// edges (none: no sample of r in the triangle) and, with depth bounds, its fragments' range.
+struct TileTriangle {
+  PixelRect r;
+  KernelJob job;
+  EdgeSetup edges;
+  FragmentRange fragment;
+  bool ranged = false;  // fragment holds the range
+};
+// range_small: the range also for rectangles below the area the bounds are used at.
+TileTriangle prepare_in_tile(const FastTriangle& t, const PixelRect& r, const DrawRaster& draw, bool range_small);
+
 // Rectangle r lies inside tile (tile_x, tile_y) and inside the triangle's rect.
 void raster_in_tile(const FastTriangle& t, const PixelRect& r, int32_t tile_x, int32_t tile_y,
                     const DrawRaster& draw, const FrameRaster& frame);
+void raster_prepared(const FastTriangle& t, const TileTriangle& prepared, int32_t tile_x, int32_t tile_y,
+                     const DrawRaster& draw, const FrameRaster& frame);
 
 // Writes the clear values (kOwnerBackground, the packed depth clear) into a tile's pixels.
 void clear_tile(int32_t tile_x, int32_t tile_y, const FrameRaster& frame);
