@@ -174,7 +174,7 @@ RASTERCMP_AVX512 void composite(const SmallBlockOutput& b, uint32_t owner_of_lan
           uint32_t* unit = &w.depth[u][kUnit * c];
           const __m512i stored = _mm512_load_si512(unit);
           pass = passing<F, Op>(covered, raw, stored);
-          if (depth.write) _mm512_store_si512(unit, _mm512_mask_mov_epi32(stored, pass, raw));
+          if (depth.write) _mm512_mask_store_epi32(unit, pass, raw);
         }
         uint32_t* owners = &w.owner[u][kUnit * c];
         _mm512_store_si512(owners, _mm512_mask_mov_epi32(_mm512_load_si512(owners), pass, owner));
