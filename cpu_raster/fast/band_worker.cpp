@@ -272,7 +272,7 @@ bool BandWorker::may_hide(const PixelRect& tile, const DrawRaster& raster) const
 // writes on. Wherever an earlier triangle writes, the tile then holds one of those fragments when
 // this triangle comes, so it writes there too and replaces what the earlier one left; wherever no
 // earlier triangle writes, leaving them out changes nothing. Drawing from it therefore gives the
-// same bytes ("occluded batch triangles", docs/performance.md, log 52); it is itself drawn as
+// same bytes ("occluded batch triangles", docs/performance.md, log 54); it is itself drawn as
 // always, against what the tile holds. 0 when there is none or nothing can be proven. Fills
 // prepared_ with every triangle's edges and range in the tile (prepare_in_tile), which flush then
 // draws from.

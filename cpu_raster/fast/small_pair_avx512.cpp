@@ -255,8 +255,12 @@ RASTERCMP_AVX512 void setup_small_pair_avx512(const SmallBlockInput& in0, const 
   const __m512i by0 = _mm512_srai_epi32(min3(p0.y_fixed, p1.y_fixed, p2.y_fixed), 8);
   const __m512i by1 = _mm512_srai_epi32(_mm512_sub_epi32(max3(p0.y_fixed, p1.y_fixed, p2.y_fixed), one), 8);
   const PixelRect& region = in0.region;
-  const __m512i x0 = _mm512_max_epi32(bx0, splat(region.x0)), x1 = _mm512_min_epi32(bx1, splat(region.x1));
-  const __m512i y0 = _mm512_max_epi32(by0, splat(region.y0)), y1 = _mm512_min_epi32(by1, splat(region.y1));
+  // The rectangle starts at the first column and row whose sample can be in the triangle,
+  // (min + 255) >> 8 (BandWorker::triangle); `small` keeps lavapipe's box (the 32-bit bound).
+  const __m512i tx0 = _mm512_srai_epi32(_mm512_add_epi32(min3(p0.x_fixed, p1.x_fixed, p2.x_fixed), splat(kFixedOne - 1)), 8);
+  const __m512i ty0 = _mm512_srai_epi32(_mm512_add_epi32(min3(p0.y_fixed, p1.y_fixed, p2.y_fixed), splat(kFixedOne - 1)), 8);
+  const __m512i x0 = _mm512_max_epi32(tx0, splat(region.x0)), x1 = _mm512_min_epi32(bx1, splat(region.x1));
+  const __m512i y0 = _mm512_max_epi32(ty0, splat(region.y0)), y1 = _mm512_min_epi32(by1, splat(region.y1));
   const Lanes small = _mm512_cmplt_epi32_mask(_mm512_sub_epi32(bx1, bx0), splat(kSmallWidth)) &
                       _mm512_cmplt_epi32_mask(_mm512_sub_epi32(by1, by0), splat(kSmallHeight));
   const Lanes one_tile = _mm512_cmpeq_epi32_mask(_mm512_srai_epi32(x0, kTileOrder), _mm512_srai_epi32(x1, kTileOrder)) &

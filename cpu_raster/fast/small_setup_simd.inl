@@ -255,9 +255,14 @@ RASTERCMP_SMALL_TARGET void RASTERCMP_SMALL_SETUP(const SmallBlockInput& in, Sma
   const __m256i bx1 = _mm256_srai_epi32(_mm256_sub_epi32(max3(p0.x_fixed, p1.x_fixed, p2.x_fixed), one), 8);
   const __m256i by0 = _mm256_srai_epi32(min3(p0.y_fixed, p1.y_fixed, p2.y_fixed), 8);
   const __m256i by1 = _mm256_srai_epi32(_mm256_sub_epi32(max3(p0.y_fixed, p1.y_fixed, p2.y_fixed), one), 8);
-  const __m256i x0 = _mm256_max_epi32(bx0, _mm256_set1_epi32(in.region.x0));
+  // The rectangle starts at the first column and row whose sample can be in the triangle,
+  // (min + 255) >> 8 (BandWorker::triangle); `small` keeps lavapipe's box (the 32-bit bound).
+  const __m256i round_up = _mm256_set1_epi32(kFixedOne - 1);
+  const __m256i tx0 = _mm256_srai_epi32(_mm256_add_epi32(min3(p0.x_fixed, p1.x_fixed, p2.x_fixed), round_up), 8);
+  const __m256i ty0 = _mm256_srai_epi32(_mm256_add_epi32(min3(p0.y_fixed, p1.y_fixed, p2.y_fixed), round_up), 8);
+  const __m256i x0 = _mm256_max_epi32(tx0, _mm256_set1_epi32(in.region.x0));
   const __m256i x1 = _mm256_min_epi32(bx1, _mm256_set1_epi32(in.region.x1));
-  const __m256i y0 = _mm256_max_epi32(by0, _mm256_set1_epi32(in.region.y0));
+  const __m256i y0 = _mm256_max_epi32(ty0, _mm256_set1_epi32(in.region.y0));
   const __m256i y1 = _mm256_min_epi32(by1, _mm256_set1_epi32(in.region.y1));
   const __m256i small = _mm256_and_si256(_mm256_cmpgt_epi32(_mm256_set1_epi32(kSmallWidth), _mm256_sub_epi32(bx1, bx0)),
                                          _mm256_cmpgt_epi32(_mm256_set1_epi32(kSmallHeight), _mm256_sub_epi32(by1, by0)));

@@ -77,13 +77,18 @@ struct SmallBlockOutput {
   KernelJob job(int lane, uint32_t owner, CompareOp op) const;
 };
 
+// A block in the 4x4 layout goes to the window when its union holds at least this many pixels
+// (about 4 per lane): below it, the packed scatter costs less.
+inline constexpr int32_t kWindowMinUnion = 32;
+
 // Whether a set-up block goes to the window compositor (small_window.hpp, AVX-512 set-ups): grid
 // lanes only, in the 8x8 layout (`shift` is the block's own; pixel-sized lanes keep the packed 4x4
 // scatter: measured, the compositor costs more on them), their union within kWindowWidth x
 // kWindowHeight.
 inline bool goes_to_window(const SmallBlockOutput& out, int shift) {
-  return shift != kSmallGridShift && (out.job_mask | out.scalar_mask) == 0 && out.grid_x1 - out.grid_x0 < kWindowWidth &&
-         out.grid_y1 - out.grid_y0 < kWindowHeight;
+  const int32_t columns = out.grid_x1 - out.grid_x0 + 1, rows = out.grid_y1 - out.grid_y0 + 1;
+  return (shift != kSmallGridShift || columns * rows >= kWindowMinUnion) && (out.job_mask | out.scalar_mask) == 0 &&
+         columns <= kWindowWidth && rows <= kWindowHeight;
 }
 
 // The eight-wide set-up (small_setup_simd.inl), for AVX2 hosts and for AVX-512 hosts.
