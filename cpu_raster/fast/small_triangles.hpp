@@ -78,13 +78,13 @@ struct SmallBlockOutput {
 };
 
 // A block in the 4x4 layout goes to the window when its union holds at least this many pixels
-// (about 4 per lane): below it, the packed scatter costs less.
+// (about 4 per lane): below it, the packed scatter costs less (docs/performance.md, log 34, 56).
 inline constexpr int32_t kWindowMinUnion = 32;
 
 // Whether a set-up block goes to the window compositor (small_window.hpp, AVX-512 set-ups): grid
-// lanes only, in the 8x8 layout (`shift` is the block's own; pixel-sized lanes keep the packed 4x4
-// scatter: measured, the compositor costs more on them), their union within kWindowWidth x
-// kWindowHeight.
+// lanes only, their union within kWindowWidth x kWindowHeight, and in the 4x4 layout (`shift` is
+// the block's own) only when the union holds kWindowMinUnion pixels: pixel-sized lanes keep the
+// packed scatter.
 inline bool goes_to_window(const SmallBlockOutput& out, int shift) {
   const int32_t columns = out.grid_x1 - out.grid_x0 + 1, rows = out.grid_y1 - out.grid_y0 + 1;
   return (shift != kSmallGridShift || columns * rows >= kWindowMinUnion) && (out.job_mask | out.scalar_mask) == 0 &&
