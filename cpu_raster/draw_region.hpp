@@ -21,6 +21,7 @@ struct PixelRect {
   int32_t x0 = 0, y0 = 0, x1 = -1, y1 = -1;
   bool empty() const { return x1 < x0 || y1 < y0; }
   bool contains(int32_t x, int32_t y) const { return x >= x0 && x <= x1 && y >= y0 && y <= y1; }
+  friend bool operator==(const PixelRect&, const PixelRect&) = default;
 };
 
 PixelRect intersect(const PixelRect& a, const PixelRect& b);

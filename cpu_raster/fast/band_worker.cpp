@@ -259,9 +259,9 @@ bool BandWorker::may_hide(const PixelRect& tile, const DrawRaster& raster) const
   if (!raster.bounds || !raster.depth.write) return false;
   bool earlier = false;
   for (const FastTriangle& t : batch_) {
-    const PixelRect& r = t.rect;
-    if (r.x0 > tile.x1 || r.x1 < tile.x0 || r.y0 > tile.y1 || r.y1 < tile.y0) continue;
-    if (earlier && r.x0 <= tile.x0 && r.y0 <= tile.y0 && r.x1 >= tile.x1 && r.y1 >= tile.y1) return true;
+    const PixelRect r = intersect(t.rect, tile);
+    if (r.empty()) continue;
+    if (earlier && r == tile) return true;
     earlier = true;
   }
   return false;
@@ -290,8 +290,7 @@ size_t BandWorker::first_visible(const PixelRect& tile, const DrawRaster& raster
       provable = false;  // nothing later can be proven
       continue;
     }
-    if (earlier && p.edges.all_in && r.x0 == tile.x0 && r.y0 == tile.y0 && r.x1 == tile.x1 && r.y1 == tile.y1 &&
-        classify_depth(raster.depth.op, p.fragment, fragments) == DepthVerdict::AllPass)
+    if (earlier && p.covers(tile) && classify_depth(raster.depth.op, p.fragment, fragments) == DepthVerdict::AllPass)
       first = i;
     fragments.zmin = std::min(fragments.zmin, p.fragment.lo);
     fragments.zmax = std::max(fragments.zmax, p.fragment.hi);

@@ -15,10 +15,6 @@ constexpr int64_t kMeasureMinArea = 2048;      // re-measure a tile whose bounds
 
 int64_t area(const PixelRect& r) { return int64_t(r.x1 - r.x0 + 1) * (r.y1 - r.y0 + 1); }
 
-bool same_rect(const PixelRect& a, const PixelRect& b) {
-  return a.x0 == b.x0 && a.y0 == b.y0 && a.x1 == b.x1 && a.y1 == b.y1;
-}
-
 // The tile's bounds after the triangle wrote depth over r (`ranged`: the tile's bounds were
 // known and the fragments' range is f).
 void update_bounds(TileBounds& tile, bool ranged, const FragmentRange& f, DepthVerdict verdict, bool covers_tile) {
@@ -53,7 +49,6 @@ DrawRaster make_draw_raster(const DepthTestState& depth, bool frame_bounds, bool
 
 TileTriangle prepare_in_tile(const FastTriangle& t, const PixelRect& r, const DrawRaster& draw, bool range_small) {
   TileTriangle p;
-  p.r = r;
   p.edges = setup_tile_edges(t, r, p.job);
   if (p.edges.fit == EdgeFit::None) return p;
   p.ranged = draw.bounds && (range_small || area(r) >= kBoundsMinArea) && fragment_range(t, r, draw.depth, p.fragment);
@@ -69,8 +64,8 @@ void raster_prepared(const FastTriangle& t, const TileTriangle& prepared, int32_
                      const DrawRaster& draw, const FrameRaster& frame) {
   const EdgeSetup& edges = prepared.edges;
   if (edges.fit == EdgeFit::None) return;
-  const PixelRect& r = prepared.r;
   KernelJob job = prepared.job;
+  const PixelRect& r = job.rect;
   job.a0 = t.a0;
   job.dzdx = t.dzdx;
   job.dzdy = t.dzdy;
@@ -85,7 +80,7 @@ void raster_prepared(const FastTriangle& t, const TileTriangle& prepared, int32_
   bool ranged = false;
   DepthVerdict verdict = DepthVerdict::PerPixel;
   if (draw.bounds && area(r) >= kBoundsMinArea && prepared.ranged) {
-    const bool whole = same_rect(r, whole_tile), measurable = area(r) >= kMeasureMinArea && state.cleared;
+    const bool whole = r == whole_tile, measurable = area(r) >= kMeasureMinArea && state.cleared;
     if (tile.state != BoundsState::Exact && whole && measurable)
       measure_bounds(frame.target.depth, frame.target.width, whole_tile, frame.avx2, tile);
     if (tile.state != BoundsState::Unknown) {
@@ -102,7 +97,7 @@ void raster_prepared(const FastTriangle& t, const TileTriangle& prepared, int32_
 
     if (verdict == DepthVerdict::AllPass) job.op = CompareOp::Always;
   }
-  const bool covers_tile = edges.all_in && same_rect(r, whole_tile);
+  const bool covers_tile = prepared.covers(whole_tile);
   if (!state.cleared) {
     // Fast clear: skipped when this triangle replaces every owner and depth value of the tile.
     const bool overwrites = covers_tile && (frame.target.depth == nullptr ||

@@ -52,11 +52,13 @@ DrawRaster make_draw_raster(const DepthTestState& depth, bool frame_bounds, bool
 // What raster_in_tile computes first for a triangle and a rectangle of a tile: the kernel job's
 // edges (none: no sample of r in the triangle) and, with depth bounds, its fragments' range.
 struct TileTriangle {
-  PixelRect r;
-  KernelJob job;
+  KernelJob job;  // job.rect: the rectangle
   EdgeSetup edges;
   FragmentRange fragment;
   bool ranged = false;  // fragment holds the range
+
+  // Every pixel of the tile covered.
+  bool covers(const PixelRect& whole_tile) const { return edges.all_in && job.rect == whole_tile; }
 };
 // range_small: the range also for rectangles below the area the bounds are used at.
 TileTriangle prepare_in_tile(const FastTriangle& t, const PixelRect& r, const DrawRaster& draw, bool range_small);
