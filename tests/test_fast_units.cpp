@@ -13,6 +13,7 @@
 #include "cpu_raster/depth_sample.hpp"
 #include "cpu_raster/edge_plane.hpp"
 #include "cpu_raster/fast/bench_stats.hpp"
+#include "cpu_raster/fast/block_rows.hpp"
 #include "cpu_raster/fast/cpu_features.hpp"
 #include "cpu_raster/fast/fast_vertices.hpp"
 #include "cpu_raster/fast/small_triangles.hpp"
@@ -286,6 +287,49 @@ TEST(FastSmallTriangles, PairSetupEqualsTwoBlocks) {
     }
   }
   for (int c = 0; c < 4; ++c) EXPECT_GT(seen[c], 500) << "lane class " << c;
+}
+
+// The block-row phase's shortcut: whenever span_tile_rows_avx2 answers for a run of blocks, each
+// block's answer is the one list_block_tile_rows_avx2 gives it alone; otherwise it writes
+// nothing. Meshes with local indices (the shortcut's case), far and out-of-range indices, unknown
+// rows and draw regions that cut the rows.
+TEST(FastBlockRows, SpanAnswersAsBlockByBlock) {
+  if (!host_has_avx2_fma()) GTEST_SKIP() << "host without AVX2/FMA: the block-row phase does not run";
+  fast_test::Random r(11);
+  int answered = 0, declined = 0, several_rows = 0;
+  for (int trial = 0; trial < 4000; ++trial) {
+    const uint32_t positions = 64 + r.below(6000);
+    const uint32_t per_row = 16 + r.below(2000);  // positions per tile row of the mesh
+    std::vector<int16_t> tile_rows(positions + 8, 0);
+    for (uint32_t i = 0; i < positions; ++i)
+      tile_rows[i] = r.chance(0.0005) ? kRowUnknown : int16_t(int32_t(i / per_row) - 1);
+    const uint32_t n = 1 + r.below(kSpanBlocks);
+    const uint32_t base = r.below(positions), spread = r.chance(0.2) ? positions : 1 + r.below(600);
+    std::vector<uint32_t> indices(24 * n);
+    for (uint32_t& index : indices) index = std::min(positions - 1, base + r.below(spread));
+    if (r.chance(0.02)) indices[r.below(24 * n)] = positions + r.below(3);  // out of range
+    const int32_t y0 = int32_t(r.below(300)), y1 = y0 + int32_t(r.below(400));
+    const PixelRect region{0, y0, 1023, y1};
+    std::vector<uint32_t> spans(n, 0x12345678u);
+    if (!span_tile_rows_avx2(indices.data(), n, tile_rows.data(), positions, region, spans.data())) {
+      ++declined;
+      for (uint32_t b = 0; b < n; ++b) ASSERT_EQ(spans[b], 0x12345678u) << "trial " << trial << ": wrote when declining";
+      continue;
+    }
+    ++answered;
+    std::vector<uint32_t> alone(n);
+    for (uint32_t b = 0; b < n; ++b) {
+      bool bad = false;
+      alone[b] = list_block_tile_rows_avx2(indices.data() + 24 * b, tile_rows.data(), positions, region, bad);
+      ASSERT_FALSE(bad) << "trial " << trial << ": answered for a bad index";
+      ASSERT_EQ(spans[b], alone[b]) << "trial " << trial << " block " << b;
+    }
+    if (std::any_of(alone.begin(), alone.end(), [](uint32_t rows) { return (rows & 0xFFFFu) < (rows >> 16); }))
+      ++several_rows;
+  }
+  EXPECT_GT(answered, 1000);
+  EXPECT_GT(declined, 1000);
+  EXPECT_EQ(several_rows, 0);
 }
 
 // G > 0 exactly where the exact 64-bit edge value E > 0, over random rectangles of a tile.

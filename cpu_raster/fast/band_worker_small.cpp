@@ -8,75 +8,13 @@
 
 #include "cpu_raster/assemble.hpp"
 #include "cpu_raster/fast/band_worker.hpp"
+#include "cpu_raster/fast/block_rows.hpp"
 #include "cpu_raster/fast/cpu_features.hpp"
 #include "cpu_raster/fast/small_block_input.hpp"
 #include "model/render_result.hpp"
 
 namespace rastercmp::cpu::fast {
 namespace {
-
-// Tile rows lo..hi cut to the draw region's, packed lo | hi << 16 (lo > hi: none).
-uint32_t pack_rows(int32_t lo, int32_t hi, const PixelRect& region) {
-  lo = std::max(lo, region.y0 >> kTileOrder);  // the corner rows bound the bounding boxes' rows
-  hi = std::min(hi, region.y1 >> kTileOrder);
-  if (lo > hi) return 0xFFFFu;  // lo > hi: no row
-  return uint32_t(lo) | uint32_t(hi) << 16;
-}
-
-// The tile rows a block's triangles may reach, from the corners' tile rows (fast_vertices.hpp):
-// the bounding boxes lie within them. kBlockAnyRow when a corner needs clipping or failed to snap
-// (its window position says nothing then), or names no position (`bad` is set then).
-uint32_t block_tile_rows(const SmallBlockInput& in, const int16_t* tile_rows, uint32_t positions, const PixelRect& region,
-                         bool& bad) {
-  int32_t lo = INT32_MAX, hi = INT32_MIN;
-  for (uint32_t l = 0; l < in.count; ++l) {
-    for (int k = 0; k < 3; ++k) {
-      const uint32_t position = in.corners[k][l * in.stride];
-      if (position >= positions) {
-        bad = true;
-        return kBlockAnyRow;
-      }
-      const int16_t row = tile_rows[position];
-      if (row == kRowUnknown) return kBlockAnyRow;
-      lo = std::min(lo, int32_t(row));
-      hi = std::max(hi, int32_t(row));
-    }
-  }
-  return pack_rows(lo, hi, region);
-}
-
-// block_tile_rows for a full block of an indexed list: its 24 corners are consecutive in the
-// index buffer; three AVX2 gathers of 32 bits at 2-byte steps fetch their rows (each row is the
-// low half; the last position's read reaches 2 bytes into the scratch's padding,
-// thread_row_scratch). kRowUnknown is INT16_MIN, below every row, so the minimum finds it. The
-// indices are checked against `positions` (> 0) before any gather.
-RASTERCMP_AVX2 uint32_t list_block_tile_rows_avx2(const uint32_t* indices, const int16_t* tile_rows, uint32_t positions,
-                                                  const PixelRect& region, bool& bad) {
-  __m256i idx[3];
-  for (int j = 0; j < 3; ++j) idx[j] = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(indices + 8 * j));
-  const __m256i largest = _mm256_max_epu32(idx[0], _mm256_max_epu32(idx[1], idx[2]));
-  const __m256i last = _mm256_set1_epi32(int32_t(positions - 1));
-  if (!_mm256_testc_si256(_mm256_cmpeq_epi32(_mm256_max_epu32(largest, last), last), _mm256_set1_epi32(-1))) {
-    bad = true;  // some index > positions - 1
-    return kBlockAnyRow;
-  }
-  const int* base = reinterpret_cast<const int*>(tile_rows);
-  __m256i r[3];
-  for (int j = 0; j < 3; ++j) {
-    const __m256i word = _mm256_i32gather_epi32(base, idx[j], 2);
-    r[j] = _mm256_srai_epi32(_mm256_slli_epi32(word, 16), 16);
-  }
-  __m256i lo = _mm256_min_epi32(r[0], _mm256_min_epi32(r[1], r[2]));
-  __m256i hi = _mm256_max_epi32(r[0], _mm256_max_epi32(r[1], r[2]));
-  lo = _mm256_min_epi32(lo, _mm256_permute2x128_si256(lo, lo, 0x01));
-  hi = _mm256_max_epi32(hi, _mm256_permute2x128_si256(hi, hi, 0x01));
-  lo = _mm256_min_epi32(lo, _mm256_shuffle_epi32(lo, 0x4E));
-  hi = _mm256_max_epi32(hi, _mm256_shuffle_epi32(hi, 0x4E));
-  lo = _mm256_min_epi32(lo, _mm256_shuffle_epi32(lo, 0xB1));
-  hi = _mm256_max_epi32(hi, _mm256_shuffle_epi32(hi, 0xB1));
-  const int32_t low = _mm256_cvtsi256_si32(lo), high = _mm256_cvtsi256_si32(hi);
-  return low == kRowUnknown ? kBlockAnyRow : pack_rows(low, high, region);
-}
 
 template <Topology T, bool Indexed>
 bool measure_rows(FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end) {
@@ -90,8 +28,14 @@ bool measure_rows(FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end) {
     uint32_t* block_rows = frame.draws[d].block_rows;
     const PixelRect region = frame.exact.region;
     // small_blocks draws exist on AVX2 hosts only (AVX-512 hosts are AVX2 hosts too)
-    for (; begin < full_end; ++begin)
-      block_rows[begin] = list_block_tile_rows_avx2(indices + 24 * size_t(begin), tile_rows, positions, region, bad);
+    while (begin < full_end) {
+      const uint32_t n = std::min(kSpanBlocks, full_end - begin);
+      const uint32_t* span = indices + 24 * size_t(begin);
+      if (!span_tile_rows_avx2(span, n, tile_rows, positions, region, block_rows + begin))
+        for (uint32_t b = 0; b < n; ++b)
+          block_rows[begin + b] = list_block_tile_rows_avx2(span + 24 * size_t(b), tile_rows, positions, region, bad);
+      begin += n;
+    }
   }
   SmallBlock block;
   fill_block_draw(frame, d, block);

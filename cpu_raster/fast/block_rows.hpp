@@ -1,0 +1,35 @@
+// Which tile rows a block of eight small triangles may reach (the block-row phase, render_fast.cpp
+// phase 3): from its corners' tile rows (fast_vertices.hpp), packed lo | hi << 16 and cut to the
+// draw region's rows (lo > hi: none), or kBlockAnyRow.
+#pragma once
+
+#include <cstdint>
+
+#include "cpu_raster/fast/small_triangles.hpp"
+
+namespace rastercmp::cpu::fast {
+
+// Tile rows lo..hi cut to the draw region's, packed; kNoRow (lo > hi) when none is left.
+inline constexpr uint32_t kNoRow = 0xFFFFu;
+uint32_t pack_rows(int32_t lo, int32_t hi, const PixelRect& region);
+
+// Any block: kBlockAnyRow when a corner needs clipping or failed to snap (its window position
+// says nothing then), or names no position (`bad` is set then).
+uint32_t block_tile_rows(const SmallBlockInput& in, const int16_t* tile_rows, uint32_t positions, const PixelRect& region,
+                         bool& bad);
+
+// AVX2 hosts only: the same for a full block of an indexed list (24 consecutive indices);
+// tile_rows is readable 2 bytes past its last position (thread_row_scratch).
+uint32_t list_block_tile_rows_avx2(const uint32_t* indices, const int16_t* tile_rows, uint32_t positions,
+                                   const PixelRect& region, bool& bad);
+
+// AVX2 hosts only: the rows of n full blocks of an indexed list (24 * n consecutive indices) at
+// once, written to block_rows[0..n), when that is cheap and gives every block exactly what
+// list_block_tile_rows_avx2 gives it; false (nothing written) otherwise, and when an index is out
+// of range. At most kSpanBlocks blocks, at most kSpanPositions positions read.
+inline constexpr uint32_t kSpanBlocks = 16;
+inline constexpr uint32_t kSpanPositions = 4096;
+bool span_tile_rows_avx2(const uint32_t* indices, uint32_t n, const int16_t* tile_rows, uint32_t positions,
+                         const PixelRect& region, uint32_t* block_rows);
+
+}  // namespace rastercmp::cpu::fast
