@@ -51,12 +51,22 @@ void check_draw_state(const Scene& scene, size_t d) {
 
 }  // namespace
 
+namespace {
+
 // The largest index (0 for none) in a loop without an exit, which the compiler vectorises (the
-// index scan runs on every render: 12 MiB for a million indexed triangles).
-bool indices_in_range(const Draw& draw) {
+// index scan runs on every render: 12 MiB for a million indexed triangles). Also compiled for
+// AVX2, picked at load time: the baseline's SSE2 has no unsigned maximum (vpmaxud), and its
+// emulation made the scan take 8% of a one-thread fast render of grid_180k.
+__attribute__((target_clones("avx2", "default"))) uint32_t largest_index(const uint32_t* indices, size_t count) {
   uint32_t largest = 0;
-  for (const uint32_t index : draw.indices) largest = std::max(largest, index);
-  return draw.indices.empty() || largest < draw.positions_clip.size();
+  for (size_t i = 0; i < count; ++i) largest = std::max(largest, indices[i]);
+  return largest;
+}
+
+}  // namespace
+
+bool indices_in_range(const Draw& draw) {
+  return draw.indices.empty() || largest_index(draw.indices.data(), draw.indices.size()) < draw.positions_clip.size();
 }
 
 void check_lavapipe_profile_support(const Scene& scene) {
