@@ -1,15 +1,10 @@
 // BandWorker's small-triangle blocks: drawing a set-up block into the worker's rows, and the
 // phase before the walks that measures which tile rows each block may reach.
-#include <immintrin.h>
-
 #include <algorithm>
-#include <bit>
-#include <climits>
 
 #include "cpu_raster/assemble.hpp"
 #include "cpu_raster/fast/band_worker.hpp"
 #include "cpu_raster/fast/block_rows.hpp"
-#include "cpu_raster/fast/cpu_features.hpp"
 #include "cpu_raster/fast/small_block_input.hpp"
 #include "model/render_result.hpp"
 
