@@ -49,10 +49,6 @@ void check_draw_state(const Scene& scene, size_t d) {
                             "profile (lavapipe draws smooth lines with its anti-aliased line stage, a shader effect)");
 }
 
-}  // namespace
-
-namespace {
-
 // The largest index (0 for none) in a loop without an exit, which the compiler vectorises (the
 // index scan runs on every render: 12 MiB for a million indexed triangles). Also compiled for
 // AVX2, picked at load time: the baseline's SSE2 has no unsigned maximum (vpmaxud), and its
