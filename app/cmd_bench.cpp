@@ -2,7 +2,7 @@
 // Times, in one run and interleaved rep by rep, the exact CPU path (threads = 0), the fast CPU path
 // (threads = N, default 2) and lavapipe (submit to fence; instance, pipeline and resource creation
 // and read-back excluded; LP_NUM_THREADS=2 unless set) on the benchmark scenes of
-// cpu_raster/fast/bench_scenes.hpp and on the whole built-in suite (docs/performance.md).
+// bench/bench_scenes.hpp and on the whole built-in suite (docs/performance.md).
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -20,9 +20,10 @@
 #include <nlohmann/json.hpp>
 
 #include "app/commands.hpp"
+#include "bench/bench_scenes.hpp"
+#include "bench/bench_stats.hpp"
+#include "compare/case_select.hpp"
 #include "cpu_raster/cpu_raster.hpp"
-#include "cpu_raster/fast/bench_scenes.hpp"
-#include "cpu_raster/fast/bench_stats.hpp"
 #include "cpu_raster/fast/render_fast.hpp"
 #include "model/errors.hpp"
 #include "model/host.hpp"
@@ -39,7 +40,7 @@ struct BenchArgs {
   unsigned exact_reps = 3;  // the exact path takes seconds on the big scenes
   unsigned threads = 2;
   std::vector<std::string> scenes;  // empty: all standard scenes and the suite
-  std::string suite_dir = "scenes";
+  std::string suite_dir;  // empty: the built-in suite (default_suite_dir)
 };
 
 // One row of the table: one scene, or the whole suite rendered once per rep.
@@ -108,7 +109,7 @@ std::vector<BenchCase> make_cases(const BenchArgs& args) {
   }
   std::vector<BenchCase> cases;
   for (const std::string& name : names) {
-    if (name == "suite") cases.push_back({name, bench::load_scene_suite(args.suite_dir)});
+    if (name == "suite") cases.push_back({name, bench::load_scene_suite(args.suite_dir.empty() ? default_suite_dir() : args.suite_dir)});
     else cases.push_back({name, {bench::standard_bench_scene(name).scene}});
   }
   return cases;
@@ -277,7 +278,7 @@ void add_bench_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--reps", args->reps, "timed repetitions per scene (fast path and lavapipe)")->check(CLI::Range(1, 1000));
   cmd->add_option("--exact-reps", args->exact_reps, "timed repetitions of the exact path (at most --reps)");
   cmd->add_option("--scene", args->scenes, "fill_b2f, fill_f2b, grid_180k, tiny_1m, perspective or suite (repeatable)");
-  cmd->add_option("--suite", args->suite_dir, "folder of the built-in scenes (default: scenes)");
+  cmd->add_option("--suite", args->suite_dir, "suite folder for the suite row (default: the built-in scenes/)");
   cmd->add_option("--threads", args->threads, "threads of the fast CPU path")->check(CLI::Range(1, 64));
   cmd->callback([args, &exit_code] { exit_code = run_bench(*args); });
 }

@@ -1,5 +1,5 @@
 // Google Benchmark binary (docs/performance.md): the benchmark scenes of
-// cpu_raster/fast/bench_scenes.hpp on the exact CPU path, the fast CPU path and lavapipe.
+// bench/bench_scenes.hpp on the exact CPU path, the fast CPU path and lavapipe.
 //   Exact/<scene>, Fast/<scene>/threads:<n>  wall time of render_cpu / render_cpu_fast_into (buffers reused)
 //   FastNewBuffers/<scene>/threads:2         render_cpu_fast: new result buffers each time
 //   Lavapipe/<scene>                         submit to fence (manual time; creation and read-back excluded)
@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "cpu_raster/cpu_raster.hpp"
-#include "cpu_raster/fast/bench_scenes.hpp"
+#include "bench/bench_scenes.hpp"
 #include "cpu_raster/fast/render_fast.hpp"
 #include "model/host.hpp"
 #include "vk_reference/vk_reference.hpp"

@@ -3,7 +3,7 @@
 #pragma once
 
 #include "compare/case_record.hpp"
-#include "compare/case_run.hpp"
+#include "compare/case_result.hpp"
 #include "compare/case_select.hpp"
 #include "compare/expectations.hpp"
 

@@ -14,22 +14,12 @@
 #include <string>
 #include <vector>
 
-#include "compare/diff.hpp"
+#include "compare/case_result.hpp"
 #include "compare/verdict.hpp"
 #include "cpu_raster/cpu_raster.hpp"
 #include "vk_reference/vk_reference.hpp"
 
 namespace rastercmp {
-
-struct CaseResult {
-  Verdict verdict = Verdict::InternalError;
-  std::string message;
-  std::optional<RenderResult> expected;  // the CPU render, when it succeeded
-  std::optional<RenderResult> actual;    // the Vulkan render, when it succeeded
-  std::optional<SceneDiff> diff;         // when both succeeded
-  std::vector<std::string> validation_messages;
-  std::string cpu_method = "exact";  // cpu_method_label of the CPU options used
-};
 
 // "exact" when the CPU renders with the exact pipeline, else its method overrides in order,
 // "STAGE=NAME" separated by spaces (command line first, then the scene's "methods").

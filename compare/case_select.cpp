@@ -12,10 +12,6 @@
 #include "model/errors.hpp"
 #include "model/scene_io.hpp"
 
-#ifndef RASTERCMP_SOURCE_DIR
-#error "rastercmp_compare needs RASTERCMP_SOURCE_DIR (compare/CMakeLists.txt)"
-#endif
-
 namespace rastercmp {
 namespace fs = std::filesystem;
 namespace {
@@ -35,7 +31,21 @@ Shard checked_shard(std::optional<uint32_t> index, std::optional<uint32_t> count
 
 }  // namespace
 
-std::string default_suite_dir() { return (fs::path(RASTERCMP_SOURCE_DIR) / "scenes").string(); }
+std::vector<std::string> suite_dir_candidates(const std::string& executable) {
+  const fs::path bin = fs::path(executable).parent_path();
+  return {(bin / "scenes").string(), (bin / ".." / "share" / "rastercmp" / "scenes").lexically_normal().string()};
+}
+
+std::string default_suite_dir() {
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  const std::vector<std::string> candidates = suite_dir_candidates(ec ? std::string() : exe.string());
+  for (const std::string& dir : candidates)
+    if (fs::is_directory(dir, ec)) return dir;
+  throw InputError(candidates.front(), "",
+                   "expected the built-in suite next to the executable (" + candidates.front() + " or " +
+                       candidates.back() + "); pass --suite DIR");
+}
 
 std::vector<std::string> find_scene_files(const std::string& dir) {
   std::error_code ec;

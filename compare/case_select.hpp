@@ -21,7 +21,13 @@ struct SuiteCase {
   Scene scene;
 };
 
-// The built-in suite: <source tree>/scenes (compile definition RASTERCMP_SOURCE_DIR).
+// Where the built-in suite may lie for an executable at `executable`, in the order searched:
+// <executable's folder>/scenes (the build tree: a link to the source tree's scenes/, made by
+// app/CMakeLists.txt), then <executable's folder>/../share/rastercmp/scenes (an installed copy).
+std::vector<std::string> suite_dir_candidates(const std::string& executable);
+
+// The first of suite_dir_candidates(the running executable) that is a folder. Found at run time,
+// so a moved or installed binary finds its suite; throws InputError naming both places otherwise.
 std::string default_suite_dir();
 
 // Every regular file named *.json below `dir`, recursively, in path order.

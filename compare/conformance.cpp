@@ -9,6 +9,8 @@
 #include "compare/case_judge.hpp"
 #include "compare/explain_text.hpp"
 #include "compare/report.hpp"
+#include "compare/run_outputs.hpp"
+#include "compare/run_publish.hpp"
 #include "model/errors.hpp"
 #include "model/image_io.hpp"
 

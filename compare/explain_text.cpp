@@ -5,7 +5,7 @@
 #include <filesystem>
 
 #include "compare/report.hpp"
-#include "cpu_raster/explain.hpp"
+#include "cpu_raster/exact/explain.hpp"
 #include "model/image_io.hpp"
 
 namespace rastercmp {

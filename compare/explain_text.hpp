@@ -10,7 +10,8 @@
 #include <vector>
 
 #include "compare/case_record.hpp"
-#include "compare/case_run.hpp"
+#include "compare/case_result.hpp"
+#include "cpu_raster/exact/cpu_options.hpp"
 
 namespace rastercmp {
 

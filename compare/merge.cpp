@@ -8,6 +8,8 @@
 
 #include "compare/expectations.hpp"
 #include "compare/report.hpp"
+#include "compare/run_outputs.hpp"
+#include "compare/run_publish.hpp"
 #include "model/errors.hpp"
 #include "model/image_io.hpp"
 

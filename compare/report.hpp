@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "compare/case_record.hpp"
-#include "compare/case_run.hpp"
-#include "compare/run_outputs.hpp"
+#include "compare/case_result.hpp"
+#include "compare/run_info.hpp"
 
 namespace rastercmp {
 

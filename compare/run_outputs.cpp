@@ -8,7 +8,6 @@
 #include <filesystem>
 
 #include "compare/expectations.hpp"
-#include "compare/report.hpp"
 #include "model/errors.hpp"
 #include "model/image_io.hpp"
 
@@ -158,17 +157,6 @@ std::string junit_xml(const std::vector<CaseRecord>& records) {
   return xml + "  </testsuite>\n</testsuites>\n";
 }
 
-std::map<std::string, size_t> count_statuses(const std::vector<CaseRecord>& records) {
-  std::map<std::string, size_t> counts;
-  for (const CaseRecord& c : records) ++counts[c.status];
-  return counts;
-}
-
-bool run_passed(const RunInfo& info, const std::vector<CaseRecord>& records) {
-  return !info.interrupted && info.not_run.empty() &&
-         std::none_of(records.begin(), records.end(), [](const CaseRecord& c) { return c.fails_run; });
-}
-
 std::string summary_json(const RunInfo& info, const std::vector<CaseRecord>& records) {
   nlohmann::ordered_json j;
   j["profile"] = info.profile;
@@ -204,12 +192,11 @@ ParsedSummary parse_summary_json(std::string_view text, const std::string& file)
   return parsed;
 }
 
-void write_run_outputs(const std::string& out_dir, const RunInfo& info, const std::vector<CaseRecord>& records) {
+void write_run_files(const std::string& out_dir, const RunInfo& info, const std::vector<CaseRecord>& records) {
   const fs::path out(out_dir);
   write_text_file_atomic((out / "failures.csv").string(), failures_csv(records));
   write_text_file_atomic((out / "junit.xml").string(), junit_xml(records));
   write_text_file_atomic((out / "summary.json").string(), summary_json(info, records));
-  write_report_html((out / "report").string(), info, records);
 }
 
 }  // namespace rastercmp

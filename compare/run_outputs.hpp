@@ -13,18 +13,9 @@
 #include <vector>
 
 #include "compare/case_record.hpp"
+#include "compare/run_info.hpp"
 
 namespace rastercmp {
-
-struct RunInfo {
-  std::string profile;  // "lavapipe" or "spec"
-  std::string device;   // Vulkan device name
-  std::string driver;   // driver info, e.g. "Mesa 22.3.6 (LLVM 15.0.6)"
-  bool fma = false;     // whether the CPU model fused (lavapipe on this host)
-  bool interrupted = false;
-  std::vector<std::string> not_run;  // cases left when interrupted, in run order
-  bool operator==(const RunInfo&) const = default;
-};
 
 // Appends one line per case and flushes it, so an interrupted run leaves what it finished.
 class ResultsCsvWriter {
@@ -54,12 +45,7 @@ struct ParsedSummary {
 };
 ParsedSummary parse_summary_json(std::string_view text, const std::string& file);
 
-// Counts of the records per runner status, in name order.
-std::map<std::string, size_t> count_statuses(const std::vector<CaseRecord>& records);
-// Whether the run passes: every case as expected and nothing left unrun.
-bool run_passed(const RunInfo& info, const std::vector<CaseRecord>& records);
-
-// Rewrites failures.csv, junit.xml, summary.json and report/index.html in `out_dir`.
-void write_run_outputs(const std::string& out_dir, const RunInfo& info, const std::vector<CaseRecord>& records);
+// Rewrites failures.csv, junit.xml and summary.json in `out_dir` (the report: compare/run_publish.hpp).
+void write_run_files(const std::string& out_dir, const RunInfo& info, const std::vector<CaseRecord>& records);
 
 }  // namespace rastercmp

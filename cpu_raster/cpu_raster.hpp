@@ -1,35 +1,16 @@
 // The CPU renderer: an independent pipeline that reproduces lavapipe (profile Lavapipe) or
 // follows only what the Vulkan specification requires (profile Spec). See docs/cpu-raster.md.
+//
+// This is the façade: the one header the rest of the project includes. It picks the layer that
+// renders (cpu_raster/render_cpu.cpp); the layers below it (exact/, fast/, spec/, classic/,
+// methods/) never include it.
 #pragma once
 
-#include <cstdint>
-#include <vector>
-
-#include "cpu_raster/work_skips.hpp"
+#include "cpu_raster/exact/cpu_options.hpp"
 #include "model/render_result.hpp"
 #include "model/scene.hpp"
 
 namespace rastercmp {
-
-enum class CpuProfile { Lavapipe, Spec };
-
-struct CpuOptions {
-  CpuProfile profile = CpuProfile::Lavapipe;
-  // Model lavapipe's llvm.fmuladd as fused (true on FMA hosts; see lavapipe_fuses_on_this_host()).
-  bool fma = true;
-  // Sub-pixel precision of the device being judged (spec profile); lavapipe: 8.
-  uint32_t sub_pixel_bits = 8;
-  // 0: the exact scalar path alone. >= 1: the fast path with this many threads (bit-identical).
-  uint32_t threads = 0;
-  // Method overrides (--method STAGE=NAME); empty: the exact pipeline.
-  std::vector<MethodChoice> methods;
-  // Measurement knob, exact path only (threads = 0): the work the scene's state makes unnecessary
-  // is skipped (the default), or done anyway with identical output (docs/cpu-raster.md).
-  cpu::WorkSkips skips;
-};
-
-// RenderResult::device of the Lavapipe profile.
-inline constexpr const char* kLavapipeProfileDevice = "cpu lavapipe-22.3.6 profile";
 
 // Renders a scene. Throws NotSupportedError for state the profile cannot reproduce.
 RenderResult render_cpu(const Scene& scene, const CpuOptions& options);

@@ -5,10 +5,10 @@
 #include <cstring>
 #include <string_view>
 
-#include "cpu_raster/clip_triangle.hpp"
-#include "cpu_raster/clip_vertex.hpp"
+#include "cpu_raster/exact/clip_triangle.hpp"
+#include "cpu_raster/exact/clip_vertex.hpp"
 #include "cpu_raster/cpu_raster.hpp"
-#include "cpu_raster/viewport.hpp"
+#include "cpu_raster/exact/viewport.hpp"
 #include "model/errors.hpp"
 #include "model/scene_io.hpp"
 

@@ -9,8 +9,8 @@ packages=(
   libvulkan-dev mesa-vulkan-drivers vulkan-tools vulkan-validationlayers
   glslang-dev glslang-tools spirv-tools libglm-dev
   libopenimageio-dev openimageio-tools
-  nlohmann-json3-dev libcli11-dev libfmt-dev libtbb-dev
-  libkainjow-mustache-dev gnuplot-nox libxsimd-dev
+  nlohmann-json3-dev libcli11-dev libfmt-dev
+  libkainjow-mustache-dev gnuplot-nox
   chromium
 )
 

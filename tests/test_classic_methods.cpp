@@ -7,7 +7,8 @@
 
 #include "cpu_raster/classic/classic_clip.hpp"
 #include "cpu_raster/classic/render_classic.hpp"
-#include "cpu_raster/viewport.hpp"
+#include "cpu_raster/cpu_raster.hpp"
+#include "cpu_raster/exact/viewport.hpp"
 #include "model/errors.hpp"
 #include "model/scene_io.hpp"
 

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "cpu_raster/classic/render_classic.hpp"
+#include "cpu_raster/cpu_raster.hpp"
 #include "model/scene_io.hpp"
 
 namespace rastercmp {

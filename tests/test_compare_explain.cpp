@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "compare/explain_text.hpp"
+#include "cpu_raster/cpu_raster.hpp"
 #include "compare/report.hpp"
 #include "model/errors.hpp"
 #include "model/host.hpp"

@@ -268,9 +268,15 @@ TEST_F(PlanConformance, SuiteProblemsAreInputErrors) {
   EXPECT_THROW(plan_conformance(o), UsageError);
 }
 
-TEST_F(PlanConformance, TheBuiltInSuiteIsFoundThroughTheSourceTree) {
-  EXPECT_EQ(fs::path(default_suite_dir()), fs::path(RASTERCMP_SOURCE_DIR) / "scenes");
+TEST_F(PlanConformance, TheBuiltInSuiteIsFoundNextToTheExecutable) {
+  // This test binary's folder has a link to the source tree's scenes/ (tests/CMakeLists.txt), as
+  // the rastercmp executable's has (app/CMakeLists.txt).
+  EXPECT_EQ(fs::canonical(default_suite_dir()), fs::canonical(fs::path(RASTERCMP_SOURCE_DIR) / "scenes"));
   EXPECT_FALSE(find_scene_files(default_suite_dir()).empty());
+  const auto candidates = suite_dir_candidates("/opt/x/bin/rastercmp");
+  ASSERT_EQ(candidates.size(), 2u);
+  EXPECT_EQ(candidates[0], "/opt/x/bin/scenes");
+  EXPECT_EQ(candidates[1], "/opt/x/share/rastercmp/scenes");
 }
 
 }  // namespace

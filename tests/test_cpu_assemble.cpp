@@ -4,8 +4,8 @@
 
 #include <gtest/gtest.h>
 
-#include "cpu_raster/assemble.hpp"
-#include "cpu_raster/draw_chunks.hpp"
+#include "cpu_raster/exact/assemble.hpp"
+#include "cpu_raster/exact/draw_chunks.hpp"
 
 namespace rastercmp::cpu {
 namespace {

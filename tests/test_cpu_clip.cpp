@@ -5,9 +5,9 @@
 
 #include <gtest/gtest.h>
 
-#include "cpu_raster/clip_line.hpp"
-#include "cpu_raster/clip_test.hpp"
-#include "cpu_raster/clip_triangle.hpp"
+#include "cpu_raster/exact/clip_line.hpp"
+#include "cpu_raster/exact/clip_test.hpp"
+#include "cpu_raster/exact/clip_triangle.hpp"
 
 namespace rastercmp::cpu {
 namespace {

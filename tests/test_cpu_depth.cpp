@@ -5,9 +5,9 @@
 
 #include <gtest/gtest.h>
 
-#include "cpu_raster/depth_plane.hpp"
-#include "cpu_raster/depth_sample.hpp"
-#include "cpu_raster/float_ops.hpp"
+#include "cpu_raster/exact/depth_plane.hpp"
+#include "cpu_raster/exact/depth_sample.hpp"
+#include "cpu_raster/exact/float_ops.hpp"
 
 namespace rastercmp::cpu {
 namespace {

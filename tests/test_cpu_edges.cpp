@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "cpu_raster/cpu_raster.hpp"
-#include "cpu_raster/edge_plane.hpp"
+#include "cpu_raster/exact/edge_plane.hpp"
 #include "model/render_result.hpp"
 
 namespace rastercmp::cpu {

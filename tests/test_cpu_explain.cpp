@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "cpu_raster/cpu_raster.hpp"
-#include "cpu_raster/explain.hpp"
+#include "cpu_raster/exact/explain.hpp"
 #include "model/errors.hpp"
 #include "model/render_result.hpp"
 #include "tests/test_differential_scenes.hpp"

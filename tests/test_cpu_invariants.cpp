@@ -10,9 +10,9 @@
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
 
-#include "cpu_raster/front_end.hpp"
-#include "cpu_raster/rasterize.hpp"
-#include "cpu_raster/render_targets.hpp"
+#include "cpu_raster/exact/front_end.hpp"
+#include "cpu_raster/exact/rasterize.hpp"
+#include "cpu_raster/exact/render_targets.hpp"
 #include "model/render_result.hpp"
 
 namespace rastercmp::cpu {

@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "cpu_raster/line_setup.hpp"
+#include "cpu_raster/exact/line_setup.hpp"
 
 namespace rastercmp::cpu {
 namespace {

@@ -5,9 +5,9 @@
 #include <gtest/gtest.h>
 
 #include "cpu_raster/cpu_raster.hpp"
-#include "cpu_raster/draw_region.hpp"
-#include "cpu_raster/pipeline_cull.hpp"
-#include "cpu_raster/triangle_setup.hpp"
+#include "cpu_raster/exact/draw_region.hpp"
+#include "cpu_raster/exact/pipeline_cull.hpp"
+#include "cpu_raster/exact/triangle_setup.hpp"
 #include "model/render_result.hpp"
 
 namespace rastercmp::cpu {

@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "cpu_raster/fixed_point.hpp"
+#include "cpu_raster/exact/fixed_point.hpp"
 
 namespace rastercmp::cpu {
 namespace {

@@ -13,7 +13,7 @@
 #include <glm/vec4.hpp>
 #include <gtest/gtest.h>
 
-#include "cpu_raster/assemble.hpp"
+#include "cpu_raster/exact/assemble.hpp"
 #include "cpu_raster/cpu_raster.hpp"
 #include "model/errors.hpp"
 #include "model/render_result.hpp"

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "cpu_raster/fast/bench_scenes.hpp"
+#include "bench/bench_scenes.hpp"
 #include "model/errors.hpp"
 #include "model/host.hpp"
 #include "model/scene_io.hpp"
@@ -54,7 +54,7 @@ TEST_P(FastRandomScenes, MatchExactPath) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Seeds, FastRandomScenes, ::testing::Range<uint64_t>(1, 121),
-                         [](const ::testing::TestParamInfo<uint64_t>& info) { return "seed_" + std::to_string(info.param); });
+                         [](const ::testing::TestParamInfo<uint64_t>& param_info) { return "seed_" + std::to_string(param_info.param); });
 
 // Many small triangles in one big draw: the batching and tile-row split at real sizes.
 TEST(FastDenseScenes, ManyTrianglesAcrossTileRows) {
@@ -81,7 +81,7 @@ TEST_P(FastLayeredScenes, MatchExactPath) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Seeds, FastLayeredScenes, ::testing::Range<uint64_t>(1, 41),
-                         [](const ::testing::TestParamInfo<uint64_t>& info) { return "seed_" + std::to_string(info.param); });
+                         [](const ::testing::TestParamInfo<uint64_t>& param_info) { return "seed_" + std::to_string(param_info.param); });
 
 class FastSmallMeshes : public ::testing::TestWithParam<uint64_t> {};
 
@@ -90,7 +90,7 @@ TEST_P(FastSmallMeshes, MatchExactPath) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Seeds, FastSmallMeshes, ::testing::Range<uint64_t>(1, 1 + 40 / kMeshSeedDivisor),
-                         [](const ::testing::TestParamInfo<uint64_t>& info) { return "seed_" + std::to_string(info.param); });
+                         [](const ::testing::TestParamInfo<uint64_t>& param_info) { return "seed_" + std::to_string(param_info.param); });
 
 // A jittered mesh of cells of cell_min..cell_max pixels, a list, strip or fan over the same
 // indices (read as strips and fans they make triangles that overlap inside a block, so the lanes'

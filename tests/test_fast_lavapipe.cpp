@@ -6,7 +6,7 @@
 #include <memory>
 #include <string>
 
-#include "cpu_raster/fast/bench_scenes.hpp"
+#include "bench/bench_scenes.hpp"
 #include "model/errors.hpp"
 #include "model/host.hpp"
 #include "tests/test_fast_support.hpp"

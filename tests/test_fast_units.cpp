@@ -9,10 +9,10 @@
 #include <limits>
 #include <vector>
 
-#include "cpu_raster/clip_vertex.hpp"
-#include "cpu_raster/depth_sample.hpp"
-#include "cpu_raster/edge_plane.hpp"
-#include "cpu_raster/fast/bench_stats.hpp"
+#include "cpu_raster/exact/clip_vertex.hpp"
+#include "cpu_raster/exact/depth_sample.hpp"
+#include "cpu_raster/exact/edge_plane.hpp"
+#include "bench/bench_stats.hpp"
 #include "cpu_raster/fast/block_rows.hpp"
 #include "cpu_raster/fast/cpu_features.hpp"
 #include "cpu_raster/fast/fast_vertices.hpp"
@@ -20,7 +20,7 @@
 #include "cpu_raster/fast/small_window.hpp"
 #include "cpu_raster/fast/tile_depth_bounds.hpp"
 #include "cpu_raster/fast/tile_edges.hpp"
-#include "cpu_raster/fixed_point.hpp"
+#include "cpu_raster/exact/fixed_point.hpp"
 #include "tests/test_fast_support.hpp"
 
 namespace rastercmp::cpu::fast {

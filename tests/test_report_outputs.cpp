@@ -13,6 +13,7 @@
 #include "compare/merge.hpp"
 #include "compare/report.hpp"
 #include "compare/run_outputs.hpp"
+#include "compare/run_publish.hpp"
 #include "model/errors.hpp"
 #include "model/image_io.hpp"
 

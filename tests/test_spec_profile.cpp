@@ -313,7 +313,7 @@ TEST(SpecProfile, ThinBresenhamLineIsNeverMust) {
 TEST(SpecProfile, RenderResultCarriesTheLavapipeEstimateAndTheClasses) {
   Scene scene = make_scene(16, 16);
   scene.draws.push_back(window_triangles(scene, {{2, 2}, {10, 2}, {2, 10}}));
-  const RenderResult spec = render_spec_profile(scene, spec_options(6));
+  const RenderResult spec = render_spec_profile(scene, spec_options(6), render_cpu(scene, lavapipe_options()));
   const RenderResult exact = render_cpu(scene, lavapipe_options());
   EXPECT_EQ(spec.backend, "cpu");
   EXPECT_EQ(spec.device, "cpu spec profile (subPixelPrecisionBits 6)");

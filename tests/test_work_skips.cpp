@@ -17,13 +17,13 @@
 #include <gtest/gtest.h>
 
 #include "bench/skip_scenes.hpp"
-#include "cpu_raster/clip_line.hpp"
-#include "cpu_raster/clip_test.hpp"
-#include "cpu_raster/clip_triangle.hpp"
-#include "cpu_raster/depth_plane.hpp"
-#include "cpu_raster/edge_frame32.hpp"
-#include "cpu_raster/front_end.hpp"
-#include "cpu_raster/rasterize.hpp"
+#include "cpu_raster/exact/clip_line.hpp"
+#include "cpu_raster/exact/clip_test.hpp"
+#include "cpu_raster/exact/clip_triangle.hpp"
+#include "cpu_raster/exact/depth_plane.hpp"
+#include "cpu_raster/exact/edge_frame32.hpp"
+#include "cpu_raster/exact/front_end.hpp"
+#include "cpu_raster/exact/rasterize.hpp"
 #include "model/host.hpp"
 #include "tests/test_differential_scenes.hpp"
 
@@ -374,9 +374,9 @@ const Family kFamilies[] = {
 
 INSTANTIATE_TEST_SUITE_P(Families, SkipsOnDifferentialScenes,
                          ::testing::Combine(::testing::ValuesIn(kFamilies), ::testing::Values(1u, 2u)),
-                         [](const auto& info) {
-                           return std::string(std::get<0>(info.param).name) + "_seed" +
-                                  std::to_string(std::get<1>(info.param));
+                         [](const auto& param_info) {
+                           return std::string(std::get<0>(param_info.param).name) + "_seed" +
+                                  std::to_string(std::get<1>(param_info.param));
                          });
 
 // Scenes built so that each skip applies (or, for the controls, does not).
@@ -421,7 +421,7 @@ class SkipsOnSkipScenes : public ::testing::TestWithParam<SkipScene> {};
 TEST_P(SkipsOnSkipScenes, SameBytesWithEachSkipOnAndOff) { expect_skips_change_nothing(make_skip_scene(GetParam())); }
 
 INSTANTIATE_TEST_SUITE_P(Meshes, SkipsOnSkipScenes, ::testing::ValuesIn(skip_scene_list()),
-                         [](const auto& info) { return std::string(info.param.name); });
+                         [](const auto& param_info) { return std::string(param_info.param.name); });
 
 // Needles 2000 px long and 4 px wide at the far end, all with their apex on the first sample of a
 // 48x48 scissor (in a 16384 px viewport over a 128x128 framebuffer): each visits at most 49x49 px,

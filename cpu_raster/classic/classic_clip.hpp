@@ -15,7 +15,7 @@
 #include <array>
 #include <vector>
 
-#include "cpu_raster/clip_vertex.hpp"
+#include "cpu_raster/exact/clip_vertex.hpp"
 
 namespace rastercmp::cpu::classic {
 

@@ -1,12 +1,12 @@
 #include "cpu_raster/classic/classic_front_end.hpp"
 
-#include "cpu_raster/assemble.hpp"
+#include "cpu_raster/exact/assemble.hpp"
 #include "cpu_raster/classic/classic_clip.hpp"
 #include "cpu_raster/classic/classic_cull.hpp"
-#include "cpu_raster/clip_line.hpp"
-#include "cpu_raster/clip_test.hpp"
-#include "cpu_raster/line_setup.hpp"
-#include "cpu_raster/pipeline_cull.hpp"
+#include "cpu_raster/exact/clip_line.hpp"
+#include "cpu_raster/exact/clip_test.hpp"
+#include "cpu_raster/exact/line_setup.hpp"
+#include "cpu_raster/exact/pipeline_cull.hpp"
 #include "model/render_result.hpp"
 
 namespace rastercmp::cpu::classic {

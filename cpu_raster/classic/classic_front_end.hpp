@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "cpu_raster/classic/classic_methods.hpp"
-#include "cpu_raster/front_end.hpp"
-#include "cpu_raster/rasterize.hpp"
+#include "cpu_raster/exact/front_end.hpp"
+#include "cpu_raster/exact/rasterize.hpp"
 
 namespace rastercmp::cpu::classic {
 

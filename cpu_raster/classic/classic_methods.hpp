@@ -6,7 +6,7 @@
 
 #include <vector>
 
-#include "cpu_raster/setup_methods.hpp"
+#include "cpu_raster/exact/setup_methods.hpp"
 #include "model/scene.hpp"
 
 namespace rastercmp::cpu::classic {

@@ -5,8 +5,8 @@
 
 #include "cpu_raster/classic/classic_front_end.hpp"
 #include "cpu_raster/classic/classic_visibility.hpp"
-#include "cpu_raster/profile_support.hpp"
-#include "cpu_raster/render_targets.hpp"
+#include "cpu_raster/exact/profile_support.hpp"
+#include "cpu_raster/exact/render_targets.hpp"
 #include "model/errors.hpp"
 
 namespace rastercmp {

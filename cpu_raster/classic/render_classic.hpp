@@ -6,7 +6,8 @@
 // output goes through the same compare and report.
 #pragma once
 
-#include "cpu_raster/cpu_raster.hpp"
+#include "cpu_raster/exact/cpu_options.hpp"
+#include "model/render_result.hpp"
 
 namespace rastercmp {
 

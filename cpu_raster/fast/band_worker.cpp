@@ -4,15 +4,15 @@
 #include <bit>
 #include <climits>
 
-#include "cpu_raster/assemble.hpp"
-#include "cpu_raster/clip_triangle.hpp"
-#include "cpu_raster/clip_vertex.hpp"
-#include "cpu_raster/depth_plane.hpp"
+#include "cpu_raster/exact/assemble.hpp"
+#include "cpu_raster/exact/clip_triangle.hpp"
+#include "cpu_raster/exact/clip_vertex.hpp"
+#include "cpu_raster/exact/depth_plane.hpp"
 #include "cpu_raster/fast/small_block_input.hpp"
 #include "cpu_raster/fast/tile_depth_bounds.hpp"
 #include "cpu_raster/fast/tile_edges.hpp"
-#include "cpu_raster/pipeline_cull.hpp"
-#include "cpu_raster/triangle_setup.hpp"
+#include "cpu_raster/exact/pipeline_cull.hpp"
+#include "cpu_raster/exact/triangle_setup.hpp"
 #include "model/render_result.hpp"
 
 namespace rastercmp::cpu::fast {

@@ -2,7 +2,7 @@
 // phase before the walks that measures which tile rows each block may reach.
 #include <algorithm>
 
-#include "cpu_raster/assemble.hpp"
+#include "cpu_raster/exact/assemble.hpp"
 #include "cpu_raster/fast/band_worker.hpp"
 #include "cpu_raster/fast/block_rows.hpp"
 #include "cpu_raster/fast/small_block_input.hpp"

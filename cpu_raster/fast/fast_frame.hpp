@@ -9,8 +9,8 @@
 
 #include "cpu_raster/fast/fast_vertices.hpp"
 #include "cpu_raster/fast/tile_raster.hpp"
-#include "cpu_raster/front_end.hpp"
-#include "cpu_raster/render_targets.hpp"
+#include "cpu_raster/exact/front_end.hpp"
+#include "cpu_raster/exact/render_targets.hpp"
 
 namespace rastercmp::cpu::fast {
 

@@ -5,7 +5,7 @@
 
 #include <cstdint>
 
-#include "cpu_raster/draw_region.hpp"
+#include "cpu_raster/exact/draw_region.hpp"
 
 namespace rastercmp::cpu::fast {
 

@@ -1,7 +1,7 @@
 #include "cpu_raster/fast/fast_vertices.hpp"
 
-#include "cpu_raster/clip_test.hpp"
-#include "cpu_raster/fixed_point.hpp"
+#include "cpu_raster/exact/clip_test.hpp"
+#include "cpu_raster/exact/fixed_point.hpp"
 
 namespace rastercmp::cpu::fast {
 

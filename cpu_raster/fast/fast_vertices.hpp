@@ -13,7 +13,7 @@
 #include <immintrin.h>
 #endif
 
-#include "cpu_raster/viewport.hpp"
+#include "cpu_raster/exact/viewport.hpp"
 #include "model/scene.hpp"
 
 namespace rastercmp::cpu::fast {

@@ -5,7 +5,7 @@
 
 #include "cpu_raster/fast/cpu_features.hpp"
 #include "cpu_raster/fast/fast_vertices.hpp"
-#include "cpu_raster/fixed_point.hpp"
+#include "cpu_raster/exact/fixed_point.hpp"
 
 namespace rastercmp::cpu::fast {
 namespace {

@@ -11,15 +11,16 @@
 #include <cmath>
 #include <memory>
 
-#include "cpu_raster/assemble.hpp"
-#include "cpu_raster/depth_sample.hpp"
-#include "cpu_raster/draw_chunks.hpp"
+#include "cpu_raster/exact/assemble.hpp"
+#include "cpu_raster/exact/depth_sample.hpp"
+#include "cpu_raster/exact/draw_chunks.hpp"
 #include "cpu_raster/fast/band_worker.hpp"
 #include "cpu_raster/fast/cpu_features.hpp"
 #include "cpu_raster/fast/frame_memory.hpp"
 #include "cpu_raster/fast/worker_pool.hpp"
-#include "cpu_raster/profile_support.hpp"
-#include "cpu_raster/setup_methods.hpp"
+#include "cpu_raster/exact/profile_support.hpp"
+#include "cpu_raster/exact/render_exact.hpp"
+#include "cpu_raster/exact/setup_methods.hpp"
 #include "model/render_result.hpp"
 
 namespace rastercmp {
@@ -228,9 +229,7 @@ void run_workers(FastFrame& frame) {
 
 void render_fast_into(const Scene& scene, const CpuOptions& options, const FastConfig& config, RenderResult& result) {
   if (options.profile != CpuProfile::Lavapipe || !options.methods.empty()) {
-    CpuOptions exact = options;  // the method switches and the spec profile live in the exact path only
-    exact.threads = 0;
-    result = render_cpu(scene, exact);
+    result = render_exact(scene, options);  // the set-up method switches live in the exact path only
     return;
   }
   // The sizes first (they decide the allocations); with several workers the check runs beside

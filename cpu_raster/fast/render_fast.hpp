@@ -1,10 +1,11 @@
-// The fast CPU path: the same bits as the exact path (cpu_raster/render_cpu.cpp), faster
+// The fast CPU path: the same bits as the exact path (cpu_raster/exact/render_exact.cpp), faster
 // (docs/performance.md). render_cpu() dispatches here when options.threads >= 1.
 #pragma once
 
 #include <cstdint>
 
-#include "cpu_raster/cpu_raster.hpp"
+#include "cpu_raster/exact/cpu_options.hpp"
+#include "model/render_result.hpp"
 
 namespace rastercmp {
 

@@ -6,7 +6,7 @@
 #include <array>
 #include <cstdint>
 
-#include "cpu_raster/assemble.hpp"
+#include "cpu_raster/exact/assemble.hpp"
 #include "cpu_raster/fast/fast_frame.hpp"
 #include "cpu_raster/fast/small_triangles.hpp"
 

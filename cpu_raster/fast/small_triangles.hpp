@@ -18,7 +18,7 @@
 
 #include <cstdint>
 
-#include "cpu_raster/draw_region.hpp"
+#include "cpu_raster/exact/draw_region.hpp"
 #include "cpu_raster/fast/fast_triangle.hpp"
 #include "cpu_raster/fast/fast_vertices.hpp"
 #include "cpu_raster/fast/tile_kernel.hpp"

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "cpu_raster/depth_sample.hpp"
+#include "cpu_raster/exact/depth_sample.hpp"
 
 namespace rastercmp::cpu::fast {
 namespace {

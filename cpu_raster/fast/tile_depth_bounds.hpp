@@ -15,7 +15,7 @@
 #include <cstdint>
 
 #include "cpu_raster/fast/fast_triangle.hpp"
-#include "cpu_raster/rasterize.hpp"
+#include "cpu_raster/exact/rasterize.hpp"
 
 namespace rastercmp::cpu::fast {
 

@@ -16,7 +16,7 @@
 #include <cstdint>
 #include <limits>
 
-#include "cpu_raster/edge_plane.hpp"
+#include "cpu_raster/exact/edge_plane.hpp"
 #include "cpu_raster/fast/fast_triangle.hpp"
 #include "cpu_raster/fast/tile_kernel.hpp"
 

@@ -8,7 +8,7 @@
 
 #include <cstdint>
 
-#include "cpu_raster/draw_region.hpp"
+#include "cpu_raster/exact/draw_region.hpp"
 #include "model/scene.hpp"
 
 namespace rastercmp::cpu::fast {

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "cpu_raster/depth_sample.hpp"
+#include "cpu_raster/exact/depth_sample.hpp"
 #include "model/render_result.hpp"
 #include "cpu_raster/fast/tile_edges.hpp"
 

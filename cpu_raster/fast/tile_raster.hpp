@@ -12,7 +12,7 @@
 #include "cpu_raster/fast/tile_depth_bounds.hpp"
 #include "cpu_raster/fast/tile_edges.hpp"
 #include "cpu_raster/fast/tile_kernel.hpp"
-#include "cpu_raster/rasterize.hpp"
+#include "cpu_raster/exact/rasterize.hpp"
 
 namespace rastercmp::cpu::fast {
 

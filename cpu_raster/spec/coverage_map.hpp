@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "cpu_raster/draw_region.hpp"
+#include "cpu_raster/exact/draw_region.hpp"
 #include "cpu_raster/spec/depth_gate.hpp"
 #include "cpu_raster/spec/triangle_coverage.hpp"
 #include "model/render_result.hpp"

@@ -4,10 +4,10 @@
 #include <cmath>
 #include <initializer_list>
 
-#include "cpu_raster/assemble.hpp"
-#include "cpu_raster/clip_line.hpp"
-#include "cpu_raster/clip_triangle.hpp"
-#include "cpu_raster/clip_vertex.hpp"
+#include "cpu_raster/exact/assemble.hpp"
+#include "cpu_raster/exact/clip_line.hpp"
+#include "cpu_raster/exact/clip_triangle.hpp"
+#include "cpu_raster/exact/clip_vertex.hpp"
 
 namespace rastercmp::cpu::spec {
 namespace {

@@ -17,7 +17,7 @@
 #include "cpu_raster/spec/depth_gate.hpp"
 #include "cpu_raster/spec/line_coverage.hpp"
 #include "cpu_raster/spec/triangle_coverage.hpp"
-#include "cpu_raster/viewport.hpp"
+#include "cpu_raster/exact/viewport.hpp"
 #include "model/scene.hpp"
 
 namespace rastercmp::cpu::spec {

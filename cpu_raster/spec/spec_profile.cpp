@@ -16,24 +16,6 @@ using namespace cpu::spec;
 
 std::string draw_path(size_t d) { return "$.draws[" + std::to_string(d) + "]"; }
 
-void check_spec_profile_support(const Scene& scene) {
-  for (size_t d = 0; d < scene.draws.size(); ++d) {
-    const Draw& draw = scene.draws[d];
-    for (size_t k = 0; k < draw.indices.size(); ++k)
-      if (draw.indices[k] >= draw.positions_clip.size())
-        throw InputError(scene.source_path, draw_path(d) + ".indices[" + std::to_string(k) + "]",
-                         "expected an index below the number of positions");
-    if (draw.topology == Topology::PointList)
-      throw NotSupportedError(draw_path(d) + ": point_list is not classified by the CPU spec profile");
-    if (is_triangle_topology(draw.topology) && draw.state.polygon_mode != PolygonMode::Fill)
-      throw NotSupportedError(draw_path(d) + ": polygon_mode \"" + to_string(draw.state.polygon_mode) +
-                              "\" is not classified by the CPU spec profile");
-    if (is_line_topology(draw.topology) && draw.state.line_mode == LineMode::RectangularSmooth)
-      throw NotSupportedError(draw_path(d) + ": line_mode \"rectangular_smooth\" is not classified by the CPU spec "
-                              "profile (smooth-line coverage is an implementation's alpha)");
-  }
-}
-
 // Pixels of `region` whose boxes can touch the grid rectangle [x_lo, x_hi] x [y_lo, y_hi].
 cpu::PixelRect pixels_near(int64_t x_lo, int64_t x_hi, int64_t y_lo, int64_t y_hi, uint32_t bits, bool multisample,
                            const cpu::PixelRect& region) {
@@ -98,6 +80,24 @@ void add_line(CoverageMap& map, const SpecLine& line, uint32_t bits, bool multis
 
 }  // namespace
 
+void check_spec_profile_support(const Scene& scene) {
+  for (size_t d = 0; d < scene.draws.size(); ++d) {
+    const Draw& draw = scene.draws[d];
+    for (size_t k = 0; k < draw.indices.size(); ++k)
+      if (draw.indices[k] >= draw.positions_clip.size())
+        throw InputError(scene.source_path, draw_path(d) + ".indices[" + std::to_string(k) + "]",
+                         "expected an index below the number of positions");
+    if (draw.topology == Topology::PointList)
+      throw NotSupportedError(draw_path(d) + ": point_list is not classified by the CPU spec profile");
+    if (is_triangle_topology(draw.topology) && draw.state.polygon_mode != PolygonMode::Fill)
+      throw NotSupportedError(draw_path(d) + ": polygon_mode \"" + to_string(draw.state.polygon_mode) +
+                              "\" is not classified by the CPU spec profile");
+    if (is_line_topology(draw.topology) && draw.state.line_mode == LineMode::RectangularSmooth)
+      throw NotSupportedError(draw_path(d) + ": line_mode \"rectangular_smooth\" is not classified by the CPU spec "
+                              "profile (smooth-line coverage is an implementation's alpha)");
+  }
+}
+
 std::vector<CoverageClass> spec_coverage_classes(const Scene& scene, const CpuOptions& options) {
   check_spec_profile_support(scene);
   const uint32_t bits = effective_sub_pixel_bits(options.sub_pixel_bits);
@@ -113,11 +113,9 @@ std::vector<CoverageClass> spec_coverage_classes(const Scene& scene, const CpuOp
   return map.classes();
 }
 
-RenderResult render_spec_profile(const Scene& scene, const CpuOptions& options) {
+RenderResult render_spec_profile(const Scene& scene, const CpuOptions& options, RenderResult estimate) {
   check_spec_profile_support(scene);
-  CpuOptions exact = options;
-  exact.profile = CpuProfile::Lavapipe;
-  RenderResult result = render_cpu(scene, exact);
+  RenderResult result = std::move(estimate);
   result.device = "cpu spec profile (subPixelPrecisionBits " + std::to_string(options.sub_pixel_bits) + ")";
   result.coverage_class = spec_coverage_classes(scene, options);
   return result;

@@ -10,7 +10,7 @@
 
 #include <vector>
 
-#include "cpu_raster/cpu_raster.hpp"
+#include "cpu_raster/exact/cpu_options.hpp"
 #include "model/render_result.hpp"
 #include "model/scene.hpp"
 
@@ -20,10 +20,15 @@ namespace rastercmp {
 // InputError (an index past the positions), UsageError (sub_pixel_bits 0).
 std::vector<CoverageClass> spec_coverage_classes(const Scene& scene, const CpuOptions& options);
 
+// What the spec profile cannot classify: NotSupportedError (point_list, polygon_mode line/point),
+// InputError (an index past the positions). The façade calls it before rendering the estimate.
+void check_spec_profile_support(const Scene& scene);
+
 // backend "cpu", device "cpu spec profile (subPixelPrecisionBits N)", coverage_class from
-// spec_coverage_classes. owner and depth_raw are a best estimate: the lavapipe profile's render
-// (render_cpu with CpuProfile::Lavapipe and the same fma, threads and methods). Only coverage is
-// judged by class; the estimate names owners for wrong-owner warnings and gives depth values.
-RenderResult render_spec_profile(const Scene& scene, const CpuOptions& options);
+// spec_coverage_classes. owner and depth_raw are a best estimate: `estimate`, the lavapipe
+// profile's render of the same scene with the same fma, threads and methods, which the caller
+// makes (render_cpu does; this layer renders nothing itself). Only coverage is judged by class;
+// the estimate names owners for wrong-owner warnings and gives depth values.
+RenderResult render_spec_profile(const Scene& scene, const CpuOptions& options, RenderResult estimate);
 
 }  // namespace rastercmp

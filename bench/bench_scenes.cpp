@@ -1,0 +1,174 @@
+#include "bench/bench_scenes.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <random>
+
+#include "cpu_raster/exact/front_end.hpp"
+#include "cpu_raster/exact/profile_support.hpp"
+#include "cpu_raster/exact/rasterize.hpp"
+#include "model/camera.hpp"
+#include "model/errors.hpp"
+#include "model/scene_io.hpp"
+
+namespace rastercmp::bench {
+namespace {
+
+// Uniform in [0, 1) from the 53 high bits: the same numbers on every standard library.
+double unit(std::mt19937_64& rng) { return double(rng() >> 11) * 0x1.0p-53; }
+
+void add_quad_indices(std::vector<uint32_t>& indices, uint32_t v00, uint32_t v10, uint32_t v01, uint32_t v11,
+                      bool flip) {
+  const uint32_t quad[2][6] = {{v00, v10, v11, v00, v11, v01}, {v00, v10, v01, v10, v11, v01}};
+  indices.insert(indices.end(), quad[flip], quad[flip] + 6);
+}
+
+}  // namespace
+
+Scene fill_layers_scene(bool back_to_front, uint32_t size, uint32_t layers) {
+  Scene scene;
+  scene.name = back_to_front ? "bench.fill.back_to_front" : "bench.fill.front_to_back";
+  scene.description = "overlapping tilted near-full-screen layers";
+  scene.width = scene.height = size;
+  Draw draw;
+  draw.name = "layers";
+  constexpr float kExtent = 0.97f;  // about 0.98 Mpx per layer at 1024x1024
+  for (uint32_t n = 0; n < layers; ++n) {
+    const uint32_t layer = back_to_front ? layers - 1 - n : n;  // layer 0 is the nearest
+    const float base = 0.15f + 0.75f * float(layer) / float(std::max(layers - 1, 1u));
+    const uint32_t first = uint32_t(draw.positions_clip.size());
+    for (int corner = 0; corner < 4; ++corner) {
+      const float x = (corner & 1) ? kExtent : -kExtent, y = (corner & 2) ? kExtent : -kExtent;
+      draw.positions_clip.emplace_back(x, y, base + 0.01f * x + 0.005f * y, 1.0f);  // the slight tilt
+    }
+    add_quad_indices(draw.indices, first, first + 1, first + 2, first + 3, false);
+  }
+  scene.draws.push_back(std::move(draw));
+  return scene;
+}
+
+Scene grid_scene(uint32_t cells, uint32_t size, uint64_t seed) {
+  Scene scene;
+  scene.name = "bench.grid." + std::to_string(cells);
+  scene.description = "jittered grid of " + std::to_string(2ull * cells * cells) + " triangles";
+  scene.width = scene.height = size;
+  Draw draw;
+  draw.name = "grid";
+  std::mt19937_64 rng(seed);
+  const double cell = 2.0 / cells;
+  draw.positions_clip.reserve(size_t(cells + 1) * (cells + 1));
+  for (uint32_t j = 0; j <= cells; ++j) {
+    for (uint32_t i = 0; i <= cells; ++i) {
+      double x = -1.0 + cell * i, y = -1.0 + cell * j;
+      if (i > 0 && i < cells && j > 0 && j < cells) {  // interior: jitter by up to 1/4 cell
+        x += (unit(rng) - 0.5) * 0.5 * cell;
+        y += (unit(rng) - 0.5) * 0.5 * cell;
+      }
+      const double z = 0.5 + 0.2 * std::sin(3.0 * x) * std::cos(2.0 * y);
+      draw.positions_clip.emplace_back(float(x), float(y), float(z), 1.0f);
+    }
+  }
+  draw.indices.reserve(size_t(cells) * cells * 6);
+  for (uint32_t j = 0; j < cells; ++j) {
+    for (uint32_t i = 0; i < cells; ++i) {
+      const uint32_t v00 = j * (cells + 1) + i;
+      add_quad_indices(draw.indices, v00, v00 + 1, v00 + cells + 1, v00 + cells + 2, ((i + j) & 1) != 0);
+    }
+  }
+  scene.draws.push_back(std::move(draw));
+  return scene;
+}
+
+Scene perspective_scene(uint32_t cells, uint32_t size) {
+  Scene scene;
+  scene.name = "bench.perspective";
+  scene.description = "terrain under a perspective camera, clipped by the view volume";
+  scene.width = scene.height = size;
+  Camera camera;
+  camera.eye = {0.0f, 3.0f, 12.0f};
+  camera.target = {0.0f, 0.0f, -10.0f};
+  camera.fov_y_degrees = 70.0f;
+  camera.near_plane = 1.0f;
+  camera.far_plane = 45.0f;
+  const glm::mat4 world_to_clip = camera_world_to_clip(camera, 1.0f);
+  Draw draw;
+  draw.name = "terrain";
+  constexpr float kHalf = 60.0f;
+  for (uint32_t j = 0; j <= cells; ++j) {
+    for (uint32_t i = 0; i <= cells; ++i) {
+      const float x = -kHalf + 2 * kHalf * float(i) / float(cells), z = -kHalf + 2 * kHalf * float(j) / float(cells);
+      const float y = 1.5f * std::sin(0.35f * x) * std::cos(0.25f * z);
+      draw.positions_clip.push_back(world_to_clip * glm::vec4(x, y, z, 1.0f));
+    }
+  }
+  for (uint32_t j = 0; j < cells; ++j) {
+    for (uint32_t i = 0; i < cells; ++i) {
+      const uint32_t v00 = j * (cells + 1) + i;
+      add_quad_indices(draw.indices, v00, v00 + 1, v00 + cells + 1, v00 + cells + 2, false);
+    }
+  }
+  draw.state.cull_mode = CullMode::None;
+  scene.draws.push_back(std::move(draw));
+  return scene;
+}
+
+std::vector<std::string> standard_bench_scene_names() {
+  return {"fill_b2f", "fill_f2b", "grid_180k", "tiny_1m", "perspective"};
+}
+
+BenchScene standard_bench_scene(const std::string& name) {
+  if (name == "fill_b2f") return {name, fill_layers_scene(true)};
+  if (name == "fill_f2b") return {name, fill_layers_scene(false)};
+  if (name == "grid_180k") return {name, grid_scene(300)};
+  if (name == "tiny_1m") return {name, grid_scene(724)};
+  if (name == "perspective") return {name, perspective_scene()};
+  throw UsageError("unknown bench scene \"" + name + "\"; known: fill_b2f, fill_f2b, grid_180k, tiny_1m, perspective");
+}
+
+std::vector<BenchScene> standard_bench_scenes() {
+  std::vector<BenchScene> scenes;
+  for (const std::string& name : standard_bench_scene_names()) scenes.push_back(standard_bench_scene(name));
+  return scenes;
+}
+
+std::vector<Scene> load_scene_suite(const std::string& root) {
+  std::vector<std::string> paths;
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(root))
+    if (entry.is_regular_file() && entry.path().extension() == ".json") paths.push_back(entry.path().string());
+  std::sort(paths.begin(), paths.end());
+  std::vector<Scene> scenes;
+  for (const std::string& path : paths) scenes.push_back(load_scene_file(path));
+  return scenes;
+}
+
+uint64_t triangle_count(const Scene& scene) {
+  uint64_t count = 0;
+  for (const Draw& draw : scene.draws) {
+    const uint64_t n = draw.vertex_count();
+    if (draw.topology == Topology::TriangleList) count += n / 3;
+    else if (is_triangle_topology(draw.topology)) count += n >= 3 ? n - 2 : 0;
+  }
+  return count;
+}
+
+uint64_t covered_samples(const Scene& scene, bool fma) {
+  cpu::check_lavapipe_profile_support(scene);
+  const cpu::FrameContext frame = cpu::make_frame_context(scene, fma, cpu::SetupMethods{});
+  uint64_t count = 0;
+  for (uint32_t d = 0; d < scene.draws.size(); ++d) {
+    cpu::run_front_end(frame, d, [&](const cpu::PrimitiveOutcome& outcome) {
+      if (!outcome.rasterized()) return;
+      const cpu::RasterPrimitive& p = outcome.raster;
+      for (int32_t py = p.visit.y0; py <= p.visit.y1; ++py)
+        for (int32_t px = p.visit.x0; px <= p.visit.x1; ++px)
+          for (uint32_t s = 0; s < scene.samples; ++s) {
+            const cpu::SamplePoint point = cpu::sample_point(px, py, p.per_sample ? s : 0, p.per_sample);
+            if (cpu::first_failing_plane(p.planes, point.x_fixed, point.y_fixed) < 0) ++count;
+          }
+    });
+  }
+  return count;
+}
+
+}  // namespace rastercmp::bench

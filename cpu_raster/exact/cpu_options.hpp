@@ -1,0 +1,34 @@
+// What a caller asks of the CPU renderer: the profile, the FMA model, the thread count, the
+// method overrides and the exact path's work skips. Every CPU layer reads it; the façade
+// (cpu_raster/cpu_raster.hpp) picks the path from it.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "cpu_raster/exact/work_skips.hpp"
+#include "model/scene.hpp"
+
+namespace rastercmp {
+
+enum class CpuProfile { Lavapipe, Spec };
+
+struct CpuOptions {
+  CpuProfile profile = CpuProfile::Lavapipe;
+  // Model lavapipe's llvm.fmuladd as fused (true on FMA hosts; see lavapipe_fuses_on_this_host()).
+  bool fma = true;
+  // Sub-pixel precision of the device being judged (spec profile); lavapipe: 8.
+  uint32_t sub_pixel_bits = 8;
+  // 0: the exact scalar path alone. >= 1: the fast path with this many threads (bit-identical).
+  uint32_t threads = 0;
+  // Method overrides (--method STAGE=NAME); empty: the exact pipeline.
+  std::vector<MethodChoice> methods;
+  // Measurement knob, exact path only (threads = 0): the work the scene's state makes unnecessary
+  // is skipped (the default), or done anyway with identical output (docs/cpu-raster.md).
+  cpu::WorkSkips skips;
+};
+
+// RenderResult::device of the Lavapipe profile.
+inline constexpr const char* kLavapipeProfileDevice = "cpu lavapipe-22.3.6 profile";
+
+}  // namespace rastercmp

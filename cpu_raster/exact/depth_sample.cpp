@@ -1,0 +1,85 @@
+#include "cpu_raster/exact/depth_sample.hpp"
+
+#include <cmath>
+
+#include "cpu_raster/exact/float_ops.hpp"
+
+namespace rastercmp::cpu {
+namespace {
+
+template <class T>
+bool ordered_compare(CompareOp op, T a, T b) {
+  switch (op) {
+    case CompareOp::Never: return false;
+    case CompareOp::Less: return a < b;
+    case CompareOp::Equal: return a == b;
+    case CompareOp::LessOrEqual: return a <= b;
+    case CompareOp::Greater: return a > b;
+    case CompareOp::NotEqual: return a != b;
+    case CompareOp::GreaterOrEqual: return a >= b;
+    case CompareOp::Always: return true;
+  }
+  return false;
+}
+
+// LLVM's unordered predicates (ULT, UEQ, ...): true whenever an operand is NaN.
+bool unordered_compare(CompareOp op, float a, float b) {
+  if (op == CompareOp::Never) return false;
+  if (std::isnan(a) || std::isnan(b)) return true;
+  return ordered_compare(op, a, b);
+}
+
+}  // namespace
+
+float interpolate_depth(const DepthPlane& plane, float px, float py, bool fma) {
+  return mul_add(plane.dzdy, py, mul_add(plane.dzdx, px, plane.a0, fma), fma);  // lp_bld_interp.c
+}
+
+SampleDepth sample_depth(const DepthPlane& plane, float offset, float px, float py, const DepthRange& range,
+                         DepthFormat format, bool fma) {
+  SampleDepth d;
+  d.interpolated = interpolate_depth(plane, px, py, fma);
+  d.with_offset = d.interpolated + offset;  // a separate fadd, always issued
+  d.clamped_01 = sse_max(sse_min(d.with_offset, 1.0f), 0.0f);  // lp_build_clamp: min, then max
+  d.depth_clamped = range.clamp ? sse_max(sse_min(d.clamped_01, range.zmax), range.zmin) : d.clamped_01;
+  d.raw = depth_to_raw(format, d.depth_clamped);
+  return d;
+}
+
+uint32_t depth_to_raw(DepthFormat format, float z) {
+  switch (format) {
+    case DepthFormat::D16Unorm: {
+      const float scaled = z * 0.9999847412109375f;  // 65535/65536, exact in float
+      return float_bits(scaled + 128.0f) & 0xFFFFu;   // the magic-number trick
+    }
+    case DepthFormat::X8D24Unorm: return static_cast<uint32_t>(std::nearbyint(z * 16777215.0f));  // cvtps2dq
+    case DepthFormat::D32Sfloat: return float_bits(z);
+    case DepthFormat::None: break;
+  }
+  return 0;
+}
+
+uint32_t clear_depth_raw(DepthFormat format, float clear_value) {
+  const double z = clear_value;
+  switch (format) {
+    case DepthFormat::D16Unorm:
+      if (z <= 0.0) return 0;
+      if (z >= 1.0) return 0xFFFFu;
+      return static_cast<uint32_t>(std::lrint(z * 0xFFFF));
+    case DepthFormat::X8D24Unorm:
+      if (z <= 0.0) return 0;
+      if (z >= 1.0) return 0xFFFFFFu;
+      return static_cast<uint32_t>(std::lrint(z * 0xFFFFFF));
+    case DepthFormat::D32Sfloat: return float_bits(clear_value);
+    case DepthFormat::None: break;
+  }
+  return 0;
+}
+
+bool depth_test_passes(CompareOp op, DepthFormat format, uint32_t fragment_raw, uint32_t stored_raw) {
+  if (format == DepthFormat::D32Sfloat)
+    return unordered_compare(op, float_from_bits(fragment_raw), float_from_bits(stored_raw));
+  return ordered_compare(op, fragment_raw, stored_raw);
+}
+
+}  // namespace rastercmp::cpu

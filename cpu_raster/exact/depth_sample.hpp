@@ -1,0 +1,46 @@
+// Depth of one sample, from the plane to the stored bits, and the depth test
+// (lavapipe-rules §3.3-§3.6, steps 16-17):
+//   z = fl(FMA?(dzdy, py, FMA?(dzdx, px, a0)) + o)
+//   z = max(min(z, 1), 0)                      (always: VK_EXT_depth_range_unrestricted is off)
+//   z = max(min(z, zmax), zmin)                (depth clamp only)
+//   D16: bits(fl(fl(z*(65535/65536)) + 128)) & 0xFFFF;  D24: rne(fl(z*16777215));  D32: z
+#pragma once
+
+#include <cstdint>
+
+#include "cpu_raster/exact/depth_plane.hpp"
+#include "model/scene.hpp"
+
+namespace rastercmp::cpu {
+
+// Every intermediate value, for explain; `raw` is what the attachment stores.
+struct SampleDepth {
+  float interpolated = 0;  // before the offset
+  float with_offset = 0;
+  float clamped_01 = 0;
+  float depth_clamped = 0;  // equals clamped_01 when depth clamp is off
+  uint32_t raw = 0;
+};
+
+// What the draw's depth state adds to the plane (ranges from the viewport, §3.4).
+struct DepthRange {
+  bool clamp = false;
+  float zmin = 0, zmax = 1;
+};
+
+// px, py: pixel coordinates as floats, plus the sample offset for multisampling.
+float interpolate_depth(const DepthPlane& plane, float px, float py, bool fma);
+
+SampleDepth sample_depth(const DepthPlane& plane, float offset, float px, float py, const DepthRange& range,
+                         DepthFormat format, bool fma);
+
+// lp_bld_conv.c lp_build_clamped_float_to_unsigned_norm, or the float bits for D32 (§3.5).
+uint32_t depth_to_raw(DepthFormat format, float z);
+
+// The clear value as llvmpipe packs it (util_pack_z: lrint in double; D32: the float bits).
+uint32_t clear_depth_raw(DepthFormat format, float clear_value);
+
+// The depth test: unsigned compare for UNORM formats, unordered IEEE compare for D32 (§3.6).
+bool depth_test_passes(CompareOp op, DepthFormat format, uint32_t fragment_raw, uint32_t stored_raw);
+
+}  // namespace rastercmp::cpu

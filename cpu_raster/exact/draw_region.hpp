@@ -1,0 +1,45 @@
+// Where lavapipe lets a primitive write (lavapipe-rules §2.5, step 12-13):
+//  - the draw region: framebuffer ∩ scissor ∩ the viewport's pixel rectangle "vpwh";
+//  - the scissor planes llvmpipe adds only where the primitive's bounding box crosses the region,
+//    with the multisample quirk (left/top planes shifted by 127/256 px);
+//  - the pixels its rasterizer visits at all, which follow from how set-up bins the primitive into
+//    64x64 tiles (lp_setup_tri.c lp_setup_bin_triangle). Coverage is "all planes E > 0" inside
+//    that area; the area only matters where the planes leave samples outside the region (the
+//    multisample quirk, line bounding boxes rounded up).
+#pragma once
+
+#include <cstdint>
+
+#include "cpu_raster/exact/edge_plane.hpp"
+#include "cpu_raster/exact/viewport.hpp"
+#include "model/scene.hpp"
+
+namespace rastercmp::cpu {
+
+// Inclusive pixel rectangle (Mesa's u_rect); empty when x1 < x0 or y1 < y0.
+struct PixelRect {
+  int32_t x0 = 0, y0 = 0, x1 = -1, y1 = -1;
+  bool empty() const { return x1 < x0 || y1 < y0; }
+  bool contains(int32_t x, int32_t y) const { return x >= x0 && x <= x1 && y >= y0 && y <= y1; }
+  friend bool operator==(const PixelRect&, const PixelRect&) = default;
+};
+
+PixelRect intersect(const PixelRect& a, const PixelRect& b);
+
+// u_rect_test_intersection: compares the bounds only (an inverted rectangle can "intersect").
+bool rects_touch(const PixelRect& a, const PixelRect& b);
+
+// lp_setup_set_viewports: the viewport's pixel rectangle, from float translate/scale.
+PixelRect viewport_pixel_rect(const ViewportTransform& viewport);
+
+// lp_setup.c try_update_scene_state: framebuffer ∩ scissor ∩ vpwh.
+PixelRect draw_region(const Scene& scene, const ViewportTransform& viewport);
+
+// lp_setup_add_scissor_planes, for the region edges `bbox` crosses; appended to `planes`.
+void add_scissor_planes(const PixelRect& bbox, const PixelRect& region, bool multisample, PlaneSet& planes);
+
+// The pixels lavapipe's rasterizer evaluates for a primitive with this (non-negative-clamped)
+// bounding box: its 64x64 tile, or the tiles of the box's part inside the region.
+PixelRect binned_area(const PixelRect& bbox, const PixelRect& region);
+
+}  // namespace rastercmp::cpu

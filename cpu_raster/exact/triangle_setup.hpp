@@ -1,0 +1,38 @@
+// Triangle set-up, lp_setup_tri.c (lavapipe-rules §2.2-§2.5, §3.2, §4.3; steps 9-15):
+// snap to 24.8 → int64 doubled area → drop zero area → facing and cull → make counter-clockwise by
+// swapping v1/v2 → edges with the top-left bias → bounding box against the draw region → depth plane
+// and bias. Takes window coordinates of one (possibly clipped) triangle in emit order.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "cpu_raster/exact/raster_primitive.hpp"
+#include "cpu_raster/exact/setup_context.hpp"
+#include "cpu_raster/exact/viewport.hpp"
+
+namespace rastercmp::cpu {
+
+enum class SetupFate {
+  Rasterized,
+  NonFinite,      // a coordinate does not snap (NaN, Inf or beyond the 24.8 bound)
+  Degenerate,     // zero fixed-point area (triangles) or zero length (lines): always dropped
+  Culled,         // the face is culled
+  OutsideRegion,  // the bounding box misses the draw region
+};
+
+struct TriangleSetup {
+  SetupFate fate = SetupFate::Rasterized;
+  int64_t area = 0;         // doubled signed area in fixed units^2, before the swap
+  bool front_facing = false;
+  bool swapped = false;     // v1 and v2 were exchanged to make the triangle counter-clockwise
+  PixelRect bbox;           // unclamped bounding box, valid once snapped
+  RasterPrimitive raster;   // valid when Rasterized (and partly filled before)
+};
+
+// Whether the cull mode drops a triangle of this facing (§2.3).
+bool face_culled(bool front_facing, CullMode cull);
+
+TriangleSetup setup_triangle(const std::array<WindowVertex, 3>& window, uint32_t owner, const SetupContext& context);
+
+}  // namespace rastercmp::cpu
