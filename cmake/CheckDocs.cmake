@@ -1,6 +1,7 @@
 # cmake -DSOURCE_DIR=<source tree> -P CheckDocs.cmake
 # Fails (FATAL_ERROR naming each file, line and offending text) when a text file of the tree
-#   (a) points outside the repository: it contains "../shared", "shared/docs/" or "shared/captures";
+#   (a) points outside the repository: it contains "../shared", "shared/docs/", "shared/captures", "shared/seeds",
+#       "ecosystem-study" or "STYLE.md" (documents that live outside it);
 #   (b) cites a section of the rule book that does not exist: "lavapipe-rules", an optional ".md",
 #       an optional backtick, then " §N" or " §N.M" (and any further "§N.M" chained to it by ", ",
 #       "," or a dash, as in "§2.2-§2.5" or "§1.2, §1.3"), where docs/lavapipe-rules.md has no
@@ -97,7 +98,7 @@ function(_line_of var text offset)
   set(${var} ${_n} PARENT_SCOPE)
 endfunction()
 
-set(_forbidden "../shared" "shared/docs/" "shared/captures")
+set(_forbidden "../shared" "shared/docs/" "shared/captures" "shared/seeds" "ecosystem-study" "STYLE.md")
 set(_section "§[0-9]+(\\.[0-9]+)?")
 set(_citation "lavapipe-rules(\\.md)?`? ${_section}((, |,|-|–|—)${_section})*")
 set(_errors "")

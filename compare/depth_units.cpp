@@ -52,9 +52,9 @@ uint64_t depth_diff_raw_units(DepthFormat format, uint32_t expected_raw, uint32_
 double depth_bias_r(DepthFormat format, uint32_t expected_raw, uint32_t actual_raw) {
   switch (format) {
     case DepthFormat::D16Unorm:
-      return 2.0 / 65535.0;  // lavapipe-rules §4.3: r = 2 * mrd
+      return 2.0 / 65535.0;  // docs/lavapipe-rules.md §4.3: r = 2 * mrd
     case DepthFormat::X8D24Unorm:
-      return 2.0 / 16777215.0;  // lavapipe-rules §4.3: r = 2 * mrd
+      return 2.0 / 16777215.0;  // docs/lavapipe-rules.md §4.3: r = 2 * mrd
     case DepthFormat::D32Sfloat: {
       // Spec "Depth Bias": r = 2^(e - n) for floating-point formats, n = 23 mantissa bits.
       const double larger = std::fmax(std::fabs(double(std::bit_cast<float>(expected_raw))),

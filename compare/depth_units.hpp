@@ -18,7 +18,7 @@ const char* depth_unit_name(DepthFormat);
 uint64_t depth_diff_raw_units(DepthFormat, uint32_t expected_raw, uint32_t actual_raw);
 
 // The minimum resolvable difference r at this pair of depths, as a depth value:
-//   UNORM n bits: r = 2 / (2^n - 1), what lavapipe uses (lavapipe-rules §4.3: 2 * mrd);
+//   UNORM n bits: r = 2 / (2^n - 1), what lavapipe uses (docs/lavapipe-rules.md §4.3: 2 * mrd);
 //   D32_SFLOAT:   r = 2^(e - 23), e the unbiased exponent of max(|expected|, |actual|)
 //                 (spec "Depth Bias" for floating-point formats), e >= -126.
 double depth_bias_r(DepthFormat, uint32_t expected_raw, uint32_t actual_raw);

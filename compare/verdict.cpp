@@ -28,7 +28,7 @@ std::string depth_counts(const DiffSummary& d) {
 }
 
 VerdictDecision decide_lavapipe(const DiffSummary& d) {
-  // The lavapipe profile claims bit-exactness: any difference fails (lavapipe-rules "Tolerances").
+  // The lavapipe profile claims bit-exactness: any difference fails (docs/lavapipe-rules.md "Tolerances").
   if (d.coverage_mismatches() == 0 && d.depth.mismatches == 0) return {Verdict::Pass, "bit-exact"};
   std::string why = coverage_counts(d);
   if (d.depth.mismatches != 0) why += "; " + depth_counts(d);

@@ -153,7 +153,7 @@ Scene make_flat_plane(DepthFormat format, const DepthBias& bias) {
   Draw draw;
   // Window depth 0.375: away from a half-way point of the UNORM grids (0.375 * (2^n - 1) ends in
   // .625 for n = 16 and 24), so the biased depth does not sit on a rounding tie; D32's
-  // r = 2^(e-23) with e = -2 (lavapipe-rules §4.3).
+  // r = 2^(e-23) with e = -2 (docs/lavapipe-rules.md §4.3).
   const float z = kFlatPlaneDepth;
   draw.positions_clip = {{-0.75f, -0.75f, z, 1}, {0.75f, -0.75f, z, 1}, {0.75f, 0.75f, z, 1},
                          {-0.75f, -0.75f, z, 1}, {0.75f, 0.75f, z, 1}, {-0.75f, 0.75f, z, 1}};

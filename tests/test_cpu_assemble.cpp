@@ -1,5 +1,5 @@
 // Primitive assembly order with the provoking vertex first (draw_decompose_tmp.h, lp_setup_vbuf.c),
-// and the driver's draw chunks with their "pipelined" flag (draw_chunks.hpp, lavapipe-rules §1.5).
+// and the driver's draw chunks with their "pipelined" flag (draw_chunks.hpp, docs/lavapipe-rules.md §1.5).
 #include <array>
 
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Clipping (lavapipe-rules §1.3, §1.5, §1.6) with answers worked out by hand on a 4x4 viewport
+// Clipping (docs/lavapipe-rules.md §1.3, §1.5, §1.6) with answers worked out by hand on a 4x4 viewport
 // (scale 2, translate 2 in x and y; depth 0..1).
 #include <array>
 #include <limits>

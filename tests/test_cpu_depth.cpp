@@ -1,5 +1,5 @@
 // Depth: the plane, the polygon offset, clamping, conversion to the stored bits and the compare
-// (lavapipe-rules §3, §4; steps 14-17), with answers worked out by hand.
+// (docs/lavapipe-rules.md §3, §4; steps 14-17), with answers worked out by hand.
 #include <cmath>
 #include <limits>
 
@@ -63,7 +63,7 @@ std::array<WindowVertex, 3> flat_triangle(float z) {
 
 DepthBias constant_bias(float constant, float clamp = 0) { return DepthBias{true, constant, 0, clamp}; }
 
-// r for UNORM formats is 2/(2^n - 1), formed in double and rounded once (lavapipe-rules §4.3).
+// r for UNORM formats is 2/(2^n - 1), formed in double and rounded once (docs/lavapipe-rules.md §4.3).
 TEST(CpuDepth, BiasConstantTermPerFormat) {
   const auto o16 = triangle_depth_offset(flat_triangle(0.5f), constant_bias(1), DepthFormat::D16Unorm);
   EXPECT_EQ(o16.offset, static_cast<float>(2.0 / 65535.0));

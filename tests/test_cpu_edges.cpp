@@ -1,4 +1,4 @@
-// Edge functions and the top-left rule (lavapipe-rules §2.4), and coverage of small triangles and
+// Edge functions and the top-left rule (docs/lavapipe-rules.md §2.4), and coverage of small triangles and
 // lines whose covered pixels are worked out by hand.
 #include <string>
 #include <vector>

@@ -1,4 +1,4 @@
-// Bresenham line set-up at pixel centres (lavapipe-rules §5.4): the diamond-exit tests of lines
+// Bresenham line set-up at pixel centres (docs/lavapipe-rules.md §5.4): the diamond-exit tests of lines
 // whose start or end lies exactly on a pixel centre, with answers worked out by hand.
 #include <array>
 

@@ -1,4 +1,4 @@
-// Triangle set-up, the draw region, scissor planes and binning (lavapipe-rules §2.3-§2.6, §6),
+// Triangle set-up, the draw region, scissor planes and binning (docs/lavapipe-rules.md §2.3-§2.6, §6),
 // with answers worked out by hand.
 #include <array>
 

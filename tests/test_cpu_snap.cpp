@@ -1,4 +1,4 @@
-// Snapping to 24.8 fixed point (lavapipe-rules §2.2, §5.3), with answers worked out by hand.
+// Snapping to 24.8 fixed point (docs/lavapipe-rules.md §2.2, §5.3), with answers worked out by hand.
 #include <cmath>
 #include <limits>
 

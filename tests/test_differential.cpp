@@ -57,7 +57,7 @@ TEST_P(Differential, MatchesLavapipeExactly) {
   EXPECT_EQ(f.depth_mismatches, 0u) << scene.name << ": first differences\n" << report;
 }
 
-// Deterministic corner cases of the draw region (lavapipe-rules §2.5): an empty scissor, a scissor
+// Deterministic corner cases of the draw region (docs/lavapipe-rules.md §2.5): an empty scissor, a scissor
 // entirely outside the framebuffer, a viewport entirely outside it, over triangles covering the
 // whole framebuffer.
 class DifferentialRegion : public ::testing::Test {

@@ -3,7 +3,7 @@
 //  - snap = round_half_away (util_iround instead of cvtps2dq's round-to-nearest-even) on vertices
 //    at odd multiples of 1/512 px, where the two roundings disagree;
 //  - tie_break = none (no top-left +1) on triangles with edges through pixel centres;
-//  - the host FMA behaviour inverted: depth differs, coverage does not (lavapipe-rules §7.1).
+//  - the host FMA behaviour inverted: depth differs, coverage does not (docs/lavapipe-rules.md §7.1).
 #include <cstdint>
 #include <string>
 

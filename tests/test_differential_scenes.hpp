@@ -159,7 +159,7 @@ inline Scene clamp_scissor_triangles(uint32_t seed) {
 }
 
 // Draws of 16 triangles each, with clipping, culling and slivers: the per-draw pipeline path and
-// its float cull (lavapipe-rules §2.6).
+// its float cull (docs/lavapipe-rules.md §2.6).
 inline Scene multi_triangle_draws(uint32_t seed) {
   Random rng(seed);
   Scene scene = make_scene(scene_name("multi", seed), 83, 71, format_for(seed));
@@ -224,7 +224,7 @@ inline void add_bresenham_line(Scene& scene, Random& rng, float width, float x1,
 }
 
 // Wide Bresenham lines, y-major and x-major, starting exactly on a pixel centre (the diamond-exit
-// start tests at y1diff == 0, lavapipe-rules §5.4). The far end is on an odd 1/256 step, so the
+// start tests at y1diff == 0, docs/lavapipe-rules.md §5.4). The far end is on an odd 1/256 step, so the
 // side edges do not pass through sample points.
 inline Scene centred_bresenham_lines(uint32_t seed) {
   Random rng(seed);
@@ -246,7 +246,7 @@ inline Scene centred_bresenham_lines(uint32_t seed) {
 // Wide and thin Bresenham lines between lattice points: each end on a pixel centre or a pixel
 // corner, slopes small rationals that are mostly not powers of two (1/3, 2/5, ...), every
 // direction. The side edges pass exactly through samples, so any half-pixel end shift that the
-// model decides differently from the driver tilts them and moves a row (lavapipe-rules §5.4).
+// model decides differently from the driver tilts them and moves a row (docs/lavapipe-rules.md §5.4).
 inline Scene lattice_bresenham_lines(uint32_t seed) {
   Random rng(seed);
   Scene scene = make_scene(scene_name("lines_bresenham_lattice", seed), 128, 96, format_for(seed));
@@ -264,7 +264,7 @@ inline Scene lattice_bresenham_lines(uint32_t seed) {
   return scene;
 }
 
-// Large draws cut into the driver's chunks (lavapipe-rules §1.5, cpu_raster/draw_chunks.hpp):
+// Large draws cut into the driver's chunks (docs/lavapipe-rules.md §1.5, cpu_raster/draw_chunks.hpp):
 // one clipped triangle makes its chunk "pipelined", and slivers whose float facing (unsnapped
 // window coordinates) is back but whose fixed-point facing is front sit just before and after
 // each chunk boundary: the pipeline's float cull drops them only inside a pipelined chunk.

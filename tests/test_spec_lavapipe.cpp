@@ -31,7 +31,7 @@ struct KnownDeviation {
 };
 constexpr KnownDeviation kKnownDeviations[] = {
     {"rastercmp.msaa.scissor.inner",
-     "lavapipe-rules §2.5: with 4x MSAA the left/top scissor planes pass samples more than 127/256 px into the "
+     "docs/lavapipe-rules.md §2.5: with 4x MSAA the left/top scissor planes pass samples more than 127/256 px into the "
      "column/row just outside the scissor (violates fragops.adoc \"Scissor Test\")"},
 };
 
@@ -57,7 +57,7 @@ std::vector<fs::path> builtin_scene_files() {
   return files;
 }
 
-// lavapipe-rules §2.5: the samples the MSAA scissor leak can cover, just left of or above the
+// docs/lavapipe-rules.md §2.5: the samples the MSAA scissor leak can cover, just left of or above the
 // scissor: samples 1 and 3 (x offset 0.875, 0.625) of column x0 - 1, samples 2 and 3 (y offset
 // 0.625, 0.875) of row y0 - 1.
 bool in_msaa_scissor_leak(const Scene& scene, uint32_t x, uint32_t y, uint32_t sample) {

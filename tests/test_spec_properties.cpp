@@ -5,7 +5,7 @@
 // and random scenes of several draws with shared edges. CPU only.
 //
 // Known lavapipe deviation kept out of the generators: with 4x multisampling an inner scissor
-// leaks half a pixel at its left and top edges (lavapipe-rules §2.5); tests/test_spec_lavapipe.cpp
+// leaks half a pixel at its left and top edges (docs/lavapipe-rules.md §2.5); tests/test_spec_lavapipe.cpp
 // shows that the profile catches it.
 #include <algorithm>
 #include <array>

@@ -114,7 +114,7 @@ TEST_F(VkReferenceTest, DeviceIsLavapipeWithHostFma) {
   EXPECT_TRUE(device.is_lavapipe);
   EXPECT_NE(device.name.find("llvmpipe"), std::string::npos);
   EXPECT_EQ(device.fma, lavapipe_fuses_on_this_host());
-  EXPECT_EQ(device.sub_pixel_precision_bits, 8u);  // lavapipe-rules §0
+  EXPECT_EQ(device.sub_pixel_precision_bits, 8u);  // docs/lavapipe-rules.md §0
   Scene scene = make_scene(4, 4);
   scene.draws.push_back(full_screen(scene, 0.5f));
   const RenderResult result = render(scene);
@@ -125,7 +125,7 @@ TEST_F(VkReferenceTest, DeviceIsLavapipeWithHostFma) {
 
 // The shared diagonal x + y = 8 belongs to exactly one triangle: it is the right/bottom edge of
 // triangle 0 (exclusive) and the left edge of triangle 1 (inclusive), so centres with
-// x + y = 7 (pixel indices) go to primitive 1 (lavapipe-rules §2.4).
+// x + y = 7 (pixel indices) go to primitive 1 (docs/lavapipe-rules.md §2.4).
 TEST_F(VkReferenceTest, FullScreenPairCoversEveryPixelOnceSplitByTopLeftRule) {
   Scene scene = make_scene(8, 8);
   scene.draws.push_back(full_screen(scene, 0.5f));
@@ -167,7 +167,7 @@ struct DepthCase {
 };
 
 // z = 0.5 everywhere (constant plane). D16: fl(0.5*0.99998474) = 0.5 - 2^-17, + 128 rounds half
-// to even to 128.5, low 16 bits 0x8000 (lavapipe-rules §3.5). D24: rne(8388607.5) = 8388608.
+// to even to 128.5, low 16 bits 0x8000 (docs/lavapipe-rules.md §3.5). D24: rne(8388607.5) = 8388608.
 // D32: the float 0.5.
 TEST_F(VkReferenceTest, ConstantDepthStoresExpectedRawValueInEachFormat) {
   for (const DepthCase& c : {DepthCase{DepthFormat::D16Unorm, 0x8000u}, DepthCase{DepthFormat::X8D24Unorm, 8388608u},
@@ -252,7 +252,7 @@ TEST_F(VkReferenceTest, ScissorRestrictsCoverage) {
                     0);
 }
 
-// 4x4 framebuffer, 4 samples at the standard locations x = .375, .875, .125, .625 (lavapipe-rules
+// 4x4 framebuffer, 4 samples at the standard locations x = .375, .875, .125, .625 (docs/lavapipe-rules.md
 // §6). Draw 0 covers everything; draw 1, in front, ends at the vertical edge x = 1.5, so pixel
 // column 1 keeps draw 1 in samples 0 and 2 (x < .5) and draw 0 in samples 1 and 3. Both draws are
 // single triangles reaching outside the viewport (clipped; the primitive id stays 0).
@@ -289,7 +289,7 @@ TEST_F(VkReferenceTest, LineListDrawsTheExpectedRow) {
 }
 
 // Bresenham (diamond exit) gives the same row: every centre on the segment is a diamond it crosses,
-// and the end point (8, 3.5) lies outside the framebuffer (lavapipe-rules §5.1, §5.4).
+// and the end point (8, 3.5) lies outside the framebuffer (docs/lavapipe-rules.md §5.1, §5.4).
 TEST_F(VkReferenceTest, BresenhamLineModeDrawsTheSameRow) {
   Scene scene = make_scene(8, 8);
   Draw line = window_triangles(scene, {{0, 3.5f}, {8, 3.5f}}, 0.5f);
@@ -324,7 +324,7 @@ TEST_F(VkReferenceTest, SmoothLinesAreNotSupportedOnLavapipe) {
 }
 
 // A full-screen pair at z = 1.5 (beyond the far plane, compare ALWAYS). Depth clip follows
-// !depthClampEnable unless VK_EXT_depth_clip_enable says otherwise (lavapipe-rules §1.2); when not
+// !depthClampEnable unless VK_EXT_depth_clip_enable says otherwise (docs/lavapipe-rules.md §1.2); when not
 // clipped, the stored depth is clamped to 1.0 (§3.4, with or without depth clamp).
 TEST_F(VkReferenceTest, DepthClampAndExplicitDepthClip) {
   struct Case {
@@ -349,7 +349,7 @@ TEST_F(VkReferenceTest, DepthClampAndExplicitDepthClip) {
   }
 }
 
-// D32 constant bias on a z = 0.5 plane: r = 2^(e-23) with e = -1 (lavapipe-rules §4.3), so a
+// D32 constant bias on a z = 0.5 plane: r = 2^(e-23) with e = -1 (docs/lavapipe-rules.md §4.3), so a
 // constant factor of 4 adds 2^-22 = 4 float steps at 0.5; a clamp of 2^-23 limits it to 2 steps.
 TEST_F(VkReferenceTest, DepthBiasConstantAndClampOnD32) {
   for (const auto& [clamp, raw] : {std::pair{0.0f, 0x3F000004u}, std::pair{0x1p-23f, 0x3F000002u}}) {

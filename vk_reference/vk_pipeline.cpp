@@ -164,7 +164,7 @@ void require_state_support(const Context& context, Topology topology, const Rast
   // Observed with Mesa 22.3.6: drawing rectangular_smooth lines (line topologies or polygon mode
   // line) into the R32_UINT owner attachment crashes lavapipe (segfault in a rasterizer thread,
   // with or without validation). Smooth-line coverage is outside the CPU model anyway
-  // (lavapipe-rules §5.2), so refuse it instead of taking the process down.
+  // (docs/lavapipe-rules.md §5.2), so refuse it instead of taking the process down.
   if (state.line_mode == LineMode::RectangularSmooth && rasterizes_lines && context.info().is_lavapipe) {
     throw NotSupportedError(fmt::format("{}: rectangular_smooth lines crash lavapipe when drawn into the "
                                         "R32_UINT owner attachment",

@@ -1,5 +1,5 @@
 // RasterState → the fixed-function create-info structs of a graphics pipeline. The one place
-// where the scene's raster state is translated to Vulkan (STYLE.md example 8).
+// where the scene's raster state is translated to Vulkan (the one place that speaks both).
 #pragma once
 
 #include <vulkan/vulkan.h>

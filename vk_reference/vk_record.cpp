@@ -16,7 +16,7 @@ void begin_render_pass(VkCommandBuffer commands, const Scene& scene, VkRenderPas
   begin.sType = VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO;
   begin.renderPass = render_pass;
   begin.framebuffer = attachments.framebuffer.get();
-  // renderArea = the whole framebuffer: lavapipe does not scissor draws by it (lavapipe-rules §2.5).
+  // renderArea = the whole framebuffer: lavapipe does not scissor draws by it (docs/lavapipe-rules.md §2.5).
   begin.renderArea = {{0, 0}, {scene.width, scene.height}};
   begin.clearValueCount = attachments.depth ? 2 : 1;
   begin.pClearValues = clears;

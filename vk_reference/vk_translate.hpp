@@ -1,5 +1,5 @@
 // The scene model's API-neutral enums → Vulkan enums. Pure functions; the only place where
-// the two vocabularies meet (STYLE.md example 8).
+// the two vocabularies meet (one module translates between the two vocabularies).
 #pragma once
 
 #include <vulkan/vulkan.h>

@@ -10,7 +10,7 @@
 namespace rastercmp::cpu::classic {
 namespace {
 
-// Vulkan's clip volume (0 <= z <= w, lavapipe-rules §1.3); without depth clip the z planes are
+// Vulkan's clip volume (0 <= z <= w, docs/lavapipe-rules.md §1.3); without depth clip the z planes are
 // moved out of reach.
 methods::ClipVolume vulkan_volume(bool depth_clip) {
   methods::ClipVolume volume = methods::homogeneous_volume(methods::ClipDepthRange::ZeroToOne);
@@ -28,7 +28,7 @@ bool finite(const glm::vec4& p) {
 }
 
 // A vertex the clipper returns: the original one when it kept it, otherwise a new vertex with
-// the C viewport transform (lavapipe-rules §1.6).
+// the C viewport transform (docs/lavapipe-rules.md §1.6).
 template <size_t N>
 ClipVertex vertex_from(const methods::Vec4& pos, const std::array<ClipVertex, N>& originals,
                        const ViewportTransform& viewport) {

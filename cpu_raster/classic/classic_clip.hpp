@@ -1,7 +1,7 @@
 // The clip stage of the classic path, in clip space before the divide (docs/methods.md
 // "Selecting a method"). Each clipper returns clip-space vertices with their window coordinates:
 // a vertex the clipper kept is the original ClipVertex (the JIT viewport transform, as the exact
-// path), a vertex it made gets the C viewport transform (lavapipe-rules §1.6), as lavapipe's
+// path), a vertex it made gets the C viewport transform (docs/lavapipe-rules.md §1.6), as lavapipe's
 // clipper's new vertices do.
 //  - triangles, sutherland_hodgman: methods::clip_polygon_sutherland_hodgman against the Vulkan
 //    volume -w <= x, y <= w, 0 <= z <= w (z planes only with depth clip on), fanned (p0, pk-1, pk);

@@ -1,5 +1,5 @@
 // Cull stage "normal_dot_view": back-face culling by N·V in clip space, before clipping, instead
-// of the sign of the snapped window-space area (lavapipe-rules §2.3). The triangle's vertices are
+// of the sign of the snapped window-space area (docs/lavapipe-rules.md §2.3). The triangle's vertices are
 // taken as points (x, y, w) of homogeneous clip space, where the eye sits at the origin and every
 // vertex is seen along the ray from it; N = (v1 - v0) x (v2 - v0) and V = eye - v0 (methods::
 // is_back_face, notes NLC "Back Face Removal": hidden if N·V <= 0). With w > 0 and a viewport of

@@ -19,7 +19,7 @@ methods::PixelBounds bounds_of(const PixelRect& region) {
   return methods::PixelBounds{region.x0, region.y0, region.x1 + 1, region.y1 + 1};
 }
 
-// The set-up's planes at the pixel centre (single sample, lavapipe-rules §2.4).
+// The set-up's planes at the pixel centre (single sample, docs/lavapipe-rules.md §2.4).
 std::vector<methods::Span> exact_spans(const RasterPrimitive& raster) {
   methods::SpanBuilder builder;
   for (int32_t py = raster.visit.y0; py <= raster.visit.y1; ++py)

@@ -41,7 +41,7 @@ void write_fragment(const Fragment& f, const ClassicPrimitive& p, bool test, cpu
   targets.owner[i] = p.raster.owner;
 }
 
-// visibility=zbuffer: primitives in order through the depth test (lavapipe-rules §3.6).
+// visibility=zbuffer: primitives in order through the depth test (docs/lavapipe-rules.md §3.6).
 void draw_with_zbuffer(const std::vector<ClassicPrimitive>& primitives, const ClassicMethods& chosen,
                        const cpu::PixelRect& region, cpu::RenderTargets& targets) {
   for (const ClassicPrimitive& p : primitives) {

@@ -1,4 +1,4 @@
-// Line clipping, draw_pipe_clip.c clip_line / do_clip_line (lavapipe-rules §1.6).
+// Line clipping, draw_pipe_clip.c clip_line / do_clip_line (docs/lavapipe-rules.md §1.6).
 // t0/t1 accumulate max(t, dp/(dp - dp_other)) over the planes of the union mask; the line is
 // dropped when t0 + t1 >= 1 or a plane distance is Inf/NaN; an endpoint with a non-zero mask is
 // replaced by interp(t, endpoint, other) even when t is 0 (so it gets C window coordinates).

@@ -1,4 +1,4 @@
-// The per-vertex clip test and the clip planes (lavapipe-rules §1.3, §1.5; step 3).
+// The per-vertex clip test and the clip planes (docs/lavapipe-rules.md §1.3, §1.5; step 3).
 // Bits are set with LLVM's unordered compares, so a NaN coordinate counts as outside.
 // Only the 0 <= z <= w depth planes of Vulkan's 0..1 clip depth are modelled.
 #pragma once

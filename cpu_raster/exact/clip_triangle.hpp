@@ -1,4 +1,4 @@
-// Triangle clipping, draw_pipe_clip.c clip_tri / do_clip_tri (lavapipe-rules §1.5, §1.6; steps 6, 7).
+// Triangle clipping, draw_pipe_clip.c clip_tri / do_clip_tri (docs/lavapipe-rules.md §1.5, §1.6; steps 6, 7).
 // Sutherland–Hodgman over the planes of the union of the vertex masks, in increasing bit order;
 // each new vertex starts from the vertex nearer the plane; a non-finite plane distance drops the
 // whole primitive; the polygon is fanned as (p0, p[k-1], p[k]) (provoking vertex first).

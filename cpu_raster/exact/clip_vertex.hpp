@@ -1,5 +1,5 @@
 // A vertex between the clip test and set-up: its clip-space position, its window position and
-// where that window position came from (lavapipe-rules §1.3, §1.6).
+// where that window position came from (docs/lavapipe-rules.md §1.3, §1.6).
 #pragma once
 
 #include <cstdint>

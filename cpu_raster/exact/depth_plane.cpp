@@ -46,7 +46,7 @@ DepthPlane triangle_depth_plane(const std::array<WindowVertex, 3>& v, float pixe
   const float dz01 = v[0].z - v[1].z;
   const float dz20 = v[2].z - v[0].z;
   DepthPlane plane;
-  plane.dzdx = dz01 * dy20_ooa - dz20 * dy01_ooa;  // lavapipe-rules §3.2
+  plane.dzdx = dz01 * dy20_ooa - dz20 * dy01_ooa;  // docs/lavapipe-rules.md §3.2
   plane.dzdy = dz20 * dx01_ooa - dz01 * dx20_ooa;
   plane.a0 = v[0].z - (plane.dzdx * x0_center + plane.dzdy * y0_center);  // at the framebuffer origin
   return plane;

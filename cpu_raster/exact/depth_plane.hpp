@@ -1,6 +1,6 @@
 // Depth plane and depth bias set-up, all float32 with every operation rounded on its own (the
 // set-up JIT never emits llvm.fmuladd; the line set-up is C built without FMA).
-//  - triangles: lp_state_setup.c calc_coef4 on the post-swap vertices (lavapipe-rules §3.2, step 14);
+//  - triangles: lp_state_setup.c calc_coef4 on the post-swap vertices (docs/lavapipe-rules.md §3.2, step 14);
 //  - depth bias: lp_do_offset_tri (§4.3, step 15), triangles only — lines get none (§4.4);
 //  - lines: lp_setup_line.c linear_coef (§5.5).
 // The plane is z(px, py) = a0 + dzdx*px + dzdy*py with px, py the integer pixel coordinates (plus

@@ -1,5 +1,5 @@
 // Depth of one sample, from the plane to the stored bits, and the depth test
-// (lavapipe-rules §3.3-§3.6, steps 16-17):
+// (docs/lavapipe-rules.md §3.3-§3.6, steps 16-17):
 //   z = fl(FMA?(dzdy, py, FMA?(dzdx, px, a0)) + o)
 //   z = max(min(z, 1), 0)                      (always: VK_EXT_depth_range_unrestricted is off)
 //   z = max(min(z, zmax), zmin)                (depth clamp only)

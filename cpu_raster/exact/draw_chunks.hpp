@@ -1,4 +1,4 @@
-// The driver's draw chunks and their "pipelined" flag (lavapipe-rules §1.5). vsplit cuts a draw
+// The driver's draw chunks and their "pipelined" flag (docs/lavapipe-rules.md §1.5). vsplit cuts a draw
 // into segments of at most 1024 indices (indexed draws) or 4096 vertices; a chunk in which any
 // vertex its primitives use has a clip-mask bit goes whole through the draw pipeline, whose float
 // cull (§2.6) can drop slivers the fixed-point set-up would keep.
@@ -29,7 +29,7 @@ uint32_t segment_size(const Draw& draw);
 uint32_t primitives_per_chunk(const Draw& draw);
 
 // The vertex numbers (before index lookup) the primitives [first, last) use: lists and strips a
-// run, fans their hub and a run (assemble.cpp's order, lavapipe-rules §1.5).
+// run, fans their hub and a run (assemble.cpp's order, docs/lavapipe-rules.md §1.5).
 struct ChunkVertices {
   uint32_t begin = 0, end = 0;
   bool hub = false;  // a fan: vertex 0 as well

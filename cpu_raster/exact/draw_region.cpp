@@ -30,7 +30,7 @@ bool rects_touch(const PixelRect& a, const PixelRect& b) {
 }
 
 PixelRect viewport_pixel_rect(const ViewportTransform& v) {
-  const float x0 = v.translate[0] - v.scale[0];  // lavapipe-rules §2.5, each a float operation
+  const float x0 = v.translate[0] - v.scale[0];  // docs/lavapipe-rules.md §2.5, each a float operation
   const float y0 = v.translate[1] - std::fabs(v.scale[1]);
   return PixelRect{static_cast<int32_t>(x0 + 0.499f), static_cast<int32_t>(y0 + 0.499f),
                    static_cast<int32_t>(v.scale[0] * 2.0f + x0 - 0.501f),

@@ -1,4 +1,4 @@
-// Where lavapipe lets a primitive write (lavapipe-rules §2.5, step 12-13):
+// Where lavapipe lets a primitive write (docs/lavapipe-rules.md §2.5, step 12-13):
 //  - the draw region: framebuffer ∩ scissor ∩ the viewport's pixel rectangle "vpwh";
 //  - the scissor planes llvmpipe adds only where the primitive's bounding box crosses the region,
 //    with the multisample quirk (left/top planes shifted by 127/256 px);

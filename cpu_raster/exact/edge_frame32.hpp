@@ -1,4 +1,4 @@
-// 32-bit edge values over a small pixel box (llvmpipe's use_32bits in lp_setup_tri.c; lavapipe-rules
+// 32-bit edge values over a small pixel box (llvmpipe's use_32bits in lp_setup_tri.c; docs/lavapipe-rules.md
 // §2.4: the 32- and 64-bit paths give the same sign). The exact path's rasterizer uses them when the
 // primitive's visit rectangle allows it (WorkSkips::edges32_when_box_fits), 64-bit values otherwise.
 //

@@ -1,4 +1,4 @@
-// Edge functions in 24.8 fixed point (lavapipe-rules §2.4, steps 11-13).
+// Edge functions in 24.8 fixed point (docs/lavapipe-rules.md §2.4, steps 11-13).
 // For an edge from vertex a to vertex b of a polygon made counter-clockwise (llvmpipe's sense:
 // positive doubled area), dcdx = a.y - b.y, dcdy = a.x - b.x, c = dcdx*a.x - dcdy*a.y and the
 // value at a sample point (Xs, Ys) is E = c + dcdy*Ys - dcdx*Xs. The fill-rule bias is decided

@@ -20,7 +20,7 @@ namespace rastercmp {
 // Why a primitive that reached the pixel did not get through set-up.
 enum class CullReason {
   None,           // set-up passed
-  Facing,         // its face is culled (fixed-point area sign, lavapipe-rules §2.3)
+  Facing,         // its face is culled (fixed-point area sign, docs/lavapipe-rules.md §2.3)
   Degenerate,     // zero fixed-point area, or a zero-length line
   FloatCull,      // the draw pipeline's float cull after clipping (§2.6)
   OutsideRegion,  // its bounding box misses framebuffer ∩ scissor ∩ viewport (§2.5)

@@ -13,7 +13,7 @@ inline constexpr int32_t kFixedOne = 1 << kFixedOrder;  // 1 pixel = 256 fixed u
 
 // A window coordinate in 1/256 pixel. The frame is shifted by the set-up's pixel offset, so that
 // a sample of pixel (px, py) sits at (256*px + sx, 256*py + sy) with sx, sy the in-pixel sample
-// offset (0 for single sampling, lavapipe-rules §2.2, §6).
+// offset (0 for single sampling, docs/lavapipe-rules.md §2.2, §6).
 struct Fixed24_8 {
   int32_t raw = 0;
 

@@ -43,7 +43,7 @@ std::optional<Quad> rectangular_quad(Endpoint v1, Endpoint v2, float dx, float d
 // marked below, which differ between the two branches in Mesa and are reproduced as they are,
 // and four tests that follow the observed driver instead of lp_setup_line.c when the start or end
 // lies exactly on a pixel centre line (x1diff, x2diff, y1diff or y2diff == 0): the x-major
-// rightward end, the y-major starts and the y-major downward end (lavapipe-rules §5.4; found
+// rightward end, the y-major starts and the y-major downward end (docs/lavapipe-rules.md §5.4; found
 // with lines between pixel centres whose slope is not a power of two, e.g. 1/3, where the
 // half-pixel shift tilts the side edges off the samples they would otherwise pass through).
 struct DiamondExit {

@@ -1,4 +1,4 @@
-// Line set-up, lp_setup_line.c try_setup_line (lavapipe-rules §5.2-§5.5, step 18).
+// Line set-up, lp_setup_line.c try_setup_line (docs/lavapipe-rules.md §5.2-§5.5, step 18).
 // Both modes build a 4-corner quad in 24.8 fixed point from the two window endpoints and
 // rasterize it with the same plane rule as triangles:
 //  - rectangular (DEFAULT and RECTANGULAR, strictLines): endpoints and half-width offset snapped

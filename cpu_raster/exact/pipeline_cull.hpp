@@ -1,4 +1,4 @@
-// The float facing cull of lavapipe's draw pipeline, draw_pipe_cull.c cull_tri (lavapipe-rules
+// The float facing cull of lavapipe's draw pipeline, draw_pipe_cull.c cull_tri (docs/lavapipe-rules.md
 // §2.6, step 8). It runs after the clipper, only for draws whose vertices needed clipping (the
 // "pipelined" chunk flag, §1.5) and only when the cull mode is not NONE. llvmpipe's fixed-point
 // cull runs afterwards regardless; the two can disagree on slivers.

@@ -39,7 +39,7 @@ SamplePoint sample_point(int32_t px, int32_t py, uint32_t sample, bool per_sampl
 
 bool place_in_region(RasterPrimitive& p, const PixelRect& bbox, const PixelRect& region, const PixelRect& framebuffer,
                      bool multisample) {
-  if (!rects_touch(region, bbox)) return false;  // lavapipe-rules §2.5
+  if (!rects_touch(region, bbox)) return false;  // docs/lavapipe-rules.md §2.5
   p.bbox = bbox;
   p.bbox.x0 = std::max(p.bbox.x0, 0);  // "can safely discard negative regions"
   p.bbox.y0 = std::max(p.bbox.y0, 0);

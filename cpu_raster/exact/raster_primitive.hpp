@@ -1,6 +1,6 @@
 // What set-up hands the rasterizer: a convex region given as planes (3 triangle edges or 4 line
 // quad edges, plus the scissor planes llvmpipe adds), the pixels to visit, and the depth plane.
-// A sample is covered iff every plane's value there is > 0 (lavapipe-rules §2.4, §2.5, §6).
+// A sample is covered iff every plane's value there is > 0 (docs/lavapipe-rules.md §2.4, §2.5, §6).
 #pragma once
 
 #include <array>

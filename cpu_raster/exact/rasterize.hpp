@@ -1,4 +1,4 @@
-// Rasterization and per-sample operations of the exact path (lavapipe-rules §2.4, §3.3-§3.6, §6):
+// Rasterization and per-sample operations of the exact path (docs/lavapipe-rules.md §2.4, §3.3-§3.6, §6):
 // for each pixel of the primitive's visit rectangle and each sample, the sample is covered iff all
 // plane values are > 0; a covered sample's depth is interpolated, offset, clamped, converted and
 // tested; if it passes, depth (when writes are on) and the owner id are written. Later primitives

@@ -1,4 +1,4 @@
-// Triangle set-up, lp_setup_tri.c (lavapipe-rules §2.2-§2.5, §3.2, §4.3; steps 9-15):
+// Triangle set-up, lp_setup_tri.c (docs/lavapipe-rules.md §2.2-§2.5, §3.2, §4.3; steps 9-15):
 // snap to 24.8 → int64 doubled area → drop zero area → facing and cull → make counter-clockwise by
 // swapping v1/v2 → edges with the top-left bias → bounding box against the draw region → depth plane
 // and bias. Takes window coordinates of one (possibly clipped) triangle in emit order.

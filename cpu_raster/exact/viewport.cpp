@@ -6,7 +6,7 @@ namespace rastercmp::cpu {
 
 ViewportTransform make_viewport_transform(const Viewport& viewport) {
   ViewportTransform t;
-  const float half_width = 0.5f * viewport.width;    // lavapipe-rules §1.2
+  const float half_width = 0.5f * viewport.width;    // docs/lavapipe-rules.md §1.2
   const float half_height = 0.5f * viewport.height;
   t.scale[0] = half_width;
   t.translate[0] = half_width + viewport.x;

@@ -1,4 +1,4 @@
-// Viewport transform (lavapipe-rules §1.2, §1.3, §1.6; steps 2 and 4).
+// Viewport transform (docs/lavapipe-rules.md §1.2, §1.3, §1.6; steps 2 and 4).
 // Two evaluations exist in lavapipe and both are modelled:
 //  - original vertices: the JIT's x*(1/w) then llvm.fmuladd(., scale, translate);
 //  - vertices the clipper creates: C code ((x*(1/w))*scale)+translate, never fused.

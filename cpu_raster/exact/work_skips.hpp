@@ -8,7 +8,7 @@ namespace rastercmp::cpu {
 
 struct WorkSkips {
   // Clip only primitives with a vertex outside a plane (the union of the clip masks is non-zero,
-  // lavapipe-rules §1.5). Off: primitives wholly inside also run through the clipper, against every
+  // docs/lavapipe-rules.md §1.5). Off: primitives wholly inside also run through the clipper, against every
   // plane the clip test uses; the clipper hands them back unchanged.
   bool clip_only_when_needed = true;
   // Depth set-up and per-sample depth only with a depth attachment and the test on. Off: the depth

@@ -1,6 +1,6 @@
 // Depth arithmetic of eight lanes, shared by the AVX2 translation units (include only from code
 // compiled for AVX2: every function carries RASTERCMP_AVX2). Each intrinsic is one IEEE operation
-// of the scalar exact path (depth_sample.cpp, lavapipe-rules §3.3-§3.5): _mm256_min_ps and
+// of the scalar exact path (depth_sample.cpp, docs/lavapipe-rules.md §3.3-§3.5): _mm256_min_ps and
 // _mm256_max_ps return their second operand on NaN, as sse_min / sse_max do.
 #pragma once
 

@@ -128,7 +128,7 @@ void BandWorker::walk_small_blocks(uint32_t d) {
   }
 }
 
-// Set-up of an unclipped triangle: triangle_setup.cpp step by step (lavapipe-rules §2.2-§2.5,
+// Set-up of an unclipped triangle: triangle_setup.cpp step by step (docs/lavapipe-rules.md §2.2-§2.5,
 // §3.2, §4.3), with the snap already done per vertex and the rows test first.
 void BandWorker::triangle(uint32_t d, uint32_t primitive, uint32_t a, uint32_t b, uint32_t c) {
   const FastDraw& fd = frame_.draws[d];

@@ -1,6 +1,6 @@
 // One worker of a fast render: it walks every draw in submission order and rasterizes into the
 // tile rows it owns (row r belongs to worker r % workers), so each pixel sees its primitives in
-// order, whatever the number of threads (lavapipe-rules §2.7: deterministic by construction).
+// order, whatever the number of threads (docs/lavapipe-rules.md §2.7: deterministic by construction).
 // Per primitive: assemble → clip-mask test (clipped triangles go through the exact path's clipper
 // and set-up) → rows test → fixed-point area, cull, swap → depth plane → tiles. Triangles that
 // span several tiles are collected (up to kBatchSize) and drawn tile by tile, so that a tile stays

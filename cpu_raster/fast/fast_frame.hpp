@@ -20,7 +20,7 @@ struct FastDraw {
   bool fast = false;
   FastVertex* vertices = nullptr;           // fast draws: one per position (VertexScratch)
   int16_t* tile_rows = nullptr;       // fast draws: per position, its tile row or kRowUnknown
-  // lavapipe-rules §1.5: per driver chunk (draw_chunks.hpp), whether it takes the pipeline path;
+  // docs/lavapipe-rules.md §1.5: per driver chunk (draw_chunks.hpp), whether it takes the pipeline path;
   // empty when no position of the draw is outside the clip volume.
   std::vector<bool> pipelined_chunks;
   uint32_t chunk_size = 1;  // primitives per chunk

@@ -1,6 +1,6 @@
 // The fast path's triangle after set-up: what the tile kernels need, in 64 bytes.
 // Produced either by fast_setup (unclipped triangles) or from the exact path's RasterPrimitive
-// (clipped triangles); either way the numbers are the exact path's (lavapipe-rules §2.2-§4.3).
+// (clipped triangles); either way the numbers are the exact path's (docs/lavapipe-rules.md §2.2-§4.3).
 #pragma once
 
 #include <cstdint>

@@ -1,5 +1,5 @@
 // Per-vertex work of a draw, done once per position instead of once per triangle corner
-// (docs/performance.md): the clip test (lavapipe-rules §1.3), the JIT window transform (§1.3)
+// (docs/performance.md): the clip test (docs/lavapipe-rules.md §1.3), the JIT window transform (§1.3)
 // and the triangle snap to 24.8 (§2.2). Bit for bit what cpu::make_clip_vertex and
 // cpu::snap_vertex give for the same position; an original vertex's window coordinates depend
 // on nothing but its position, so sharing them between triangles changes nothing.

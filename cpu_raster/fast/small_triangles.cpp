@@ -7,7 +7,7 @@
 namespace rastercmp::cpu::fast {
 namespace {
 
-// depth_test_passes (depth_sample.cpp, lavapipe-rules §3.6), inlined for one op.
+// depth_test_passes (depth_sample.cpp, docs/lavapipe-rules.md §3.6), inlined for one op.
 template <CompareOp Op, class T>
 bool ordered(T a, T b) {
   if constexpr (Op == CompareOp::Never) return false;

@@ -1,6 +1,6 @@
 // Set-up of small triangles eight at a time (AVX2), for meshes whose triangles cover a few
 // pixels: per lane the same integer and float operations as the scalar set-up
-// (BandWorker::triangle, lavapipe-rules §2.2-§3.2). Then, by size:
+// (BandWorker::triangle, docs/lavapipe-rules.md §2.2-§3.2). Then, by size:
 //  - "grid" lanes (rectangle at most kGridSide x kGridSide pixels, possibly across tile borders:
 //    the writes are per pixel): coverage and raw depth of
 //    every candidate pixel are computed for the eight triangles at once (triangles in lanes, one

@@ -1,7 +1,7 @@
 // A triangle's three edges over one rectangle of one tile, in 32-bit "G" form.
 //
 // The exact edge value at pixel (px, py) is E = c + 256*(dcdy*py - dcdx*px) (int64, edge_plane.hpp,
-// lavapipe-rules §2.4) and the pixel is covered iff E > 0 for every edge. With k = dcdy*py - dcdx*px
+// docs/lavapipe-rules.md §2.4) and the pixel is covered iff E > 0 for every edge. With k = dcdy*py - dcdx*px
 // (an integer), E > 0 <=> 256*k > -c <=> k > floor(-c/256). So G = k - floor(-c/256) is covered iff
 // G > 0: the same test, with steps 256 times smaller and no fraction left over.
 //

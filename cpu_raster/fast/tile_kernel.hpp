@@ -1,6 +1,6 @@
 // The innermost loop of the fast path: one triangle over a rectangle of one tile, 8 pixels of a
 // row per step (AVX2), with coverage from 32-bit edge values and depth per pixel from the exact
-// formula (lavapipe-rules §3.3-§3.6):
+// formula (docs/lavapipe-rules.md §3.3-§3.6):
 //   z = fl(FMA?(dzdy, py, FMA?(dzdx, px, a0)) + o), clamped to [0,1] (and zmin..zmax), converted,
 //   compared against the stored value, then depth (when writes are on) and owner written.
 // Never incremental depth stepping: every pixel evaluates the plane itself.

@@ -1,7 +1,7 @@
 // AVX2 kernels of tile_kernel.hpp, one per depth format and compare op. Each lane does exactly
 // the scalar exact path's IEEE operations (depth_sample.cpp), so the bits agree lane by lane:
 // _mm256_min_ps / _mm256_max_ps return their second operand on NaN, as sse_min / sse_max do;
-// the float compares use the unordered predicates of lavapipe-rules §3.6; UNORM depth stays
+// the float compares use the unordered predicates of docs/lavapipe-rules.md §3.6; UNORM depth stays
 // below 2^24, so a signed 32-bit compare orders it as the unsigned one does.
 #include <immintrin.h>
 

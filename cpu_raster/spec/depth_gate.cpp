@@ -18,7 +18,7 @@ double unorm_step(DepthFormat format) {
   return format == DepthFormat::D32Sfloat ? 0.0 : 1.0 / (std::ldexp(1.0, int(depth_bits(format))) - 1.0);
 }
 
-// Largest r: UNORM 2/(2^n - 1) (lavapipe, lavapipe-rules §4.3); D32 2^(e-23) with e <= 0 for
+// Largest r: UNORM 2/(2^n - 1) (lavapipe, docs/lavapipe-rules.md §4.3); D32 2^(e-23) with e <= 0 for
 // depths up to 1, doubled for slack.
 double r_max(DepthFormat format) {
   return format == DepthFormat::D32Sfloat ? std::ldexp(1.0, -22) : 2.0 * unorm_step(format);

@@ -22,7 +22,7 @@
 //  - after the clamp, the conversion the spec leaves open: two steps of a UNORM format (the
 //    fragment and the clear value each rounded either way), whose ends 0 and 1 are exact.
 // Without depth clamp a depth outside the viewport's [min(n,f), max(n,f)] is undefined
-// (fragops.adoc "Depth Clamping and Range Adjustment", lavapipe-rules §1.1), and so is the test
+// (fragops.adoc "Depth Clamping and Range Adjustment", docs/lavapipe-rules.md §1.1), and so is the test
 // result. That is judged on the range the exact values can take: a triangle's fragments are convex
 // combinations of its vertex depths (plus bias), a line's may extrapolate past its ends; float
 // error at the ends of that range is not taken for leaving it.

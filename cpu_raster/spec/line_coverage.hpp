@@ -1,5 +1,5 @@
 // Must / may / must-not coverage of one line segment (after clipping). Vulkan "Line Segments"
-// (primsrast.adoc, lavapipe-rules §5.1) gives each mode an ideal region:
+// (primsrast.adoc, docs/lavapipe-rules.md §5.1) gives each mode an ideal region:
 //  - RECTANGULAR (and DEFAULT on a strictLines device): the rectangle of width lineWidth centred
 //    on the segment;
 //  - DEFAULT without strictLines: a parallelogram whose end edges, along the minor axis, are

@@ -1,4 +1,4 @@
-// Shared-edge promotion, the CTS verifier's "sharedEdge" friends (docs: ecosystem-study §1.3).
+// Shared-edge promotion, the CTS verifier's "sharedEdge" friends (docs/spec-profile.md).
 // Vulkan "Basic Polygon Rasterization": "if two polygons lie on either side of a common edge (with
 // identical endpoints) on which a sample point lies, then exactly one of the polygons must result
 // in a covered sample". A sample that is PARTIAL for both triangles of such a pair, and whose box

@@ -115,7 +115,7 @@ void add_line(const DrawContext& ctx, const cpu::AssembledPrimitive& prim, SpecP
   l.primitive_index = prim.primitive_index;
   l.shape = line_shape({glm::dvec2(a.x, a.y), glm::dvec2(b.x, b.y)}, draw.state.line_mode, draw.state.line_width);
   // Only the segment is clipped: whether a wide line's fragments beyond the viewport rectangle are
-  // produced is the device's choice (lavapipe scissors them, lavapipe-rules §2.5), so Must stays
+  // produced is the device's choice (lavapipe scissors them, docs/lavapipe-rules.md §2.5), so Must stays
   // inside it.
   if (!l.shape.must.empty()) l.shape.must.push_back(viewport_quad(ctx.scene->effective_viewport()));
   l.depth = make_depth_judge(*ctx.scene, draw.state, depth_primitive(ctx, {a, b}));

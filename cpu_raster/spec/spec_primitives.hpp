@@ -1,7 +1,7 @@
 // The spec profile's geometry: every primitive of every draw, assembled, clipped and transformed
 // by the exact path's own stages (cpu::assemble_primitive, cpu::clip_triangle, cpu::clip_line,
 // lavapipe's viewport arithmetic). That is allowed: Vulkan fixes what clipping keeps, not how
-// ("Primitive Clipping": the algorithm and the triangulation are open, lavapipe-rules §1.1), and
+// ("Primitive Clipping": the algorithm and the triangulation are open, docs/lavapipe-rules.md §1.1), and
 // the tolerance boxes absorb the float differences between clippers and viewport transforms.
 // Each piece then gets what the classification needs: its snapped cells or line regions, its
 // facing gate and what decides its depth test against the clear value, sample by sample.

@@ -1,7 +1,7 @@
 // The sub-pixel grid of the device being judged, and the tolerance box around a sample, in the
 // integer units of that grid (1 unit = 2^-bits pixel). This is the frame in which the CTS
-// rasterization verifier (tcuRasterizationVerifier calculateTriangleCoverage, docs: ecosystem-study
-// §1.3) decides FULL / PARTIAL / NONE:
+// rasterization verifier (tcuRasterizationVerifier calculateTriangleCoverage in the Vulkan CTS,
+// docs/spec-profile.md) decides FULL / PARTIAL / NONE:
 //  - a vertex snaps to the grid with an unspecified rounding (Vulkan "Controlling the Viewport":
 //    x_f, y_f keep subPixelPrecisionBits fractional bits), so each coordinate is either its floor
 //    or its ceiling on the grid: a vertex lies somewhere in its SnapCell;

@@ -1,5 +1,5 @@
 // Must / may / must-not coverage of one triangle (after clipping), the construction of the CTS
-// verifier's calculateTriangleCoverage (docs: ecosystem-study §1.3) made sound for every sample:
+// verifier's calculateTriangleCoverage (docs/spec-profile.md) made sound for every sample:
 //  - every vertex may snap to any corner of its SnapCell (floor or ceiling per coordinate), so an
 //    edge has 4 x 4 = 16 variants;
 //  - FULL: the facing is the same for every variant, and the tolerance box lies strictly inside
@@ -9,7 +9,7 @@
 //  - PARTIAL otherwise ("could be full, partial or none depending on rounding and/or fill rules").
 // The CTS answers NONE for a triangle small enough to sit inside the box; the hull test answers
 // PARTIAL there. Samples exactly on an edge are PARTIAL: the tie rule is the device's choice
-// (Vulkan "Basic Polygon Rasterization" mandates no particular rule, lavapipe-rules §2.1).
+// (Vulkan "Basic Polygon Rasterization" mandates no particular rule, docs/lavapipe-rules.md §2.1).
 #pragma once
 
 #include <array>
