@@ -8,8 +8,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdlib>
-#include <functional>
 #include <fstream>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -40,7 +40,7 @@ struct BenchArgs {
   unsigned exact_reps = 3;  // the exact path takes seconds on the big scenes
   unsigned threads = 2;
   std::vector<std::string> scenes;  // empty: all standard scenes and the suite
-  std::string suite_dir;  // empty: the built-in suite (default_suite_dir)
+  std::string suite_dir;            // empty: the built-in suite (default_suite_dir)
 };
 
 // One row of the table: one scene, or the whole suite rendered once per rep.
@@ -109,8 +109,10 @@ std::vector<BenchCase> make_cases(const BenchArgs& args) {
   }
   std::vector<BenchCase> cases;
   for (const std::string& name : names) {
-    if (name == "suite") cases.push_back({name, bench::load_scene_suite(args.suite_dir.empty() ? default_suite_dir() : args.suite_dir)});
-    else cases.push_back({name, {bench::standard_bench_scene(name).scene}});
+    if (name == "suite")
+      cases.push_back({name, bench::load_scene_suite(args.suite_dir.empty() ? default_suite_dir() : args.suite_dir)});
+    else
+      cases.push_back({name, {bench::standard_bench_scene(name).scene}});
   }
   return cases;
 }
@@ -125,8 +127,8 @@ std::vector<std::unique_ptr<VulkanRenderer::Prepared>> warm_up(BenchCase& c, Vul
   for (Scene& scene : c.scenes) {
     try {
       RenderResult result;
-      report.memory_fast = std::max(report.memory_fast,
-                                    bench::peak_memory_delta([&] { result = render_cpu_fast(scene, fast); }));
+      report.memory_fast =
+          std::max(report.memory_fast, bench::peak_memory_delta([&] { result = render_cpu_fast(scene, fast); }));
       std::unique_ptr<VulkanRenderer::Prepared> p;
       report.memory_lavapipe = std::max(report.memory_lavapipe, bench::peak_memory_delta([&] {
                                           p = vulkan.prepare(scene);
@@ -170,8 +172,10 @@ CaseReport run_case(BenchCase& c, VulkanRenderer& vulkan, const BenchArgs& args,
         lavapipe += vulkan.submit_and_wait_seconds(*p);
       }
     };
-    if (rep % 2 == 0) time_fast(), time_lavapipe();  // alternate the order: neither always goes first
-    else time_lavapipe(), time_fast();
+    if (rep % 2 == 0)
+      time_fast(), time_lavapipe();  // alternate the order: neither always goes first
+    else
+      time_lavapipe(), time_fast();
     report.fast.push_back(fast);
     report.fast_alloc.push_back(fast_alloc);
     report.lavapipe.push_back(lavapipe);
@@ -183,35 +187,44 @@ CaseReport run_case(BenchCase& c, VulkanRenderer& vulkan, const BenchArgs& args,
         if (rep == 0) report.fast_equals_exact &= same_bytes(result, fast_results[i], true);
       }
     };
-    if (rep == 0) report.memory_exact = bench::peak_memory_delta(time_exact);
-    else time_exact();
+    if (rep == 0)
+      report.memory_exact = bench::peak_memory_delta(time_exact);
+    else
+      time_exact();
     report.exact.push_back(exact);
   }
   return report;
 }
 
-std::string ms(const TimingStats& s) { return s.count ? fmt::format("{:.2f} [{:.2f}-{:.2f}]", s.median * 1e3, s.min * 1e3, s.max * 1e3) : "-"; }
+std::string ms(const TimingStats& s) {
+  return s.count ? fmt::format("{:.2f} [{:.2f}-{:.2f}]", s.median * 1e3, s.min * 1e3, s.max * 1e3) : "-";
+}
 double rate(uint64_t count, const TimingStats& s) { return s.median > 0 ? double(count) / s.median * 1e-6 : 0; }
 double mib(uint64_t bytes) { return double(bytes) / (1024.0 * 1024.0); }
 
 void print_table(const std::vector<CaseReport>& reports, const BenchArgs& args, const bench::LoadMonitor& load) {
-  fmt::print("\nmedian ms [min-max] over {} reps ({} for the exact path); fast CPU path: {} thread(s); lavapipe: "
-             "LP_NUM_THREADS={}\n\n",
-             args.reps, args.exact_reps, args.threads, std::getenv("LP_NUM_THREADS"));
-  fmt::print("| scene | tris | frags | exact ms | fast ms | fast+alloc ms | lavapipe ms | lvp/fast | lvp/exact | fast "
-             "Mtri/s | fast Mpix/s | lvp Mtri/s | lvp Mpix/s | peak MiB exact/fast/lvp | same bytes exact/lvp |\n");
+  fmt::print(
+      "\nmedian ms [min-max] over {} reps ({} for the exact path); fast CPU path: {} thread(s); lavapipe: "
+      "LP_NUM_THREADS={}\n\n",
+      args.reps, args.exact_reps, args.threads, std::getenv("LP_NUM_THREADS"));
+  fmt::print(
+      "| scene | tris | frags | exact ms | fast ms | fast+alloc ms | lavapipe ms | lvp/fast | lvp/exact | fast "
+      "Mtri/s | fast Mpix/s | lvp Mtri/s | lvp Mpix/s | peak MiB exact/fast/lvp | same bytes exact/lvp |\n");
   fmt::print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
   for (const CaseReport& r : reports) {
     const TimingStats e = bench::summarize(r.exact), f = bench::summarize(r.fast), l = bench::summarize(r.lavapipe);
-    fmt::print("| {} | {} | {} | {} | {} | {} | {} | {:.1f}x | {:.2f}x | {:.1f} | {:.1f} | {:.1f} | {:.1f} | {:.0f}/{:.0f}/{:.0f} | {}/{} |\n",
-               r.name, r.triangles, r.fragments, ms(e), ms(f), ms(bench::summarize(r.fast_alloc)), ms(l), l.median / f.median,
-               e.median > 0 ? l.median / e.median : 0, rate(r.triangles, f), rate(r.fragments, f), rate(r.triangles, l),
-               rate(r.fragments, l), mib(r.memory_exact), mib(r.memory_fast), mib(r.memory_lavapipe),
-               r.fast_equals_exact ? "yes" : "NO", r.fast_equals_lavapipe ? "yes" : "NO");
+    fmt::print(
+        "| {} | {} | {} | {} | {} | {} | {} | {:.1f}x | {:.2f}x | {:.1f} | {:.1f} | {:.1f} | {:.1f} | "
+        "{:.0f}/{:.0f}/{:.0f} | {}/{} |\n",
+        r.name, r.triangles, r.fragments, ms(e), ms(f), ms(bench::summarize(r.fast_alloc)), ms(l), l.median / f.median,
+        e.median > 0 ? l.median / e.median : 0, rate(r.triangles, f), rate(r.fragments, f), rate(r.triangles, l),
+        rate(r.fragments, l), mib(r.memory_exact), mib(r.memory_fast), mib(r.memory_lavapipe),
+        r.fast_equals_exact ? "yes" : "NO", r.fast_equals_lavapipe ? "yes" : "NO");
   }
-  fmt::print("\nload: other processes kept {:.2f} of the cores busy on average (1-min load average {:.2f}), this run "
-             "{:.2f}, over {:.1f} s\n\n",
-             load.other_cores(), load.load_average_1min(), load.own_cores(), load.wall_seconds());
+  fmt::print(
+      "\nload: other processes kept {:.2f} of the cores busy on average (1-min load average {:.2f}), this run "
+      "{:.2f}, over {:.1f} s\n\n",
+      load.other_cores(), load.load_average_1min(), load.own_cores(), load.wall_seconds());
   for (const Target& t : kTargets) {
     for (const CaseReport& r : reports) {
       if (r.name != t.scene) continue;
@@ -226,8 +239,8 @@ nlohmann::ordered_json stats_json(const std::vector<double>& samples) {
   const TimingStats s = bench::summarize(samples);
   std::vector<double> samples_ms;
   for (double x : samples) samples_ms.push_back(x * 1e3);
-  return {{"reps", s.count}, {"median_ms", s.median * 1e3}, {"q1_ms", s.q1 * 1e3}, {"q3_ms", s.q3 * 1e3},
-          {"min_ms", s.min * 1e3}, {"max_ms", s.max * 1e3}, {"samples_ms", samples_ms}};
+  return {{"reps", s.count},       {"median_ms", s.median * 1e3}, {"q1_ms", s.q1 * 1e3},     {"q3_ms", s.q3 * 1e3},
+          {"min_ms", s.min * 1e3}, {"max_ms", s.max * 1e3},       {"samples_ms", samples_ms}};
 }
 
 void write_json(const std::string& path, const std::vector<CaseReport>& reports, const BenchArgs& args,
@@ -235,14 +248,23 @@ void write_json(const std::string& path, const std::vector<CaseReport>& reports,
   nlohmann::ordered_json j;
   j["fast_threads"] = args.threads;
   j["lp_num_threads"] = std::getenv("LP_NUM_THREADS");
-  j["load"] = {{"other_cores", load.other_cores()}, {"own_cores", load.own_cores()},
-               {"loadavg_1min", load.load_average_1min()}, {"wall_s", load.wall_seconds()}};
+  j["load"] = {{"other_cores", load.other_cores()},
+               {"own_cores", load.own_cores()},
+               {"loadavg_1min", load.load_average_1min()},
+               {"wall_s", load.wall_seconds()}};
   for (const CaseReport& r : reports) {
-    j["scenes"].push_back({{"name", r.name}, {"triangles", r.triangles}, {"fragments", r.fragments},
-                           {"pixels", r.pixels}, {"exact", stats_json(r.exact)}, {"fast", stats_json(r.fast)}, {"fast_new_buffers", stats_json(r.fast_alloc)},
-                           {"lavapipe", stats_json(r.lavapipe)},
-                           {"peak_bytes", {{"exact", r.memory_exact}, {"fast", r.memory_fast}, {"lavapipe", r.memory_lavapipe}}},
-                           {"fast_equals_exact", r.fast_equals_exact}, {"fast_equals_lavapipe", r.fast_equals_lavapipe}});
+    j["scenes"].push_back(
+        {{"name", r.name},
+         {"triangles", r.triangles},
+         {"fragments", r.fragments},
+         {"pixels", r.pixels},
+         {"exact", stats_json(r.exact)},
+         {"fast", stats_json(r.fast)},
+         {"fast_new_buffers", stats_json(r.fast_alloc)},
+         {"lavapipe", stats_json(r.lavapipe)},
+         {"peak_bytes", {{"exact", r.memory_exact}, {"fast", r.memory_fast}, {"lavapipe", r.memory_lavapipe}}},
+         {"fast_equals_exact", r.fast_equals_exact},
+         {"fast_equals_lavapipe", r.fast_equals_lavapipe}});
   }
   std::ofstream out(path);
   if (!out) throw UsageError("--json " + path + ": cannot write the file");
@@ -275,7 +297,8 @@ void add_bench_command(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<BenchArgs>();
   CLI::App* cmd = app.add_subcommand("bench", "time the exact CPU path, the fast CPU path and lavapipe, interleaved");
   cmd->add_option("--json", args->json_path, "also write every sample and summary to this JSON file");
-  cmd->add_option("--reps", args->reps, "timed repetitions per scene (fast path and lavapipe)")->check(CLI::Range(1, 1000));
+  cmd->add_option("--reps", args->reps, "timed repetitions per scene (fast path and lavapipe)")
+      ->check(CLI::Range(1, 1000));
   cmd->add_option("--exact-reps", args->exact_reps, "timed repetitions of the exact path (at most --reps)");
   cmd->add_option("--scene", args->scenes, "fill_b2f, fill_f2b, grid_180k, tiny_1m, perspective or suite (repeatable)");
   cmd->add_option("--suite", args->suite_dir, "suite folder for the suite row (default: the built-in scenes/)");

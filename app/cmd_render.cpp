@@ -32,8 +32,7 @@ int run_render(const RenderArgs& args) {
   } else {
     VulkanRenderer renderer(make_vk_options(args.options));
     result = renderer.render(scene);
-    for (const std::string& message : renderer.validation_messages())
-      fmt::print(stderr, "validation: {}\n", message);
+    for (const std::string& message : renderer.validation_messages()) fmt::print(stderr, "validation: {}\n", message);
     if (!renderer.validation_messages().empty()) {
       fmt::print(stderr, "error: {} validation message(s); the outputs were not written\n",
                  renderer.validation_messages().size());
@@ -41,8 +40,8 @@ int run_render(const RenderArgs& args) {
     }
   }
   write_render_outputs(result, args.out_dir);
-  fmt::print("{}: {}x{}, {} sample(s), depth {} → {} ({})\n", scene.name, result.width, result.height,
-             result.samples, to_string(result.depth_format), args.out_dir, result.device);
+  fmt::print("{}: {}x{}, {} sample(s), depth {} → {} ({})\n", scene.name, result.width, result.height, result.samples,
+             to_string(result.depth_format), args.out_dir, result.device);
   return kExitOk;
 }
 

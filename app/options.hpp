@@ -12,12 +12,12 @@
 namespace rastercmp::app {
 
 struct RenderOptions {
-  std::string profile = "lavapipe";   // cpu profile: lavapipe | spec
-  std::string fma = "auto";           // cpu arithmetic: auto (what lavapipe does here) | on | off
-  std::vector<std::string> methods;   // STAGE=NAME
-  unsigned threads = 0;               // cpu: 0 exact scalar path, >= 1 fast path threads
-  std::string device;                 // vulkan device name substring or index
-  bool validate = false;              // vulkan validation layer
+  std::string profile = "lavapipe";  // cpu profile: lavapipe | spec
+  std::string fma = "auto";          // cpu arithmetic: auto (what lavapipe does here) | on | off
+  std::vector<std::string> methods;  // STAGE=NAME
+  unsigned threads = 0;              // cpu: 0 exact scalar path, >= 1 fast path threads
+  std::string device;                // vulkan device name substring or index
+  bool validate = false;             // vulkan validation layer
 };
 
 // Adds --profile, --fma, --method, --threads, --device, --validate to a subcommand.

@@ -15,8 +15,8 @@
 #include <string>
 #include <vector>
 
-#include "cpu_raster/cpu_raster.hpp"
 #include "bench/bench_scenes.hpp"
+#include "cpu_raster/cpu_raster.hpp"
 #include "cpu_raster/fast/render_fast.hpp"
 #include "model/host.hpp"
 #include "vk_reference/vk_reference.hpp"
@@ -48,8 +48,8 @@ CpuOptions cpu_options(uint32_t threads) {
 }
 
 void set_rates(benchmark::State& state, const Scene& scene) {
-  state.counters["Mtri/s"] = benchmark::Counter(double(bench::triangle_count(scene)) * 1e-6,
-                                                benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["Mtri/s"] =
+      benchmark::Counter(double(bench::triangle_count(scene)) * 1e-6, benchmark::Counter::kIsIterationInvariantRate);
 }
 
 void exact(benchmark::State& state, const Scene* scene) {
@@ -109,15 +109,26 @@ int main(int argc, char** argv) {
   using namespace rastercmp;
   static const std::vector<bench::BenchScene> scenes = bench::standard_bench_scenes();
   for (const bench::BenchScene& s : scenes) {
-    benchmark::RegisterBenchmark(("Exact/" + s.name).c_str(), exact, &s.scene)->Unit(benchmark::kMillisecond)->Iterations(1);
+    benchmark::RegisterBenchmark(("Exact/" + s.name).c_str(), exact, &s.scene)
+        ->Unit(benchmark::kMillisecond)
+        ->Iterations(1);
     benchmark::RegisterBenchmark(("Fast/" + s.name).c_str(), fast, &s.scene)
-        ->ArgName("threads")->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+        ->ArgName("threads")
+        ->Arg(1)
+        ->Arg(2)
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime();
     benchmark::RegisterBenchmark(("FastNewBuffers/" + s.name).c_str(), fast_new_buffers, &s.scene)
-        ->ArgName("threads")->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+        ->ArgName("threads")
+        ->Arg(2)
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime();
     benchmark::RegisterBenchmark(("Lavapipe/" + s.name).c_str(), lavapipe, &s.scene)
-        ->Unit(benchmark::kMillisecond)->UseManualTime();
+        ->Unit(benchmark::kMillisecond)
+        ->UseManualTime();
     benchmark::RegisterBenchmark(("Interleaved/" + s.name).c_str(), interleaved, &s.scene)
-        ->Unit(benchmark::kMillisecond)->UseManualTime();
+        ->Unit(benchmark::kMillisecond)
+        ->UseManualTime();
   }
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;

@@ -146,8 +146,10 @@ uint64_t triangle_count(const Scene& scene) {
   uint64_t count = 0;
   for (const Draw& draw : scene.draws) {
     const uint64_t n = draw.vertex_count();
-    if (draw.topology == Topology::TriangleList) count += n / 3;
-    else if (is_triangle_topology(draw.topology)) count += n >= 3 ? n - 2 : 0;
+    if (draw.topology == Topology::TriangleList)
+      count += n / 3;
+    else if (is_triangle_topology(draw.topology))
+      count += n >= 3 ? n - 2 : 0;
   }
   return count;
 }

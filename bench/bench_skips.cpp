@@ -114,10 +114,8 @@ int main(int argc, char** argv) {
     return nullptr;
   };
   const std::vector<std::pair<std::string, std::vector<std::string>>> plan = {
-      {"clip", {"small", "medium"}},
-      {"depth", {"small_depthless", "medium_depthless"}},
-      {"bias", {"small", "medium"}},
-      {"edges32", {"small", "medium", "large"}},
+      {"clip", {"small", "medium"}}, {"depth", {"small_depthless", "medium_depthless"}},
+      {"bias", {"small", "medium"}}, {"edges32", {"small", "medium", "large"}},
       {"all", {"small", "medium"}},
   };
   for (const auto& [skip, names] : plan)

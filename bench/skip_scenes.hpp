@@ -12,11 +12,11 @@
 namespace rastercmp::skip_scenes {
 
 struct MeshSpec {
-  uint32_t size = 256;        // framebuffer side, pixels
-  uint32_t cells = 32;        // grid cells per side: 2 * cells^2 triangles of about (size/cells)^2 / 2 px
-  float reach = 0.95f;        // |x|, |y| <= reach * w: < 1 keeps every vertex inside, > 1 crosses the planes
+  uint32_t size = 256;  // framebuffer side, pixels
+  uint32_t cells = 32;  // grid cells per side: 2 * cells^2 triangles of about (size/cells)^2 / 2 px
+  float reach = 0.95f;  // |x|, |y| <= reach * w: < 1 keeps every vertex inside, > 1 crosses the planes
   DepthFormat format = DepthFormat::X8D24Unorm;
-  bool bias = false;          // depth bias on (constant 2, slope 1.5)
+  bool bias = false;  // depth bias on (constant 2, slope 1.5)
   uint32_t seed = 1;
 };
 
@@ -46,8 +46,10 @@ inline Scene grid_mesh(const std::string& name, const MeshSpec& spec) {
   for (uint32_t j = 0; j < spec.cells; ++j) {
     for (uint32_t i = 0; i < spec.cells; ++i) {
       const uint32_t a = j * row + i, b = a + 1, c = a + row, d = c + 1;
-      if ((i + j) % 2 == 0) draw.indices.insert(draw.indices.end(), {a, b, d, a, d, c});
-      else draw.indices.insert(draw.indices.end(), {a, b, c, b, d, c});
+      if ((i + j) % 2 == 0)
+        draw.indices.insert(draw.indices.end(), {a, b, d, a, d, c});
+      else
+        draw.indices.insert(draw.indices.end(), {a, b, c, b, d, c});
     }
   }
   draw.state.depth.compare_op = CompareOp::Less;

@@ -30,7 +30,7 @@ struct CaseImages {
 
 struct CaseRecord {
   std::string name;
-  std::string source;  // scene file
+  std::string source;                // scene file
   std::string cpu_method = "exact";  // the CPU side's method overrides ("fill=scanline depth=bilinear") or "exact"
   uint32_t width = 0, height = 0;
   Verdict verdict = Verdict::InternalError;

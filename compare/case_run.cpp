@@ -40,7 +40,8 @@ void CaseRunner::render_both(const Scene& scene, CaseResult& result) {
 
 std::string cpu_method_label(const CpuOptions& options) {
   std::string label;
-  for (const MethodChoice& choice : options.methods) label += (label.empty() ? "" : " ") + choice.stage + "=" + choice.name;
+  for (const MethodChoice& choice : options.methods)
+    label += (label.empty() ? "" : " ") + choice.stage + "=" + choice.name;
   return label.empty() ? "exact" : label;
 }
 

@@ -24,12 +24,9 @@ int64_t float_order_key(uint32_t bits) {
 const char* depth_unit_name(DepthFormat format) {
   switch (format) {
     case DepthFormat::D16Unorm:
-    case DepthFormat::X8D24Unorm:
-      return "LSB";
-    case DepthFormat::D32Sfloat:
-      return "ULP";
-    case DepthFormat::None:
-      break;
+    case DepthFormat::X8D24Unorm: return "LSB";
+    case DepthFormat::D32Sfloat: return "ULP";
+    case DepthFormat::None: break;
   }
   return "";
 }
@@ -43,18 +40,15 @@ uint64_t depth_diff_raw_units(DepthFormat format, uint32_t expected_raw, uint32_
     }
     case DepthFormat::D32Sfloat:
       return uint64_t(std::llabs(float_order_key(expected_raw) - float_order_key(actual_raw)));
-    case DepthFormat::None:
-      break;
+    case DepthFormat::None: break;
   }
   return 0;
 }
 
 double depth_bias_r(DepthFormat format, uint32_t expected_raw, uint32_t actual_raw) {
   switch (format) {
-    case DepthFormat::D16Unorm:
-      return 2.0 / 65535.0;  // docs/lavapipe-rules.md §4.3: r = 2 * mrd
-    case DepthFormat::X8D24Unorm:
-      return 2.0 / 16777215.0;  // docs/lavapipe-rules.md §4.3: r = 2 * mrd
+    case DepthFormat::D16Unorm: return 2.0 / 65535.0;       // docs/lavapipe-rules.md §4.3: r = 2 * mrd
+    case DepthFormat::X8D24Unorm: return 2.0 / 16777215.0;  // docs/lavapipe-rules.md §4.3: r = 2 * mrd
     case DepthFormat::D32Sfloat: {
       // Spec "Depth Bias": r = 2^(e - n) for floating-point formats, n = 23 mantissa bits.
       const double larger = std::fmax(std::fabs(double(std::bit_cast<float>(expected_raw))),
@@ -64,8 +58,7 @@ double depth_bias_r(DepthFormat format, uint32_t expected_raw, uint32_t actual_r
       const int e = (larger == 0.0 || !std::isfinite(larger)) ? -126 : std::max(exponent_frexp - 1, -126);
       return std::ldexp(1.0, e - 23);
     }
-    case DepthFormat::None:
-      break;
+    case DepthFormat::None: break;
   }
   return 0.0;
 }

@@ -36,8 +36,7 @@ SampleClass spec_class(CoverageClass coverage, uint32_t expected_owner, uint32_t
       if (!actual_covered) return SampleClass::Missing;
       if (expected_owner != kOwnerBackground && expected_owner != actual_owner) return SampleClass::WrongOwner;
       return SampleClass::Correct;
-    case CoverageClass::MustNot:
-      return actual_covered ? SampleClass::Unexpected : SampleClass::Background;
+    case CoverageClass::MustNot: return actual_covered ? SampleClass::Unexpected : SampleClass::Background;
   }
   return SampleClass::Background;
 }
@@ -70,14 +69,10 @@ T percentile(std::vector<T>& values, unsigned percent) {
 
 const char* bad_kind(SampleClass c) {
   switch (c) {
-    case SampleClass::Missing:
-      return "missing";
-    case SampleClass::Unexpected:
-      return "unexpected";
-    case SampleClass::WrongOwner:
-      return "wrong_owner";
-    default:
-      return "depth";
+    case SampleClass::Missing: return "missing";
+    case SampleClass::Unexpected: return "unexpected";
+    case SampleClass::WrongOwner: return "wrong_owner";
+    default: return "depth";
   }
 }
 
@@ -92,23 +87,12 @@ struct DepthAccumulator {
 
 void count_class(DiffSummary& s, SampleClass c) {
   switch (c) {
-    case SampleClass::Missing:
-      ++s.missing;
-      break;
-    case SampleClass::Unexpected:
-      ++s.unexpected;
-      break;
-    case SampleClass::WrongOwner:
-      ++s.wrong_owner;
-      break;
-    case SampleClass::Allowed:
-      ++s.allowed;
-      break;
-    case SampleClass::Correct:
-      ++s.covered_match;
-      break;
-    case SampleClass::Background:
-      break;
+    case SampleClass::Missing: ++s.missing; break;
+    case SampleClass::Unexpected: ++s.unexpected; break;
+    case SampleClass::WrongOwner: ++s.wrong_owner; break;
+    case SampleClass::Allowed: ++s.allowed; break;
+    case SampleClass::Correct: ++s.covered_match; break;
+    case SampleClass::Background: break;
   }
 }
 
@@ -128,18 +112,12 @@ const char* to_string(CompareProfile profile) { return profile == CompareProfile
 
 const char* to_string(SampleClass c) {
   switch (c) {
-    case SampleClass::Background:
-      return "background";
-    case SampleClass::Correct:
-      return "correct";
-    case SampleClass::Missing:
-      return "missing";
-    case SampleClass::Unexpected:
-      return "unexpected";
-    case SampleClass::WrongOwner:
-      return "wrong owner";
-    case SampleClass::Allowed:
-      return "allowed";
+    case SampleClass::Background: return "background";
+    case SampleClass::Correct: return "correct";
+    case SampleClass::Missing: return "missing";
+    case SampleClass::Unexpected: return "unexpected";
+    case SampleClass::WrongOwner: return "wrong owner";
+    case SampleClass::Allowed: return "allowed";
   }
   return "?";
 }

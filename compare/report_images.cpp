@@ -74,18 +74,12 @@ OIIO::ImageBuf depth_heatmap(const SceneDiff& diff) {
 
 int class_rank(SampleClass c) {
   switch (c) {
-    case SampleClass::Missing:
-      return 5;
-    case SampleClass::Unexpected:
-      return 4;
-    case SampleClass::WrongOwner:
-      return 3;
-    case SampleClass::Allowed:
-      return 2;
-    case SampleClass::Correct:
-      return 1;
-    case SampleClass::Background:
-      return 0;
+    case SampleClass::Missing: return 5;
+    case SampleClass::Unexpected: return 4;
+    case SampleClass::WrongOwner: return 3;
+    case SampleClass::Allowed: return 2;
+    case SampleClass::Correct: return 1;
+    case SampleClass::Background: return 0;
   }
   return 0;
 }
@@ -94,18 +88,12 @@ int class_rank(SampleClass c) {
 
 Rgb mask_colour(SampleClass c) {
   switch (c) {
-    case SampleClass::Missing:
-      return kMaskMissing;
-    case SampleClass::Unexpected:
-      return kMaskUnexpected;
-    case SampleClass::WrongOwner:
-      return kMaskWrongOwner;
-    case SampleClass::Allowed:
-      return kMaskAllowed;
-    case SampleClass::Correct:
-      return kMaskCorrect;
-    case SampleClass::Background:
-      return kMaskBackground;
+    case SampleClass::Missing: return kMaskMissing;
+    case SampleClass::Unexpected: return kMaskUnexpected;
+    case SampleClass::WrongOwner: return kMaskWrongOwner;
+    case SampleClass::Allowed: return kMaskAllowed;
+    case SampleClass::Correct: return kMaskCorrect;
+    case SampleClass::Background: return kMaskBackground;
   }
   return kMaskBackground;
 }

@@ -50,18 +50,12 @@ VerdictDecision decide_spec(const DiffSummary& d, double tolerance_r) {
 
 const char* to_string(Verdict v) {
   switch (v) {
-    case Verdict::Pass:
-      return "Pass";
-    case Verdict::Fail:
-      return "Fail";
-    case Verdict::QualityWarning:
-      return "QualityWarning";
-    case Verdict::NotSupported:
-      return "NotSupported";
-    case Verdict::ResourceError:
-      return "ResourceError";
-    case Verdict::InternalError:
-      return "InternalError";
+    case Verdict::Pass: return "Pass";
+    case Verdict::Fail: return "Fail";
+    case Verdict::QualityWarning: return "QualityWarning";
+    case Verdict::NotSupported: return "NotSupported";
+    case Verdict::ResourceError: return "ResourceError";
+    case Verdict::InternalError: return "InternalError";
   }
   return "?";
 }

@@ -23,8 +23,8 @@ PlotFraction to_fraction(double x, double y, const ChartAxes& axes) {
 }
 
 struct Cluster {
-  PlotFraction anchor;   // the leftmost point's position
-  double x = 0, y = 0;   // the same point in data coordinates
+  PlotFraction anchor;  // the leftmost point's position
+  double x = 0, y = 0;  // the same point in data coordinates
   std::vector<int> numbers;
 };
 
@@ -63,7 +63,8 @@ void merge_into(Cluster& into, const Cluster& from) {
 std::vector<LabelCluster> cluster_labels(const std::vector<ChartPoint>& points, const ChartAxes& axes, double near_x,
                                          double near_y) {
   std::vector<Cluster> clusters;
-  for (const ChartPoint& point : points) clusters.push_back({to_fraction(point.x, point.y, axes), point.x, point.y, {point.number}});
+  for (const ChartPoint& point : points)
+    clusters.push_back({to_fraction(point.x, point.y, axes), point.x, point.y, {point.number}});
   // Merge colliding labels until none collide; a merged label is longer, so repeat.
   for (bool merged = true; merged;) {
     merged = false;

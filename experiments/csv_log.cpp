@@ -43,8 +43,10 @@ CsvTable read_csv(const std::string& path) {
     if (end == std::string::npos) break;  // a row without its newline was cut off mid-write
     std::vector<std::string> fields = split_fields(text.substr(start, end - start));
     start = end + 1;
-    if (table.header.empty()) table.header = std::move(fields);
-    else if (fields.size() == table.header.size()) table.rows.push_back(std::move(fields));
+    if (table.header.empty())
+      table.header = std::move(fields);
+    else if (fields.size() == table.header.size())
+      table.rows.push_back(std::move(fields));
   }
   return table;
 }
@@ -55,8 +57,9 @@ CsvAppender::CsvAppender(std::string path, std::vector<std::string> header, size
   if (resume) {
     const CsvTable old = read_csv(path_);
     if (!old.header.empty() && old.header != header)
-      throw InputError(path_, "", "expected a CSV with the header " + join_fields(header, header.size()) +
-                                      " to resume (delete it or run without --resume)");
+      throw InputError(path_, "",
+                       "expected a CSV with the header " + join_fields(header, header.size()) +
+                           " to resume (delete it or run without --resume)");
     for (const auto& row : old.rows) {
       kept += join_fields(row, row.size()) + "\n";
       keys_.insert(join_fields(row, key_columns_));

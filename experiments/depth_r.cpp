@@ -42,13 +42,13 @@ std::vector<DepthRMeasure> measure_depth_r(VulkanRenderer& vk) {
     m.raw_step_vk = gpu.raw;
     if (format == DepthFormat::D32Sfloat) {
       int exponent = 0;
-      std::frexp(double(kFlatPlaneDepth), &exponent);  // 0.375 = 0.75 * 2^-1: unbiased exponent e = -2
+      std::frexp(double(kFlatPlaneDepth), &exponent);     // 0.375 = 0.75 * 2^-1: unbiased exponent e = -2
       m.spec_bound = std::ldexp(1.0, exponent - 1 - 23);  // r = 2^(e-n), n = 23 (docs/lavapipe-rules.md §4.1)
-      m.lavapipe_formula = m.spec_bound;         // docs/lavapipe-rules.md §4.3, float branch
+      m.lavapipe_formula = m.spec_bound;                  // docs/lavapipe-rules.md §4.3, float branch
     } else {
       const int n = int(depth_bits(format));
-      m.spec_bound = 2.0 * std::ldexp(1.0, -n);                       // spec: r <= 2 x 2^-n (§4.1)
-      m.lavapipe_formula = 2.0 / (std::ldexp(1.0, n) - 1.0);          // lavapipe: 2 * mrd (§4.3)
+      m.spec_bound = 2.0 * std::ldexp(1.0, -n);               // spec: r <= 2 x 2^-n (§4.1)
+      m.lavapipe_formula = 2.0 / (std::ldexp(1.0, n) - 1.0);  // lavapipe: 2 * mrd (§4.3)
     }
     out.push_back(m);
   }

@@ -11,10 +11,10 @@ namespace rastercmp::experiments {
 
 struct DepthRMeasure {
   DepthFormat format = DepthFormat::D16Unorm;
-  double r_cpu = 0, r_vk = 0;  // depth value step per unit of constant factor (K = 1)
+  double r_cpu = 0, r_vk = 0;                // depth value step per unit of constant factor (K = 1)
   double raw_step_cpu = 0, raw_step_vk = 0;  // raw stored bits step for K = 1
-  double spec_bound = 0;        // UNORM: 2 * 2^-n; D32: 2^(e-23), e = exponent of 0.375
-  double lavapipe_formula = 0;  // UNORM: 2 / (2^n - 1) (docs/lavapipe-rules.md §4.3); D32: 2^(e-23)
+  double spec_bound = 0;                     // UNORM: 2 * 2^-n; D32: 2^(e-23), e = exponent of 0.375
+  double lavapipe_formula = 0;               // UNORM: 2 / (2^n - 1) (docs/lavapipe-rules.md §4.3); D32: 2^(e-23)
 };
 
 std::vector<DepthRMeasure> measure_depth_r(VulkanRenderer& vk);

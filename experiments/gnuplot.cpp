@@ -48,8 +48,7 @@ void run_terminal(const std::string& gnuplot, const std::string& dir, const std:
   char buffer[512];
   while (std::fgets(buffer, sizeof buffer, pipe)) messages += buffer;
   const int status = ::pclose(pipe);
-  if (status != 0 || !fs::exists(temp_path))
-    throw std::runtime_error("gnuplot failed on " + name + ".gp: " + messages);
+  if (status != 0 || !fs::exists(temp_path)) throw std::runtime_error("gnuplot failed on " + name + ".gp: " + messages);
   fs::rename(temp_path, final_path);
 }
 
@@ -82,8 +81,7 @@ void render_chart(const std::string& dir, const std::string& name, const std::ve
   write_text_file_atomic((fs::path(dir) / (name + ".dat")).string(), data_text(blocks));
   write_text_file_atomic((fs::path(dir) / (name + ".gp")).string(),
                          "# rastercmp chart; run: gnuplot -e \"set terminal svg; set output 'x.svg'; DATA='" + name +
-                             ".dat'\" " + name + ".gp\n" +
-                             "set key noenhanced\n" + body);
+                             ".dat'\" " + name + ".gp\n" + "set key noenhanced\n" + body);
   run_terminal(gnuplot, dir, name, "svg size 960,640 dynamic font 'sans,13' background '#ffffff'", "svg");
   run_terminal(gnuplot, dir, name, "pngcairo size 1200,800 font 'sans,12'", "png");
 }

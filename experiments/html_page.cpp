@@ -9,11 +9,16 @@ namespace rastercmp::experiments {
 std::string html_escape(const std::string& text) {
   std::string out;
   for (char c : text) {
-    if (c == '<') out += "&lt;";
-    else if (c == '>') out += "&gt;";
-    else if (c == '&') out += "&amp;";
-    else if (c == '"') out += "&quot;";
-    else out += c;
+    if (c == '<')
+      out += "&lt;";
+    else if (c == '>')
+      out += "&gt;";
+    else if (c == '&')
+      out += "&amp;";
+    else if (c == '"')
+      out += "&quot;";
+    else
+      out += c;
   }
   return out;
 }
@@ -43,7 +48,8 @@ void write_index_html(const std::string& dir, const std::string& title, const st
   std::string html = "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>" + html_escape(title) +
                      "</title>\n<style>body{font-family:sans-serif;max-width:1000px;margin:2em auto;}"
                      "img{max-width:100%;border:1px solid #ccc;}"
-                     "table{border-collapse:collapse;}td,th{border:1px solid #ccc;padding:2px 8px;text-align:left;}</style></head><body>\n<h1>" +
+                     "table{border-collapse:collapse;}td,th{border:1px solid #ccc;padding:2px "
+                     "8px;text-align:left;}</style></head><body>\n<h1>" +
                      html_escape(title) + "</h1>\n";
   for (const PageSection& section : sections) {
     html += "<h2>" + html_escape(section.heading) + "</h2>\n<p>" + html_escape(section.text) + "</p>\n";

@@ -9,8 +9,8 @@ namespace rastercmp::experiments {
 
 struct PageSection {
   std::string heading;
-  std::string text;                 // one paragraph, plain text (escaped)
-  std::vector<std::string> charts;  // chart names (NAME.svg / NAME.png)
+  std::string text;                                  // one paragraph, plain text (escaped)
+  std::vector<std::string> charts;                   // chart names (NAME.svg / NAME.png)
   std::vector<std::vector<std::string>> table = {};  // optional: first row is the header (plain text, escaped)
 };
 

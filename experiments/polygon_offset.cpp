@@ -56,9 +56,11 @@ void add_far_near(std::vector<OffsetSeries>& plan, bool quick) {
 
 void add_factor_axes(std::vector<OffsetSeries>& plan, bool quick) {
   const std::vector<double> angles = quick ? std::vector<double>{0, 60} : std::vector<double>{0, 15, 30, 45, 60, 75};
-  const std::vector<double> constants =
-      quick ? std::vector<double>{0, 1, 16, 256} : std::vector<double>{0, 0.5, 1, 2, 4, 8, 16, 32, 64, 128, 256, 512, 1024};
-  const std::vector<double> slopes = quick ? std::vector<double>{0, 1, 4} : std::vector<double>{0, 0.25, 0.5, 1, 2, 4, 8};
+  const std::vector<double> constants = quick
+                                            ? std::vector<double>{0, 1, 16, 256}
+                                            : std::vector<double>{0, 0.5, 1, 2, 4, 8, 16, 32, 64, 128, 256, 512, 1024};
+  const std::vector<double> slopes =
+      quick ? std::vector<double>{0, 1, 4} : std::vector<double>{0, 0.25, 0.5, 1, 2, 4, 8};
   for (PairKind kind : {PairKind::Coplanar, PairKind::NearCoplanar})
     for (DepthFormat format : sweep_depth_formats())
       for (double angle : angles) {
@@ -92,8 +94,14 @@ void add_clamp_and_angle(std::vector<OffsetSeries>& plan, bool quick) {
 
 std::vector<std::string> key_of(const OffsetPoint& point) {
   const PairParams& p = point.params;
-  return {point.experiment, to_string(p.kind), to_string(p.format), num(p.far_near_ratio), num(p.angle_deg),
-          num(-p.decal_bias.constant_factor), num(-p.decal_bias.slope_factor), num(p.decal_bias.clamp),
+  return {point.experiment,
+          to_string(p.kind),
+          to_string(p.format),
+          num(p.far_near_ratio),
+          num(p.angle_deg),
+          num(-p.decal_bias.constant_factor),
+          num(-p.decal_bias.slope_factor),
+          num(p.decal_bias.clamp),
           num(p.separation)};
 }
 
@@ -126,9 +134,13 @@ void run_series(VulkanRenderer& vk, CsvAppender& csv, const OffsetSeries& series
 std::string r_json(const std::vector<DepthRMeasure>& measures) {
   nlohmann::ordered_json out = nlohmann::ordered_json::array();
   for (const DepthRMeasure& m : measures)
-    out.push_back({{"format", to_string(m.format)}, {"r_cpu", m.r_cpu}, {"r_vulkan", m.r_vk},
-                   {"raw_step_cpu", m.raw_step_cpu}, {"raw_step_vulkan", m.raw_step_vk},
-                   {"spec_bound", m.spec_bound}, {"lavapipe_formula", m.lavapipe_formula},
+    out.push_back({{"format", to_string(m.format)},
+                   {"r_cpu", m.r_cpu},
+                   {"r_vulkan", m.r_vk},
+                   {"raw_step_cpu", m.raw_step_cpu},
+                   {"raw_step_vulkan", m.raw_step_vk},
+                   {"spec_bound", m.spec_bound},
+                   {"lavapipe_formula", m.lavapipe_formula},
                    {"r_over_spec_bound", m.r_vk / m.spec_bound}});
   return out.dump(2) + "\n";
 }
@@ -136,8 +148,8 @@ std::string r_json(const std::vector<DepthRMeasure>& measures) {
 }  // namespace
 
 std::vector<std::string> polygon_offset_header() {
-  return {"experiment", "scene",    "format",  "far_near", "angle_deg", "constant",     "slope",      "clamp",
-          "separation", "wrong_cpu", "wrong_vk", "flip_cpu", "flip_vk",  "cpu_vk_agree", "mask_pixels"};
+  return {"experiment", "scene",     "format",   "far_near", "angle_deg", "constant",     "slope",      "clamp",
+          "separation", "wrong_cpu", "wrong_vk", "flip_cpu", "flip_vk",   "cpu_vk_agree", "mask_pixels"};
 }
 
 std::vector<OffsetSeries> polygon_offset_plan(bool quick) {

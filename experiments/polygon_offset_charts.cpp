@@ -14,8 +14,7 @@ namespace rastercmp::experiments {
 namespace {
 
 const char* kLogX = "set logscale x 10\nset format x '10^{%L}'\n";
-const char* kStyle =
-    "set key outside right top\nset grid\nset yrange [-0.02:1.02]\nset style data linespoints\n";
+const char* kStyle = "set key outside right top\nset grid\nset yrange [-0.02:1.02]\nset style data linespoints\n";
 
 std::string offset_label(const std::string& constant, const std::string& slope) {
   return constant == "0" && slope == "0" ? "no offset" : "constant " + constant + ", slope " + slope;
@@ -38,13 +37,14 @@ void chart_far_near(const std::string& dir, const CsvTable& table, const std::st
       blocks.push_back(block);
     }
   std::string body = std::string(kLogX) + kStyle +
-                     fmt::format("set title 'Z-fighting of the {} decal against far/near (CPU lines, Vulkan crosses)'\n"
-                                 "set xlabel 'far / near'\nset ylabel 'fraction of decal pixels won by the wrong surface'\n",
-                                 scene);
+                     fmt::format(
+                         "set title 'Z-fighting of the {} decal against far/near (CPU lines, Vulkan crosses)'\n"
+                         "set xlabel 'far / near'\nset ylabel 'fraction of decal pixels won by the wrong surface'\n",
+                         scene);
   body += "plot for [i=0:" + std::to_string(blocks.size() - 1) +
           "] DATA index i using 1:2 title columnheader(1) lw 2 lc (i+1) dt i%3+1, \\\n"
-          "     for [i=0:" + std::to_string(blocks.size() - 1) +
-          "] DATA index i using 1:3 notitle with points pt 2 ps 1.4 lc (i+1)\n";
+          "     for [i=0:" +
+          std::to_string(blocks.size() - 1) + "] DATA index i using 1:3 notitle with points pt 2 ps 1.4 lc (i+1)\n";
   for (DataBlock& block : blocks) block.rows.insert(block.rows.begin(), {"\"" + block.title + "\"", "x", "x"});
   render_chart(dir, "zfight_far_near_" + scene, blocks, body);
 }
@@ -60,7 +60,8 @@ void chart_min_offset(const std::string& dir, const CsvTable& table, const std::
       DataBlock block{scene + ", " + format, {{"\"" + scene + ", " + format + "\"", "x"}}};
       for (const std::string& a : distinct(table, "angle_deg", base)) {
         double smallest = NAN;
-        for (const Row& row : select_rows(table, {{"experiment", axis}, {"scene", scene}, {"format", format}, {"angle_deg", a}}))
+        for (const Row& row :
+             select_rows(table, {{"experiment", axis}, {"scene", scene}, {"format", format}, {"angle_deg", a}}))
           if (to_double(row[wrong]) == 0 && to_double(row[wrong_vk]) == 0 && !(to_double(row[value]) >= smallest))
             smallest = to_double(row[value]);
         // 0 is drawn at 1/8 on the log axis (tic "0").
@@ -93,7 +94,8 @@ void chart_clamp(const std::string& dir, const CsvTable& table) {
                            "set title 'Depth-bias clamp: a decal with constant 256, slope 4 at 60 degrees'\n"
                            "set xlabel '|clamp| (the point at 1 = clamp 0, no clamp)'\n"
                            "set ylabel 'fraction won by the wrong surface'\nset xtics add ('off' 1)\n"
-                           "plot for [i=0:" + std::to_string(blocks.size() - 1) +
+                           "plot for [i=0:" +
+                           std::to_string(blocks.size() - 1) +
                            "] DATA index i using 1:2 title columnheader(1) lw 2 pt 7\n";
   render_chart(dir, "clamp", blocks, body);
 }
@@ -107,7 +109,8 @@ void chart_angle(const std::string& dir, const CsvTable& table) {
       for (const std::string& constant : distinct(table, "constant", base)) {
         const std::vector<Row> rows =
             select_rows(table, {{"experiment", "angle"}, {"scene", scene}, {"format", format}, {"constant", constant}});
-        const std::string title = scene + ", " + format + ", " + offset_label(constant, rows.front()[table.column("slope")]);
+        const std::string title =
+            scene + ", " + format + ", " + offset_label(constant, rows.front()[table.column("slope")]);
         DataBlock block{title, {{"\"" + title + "\"", "x"}}};
         for (const Row& row : rows) block.rows.push_back({row[angle], row[wrong]});
         blocks.push_back(block);
@@ -115,7 +118,8 @@ void chart_angle(const std::string& dir, const CsvTable& table) {
   const std::string body = std::string(kStyle) +
                            "set title 'Wrong surface against viewing angle (far/near 1000)'\n"
                            "set xlabel 'angle (degrees)'\nset ylabel 'fraction won by the wrong surface'\n"
-                           "plot for [i=0:" + std::to_string(blocks.size() - 1) +
+                           "plot for [i=0:" +
+                           std::to_string(blocks.size() - 1) +
                            "] DATA index i using 1:2 title columnheader(1) lw 2 lc (i+1) dt i%2+1\n";
   render_chart(dir, "wrong_vs_angle", blocks, body);
 }
@@ -134,7 +138,8 @@ void chart_r(const std::string& dir, const std::vector<DepthRMeasure>& measures)
   const std::string body =
       "set title 'r (depth step of constantFactor 1) per format: measured against the bounds'\n"
       "set logscale y 10\nset format y '10^{%L}'\nset ylabel 'r (depth units)'\nset xrange [-0.6:2.6]\n"
-      "set xtics noenhanced ('d16_unorm' 0, 'x8_d24_unorm' 1, 'd32_sfloat at z 0.375' 2)\nset key outside right top\nset grid\n"
+      "set xtics noenhanced ('d16_unorm' 0, 'x8_d24_unorm' 1, 'd32_sfloat at z 0.375' 2)\nset key outside right "
+      "top\nset grid\n"
       "plot for [i=0:3] DATA index i using 1:3 title columnheader(2) with points pt (i==0?7:i==1?2:i==2?4:6) ps 2\n";
   render_chart(dir, "depth_r", blocks, body);
 }
@@ -156,11 +161,13 @@ void write_polygon_offset_charts(const std::string& dir, const std::vector<Depth
   write_index_html(
       dir, "Polygon offset and z-fighting",
       {{"Z-fighting against far/near",
-        "A decal drawn after its base with compare op Less; the fraction of the decal's pixels that the base wins, per depth "
+        "A decal drawn after its base with compare op Less; the fraction of the decal's pixels that the base wins, per "
+        "depth "
         "format, without and with polygon offset. near = far / ratio.",
         far_near_charts},
        {"Smallest offset against depth slope",
-        "For each viewing angle, the smallest constant factor (slope 0) and the smallest slope factor (constant 0) at which "
+        "For each viewing angle, the smallest constant factor (slope 0) and the smallest slope factor (constant 0) at "
+        "which "
         "neither backend shows a wrong pixel; missing points: no tried value was enough.",
         {"min_constant_vs_angle", "min_slope_vs_angle", "wrong_vs_angle"}},
        {"Clamp", "A large offset limited by depthBiasClamp.", {"clamp"}},

@@ -19,8 +19,10 @@ double radians(double degrees) { return degrees * std::numbers::pi / 180.0; }
 
 // Two triangles of a quad (corners in order), split along 0-2 or along 1-3.
 void push_quad(std::vector<glm::vec3>& out, const Quad& q, bool other_diagonal) {
-  if (!other_diagonal) out.insert(out.end(), {q[0], q[1], q[2], q[0], q[2], q[3]});
-  else out.insert(out.end(), {q[0], q[1], q[3], q[1], q[2], q[3]});
+  if (!other_diagonal)
+    out.insert(out.end(), {q[0], q[1], q[2], q[0], q[2], q[3]});
+  else
+    out.insert(out.end(), {q[0], q[1], q[3], q[1], q[2], q[3]});
 }
 
 // A rectangle of half-sizes hx, hy in the plane through `centre` rotated by `angle` about y.
@@ -71,15 +73,15 @@ DecalScene make_pair(const PairParams& p) {
 std::vector<glm::vec3> house_triangles() {
   std::vector<glm::vec3> t;
   const auto quad = [&](glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d) { push_quad(t, {a, b, c, d}, false); };
-  quad({0, 0, 54}, {16, 0, 54}, {16, 10, 54}, {0, 10, 54});      // front (facing +z)
-  t.insert(t.end(), {{0, 10, 54}, {16, 10, 54}, {8, 16, 54}});    // front gable
-  quad({16, 0, 30}, {0, 0, 30}, {0, 10, 30}, {16, 10, 30});      // back
-  t.insert(t.end(), {{16, 10, 30}, {0, 10, 30}, {8, 16, 30}});    // back gable
-  quad({16, 0, 54}, {16, 0, 30}, {16, 10, 30}, {16, 10, 54});    // right wall
-  quad({0, 0, 30}, {0, 0, 54}, {0, 10, 54}, {0, 10, 30});        // left wall
-  quad({0, 0, 30}, {16, 0, 30}, {16, 0, 54}, {0, 0, 54});        // floor
-  quad({16, 10, 54}, {16, 10, 30}, {8, 16, 30}, {8, 16, 54});    // right roof
-  quad({0, 10, 54}, {8, 16, 54}, {8, 16, 30}, {0, 10, 30});      // left roof
+  quad({0, 0, 54}, {16, 0, 54}, {16, 10, 54}, {0, 10, 54});     // front (facing +z)
+  t.insert(t.end(), {{0, 10, 54}, {16, 10, 54}, {8, 16, 54}});  // front gable
+  quad({16, 0, 30}, {0, 0, 30}, {0, 10, 30}, {16, 10, 30});     // back
+  t.insert(t.end(), {{16, 10, 30}, {0, 10, 30}, {8, 16, 30}});  // back gable
+  quad({16, 0, 54}, {16, 0, 30}, {16, 10, 30}, {16, 10, 54});   // right wall
+  quad({0, 0, 30}, {0, 0, 54}, {0, 10, 54}, {0, 10, 30});       // left wall
+  quad({0, 0, 30}, {16, 0, 30}, {16, 0, 54}, {0, 0, 54});       // floor
+  quad({16, 10, 54}, {16, 10, 30}, {8, 16, 30}, {8, 16, 54});   // right roof
+  quad({0, 10, 54}, {8, 16, 54}, {8, 16, 30}, {0, 10, 30});     // left roof
   return t;
 }
 
@@ -156,7 +158,7 @@ Scene make_flat_plane(DepthFormat format, const DepthBias& bias) {
   // r = 2^(e-23) with e = -2 (docs/lavapipe-rules.md §4.3).
   const float z = kFlatPlaneDepth;
   draw.positions_clip = {{-0.75f, -0.75f, z, 1}, {0.75f, -0.75f, z, 1}, {0.75f, 0.75f, z, 1},
-                         {-0.75f, -0.75f, z, 1}, {0.75f, 0.75f, z, 1}, {-0.75f, 0.75f, z, 1}};
+                         {-0.75f, -0.75f, z, 1}, {0.75f, 0.75f, z, 1},  {-0.75f, 0.75f, z, 1}};
   draw.state.depth_bias = bias;
   scene.draws.push_back(draw);
   return scene;
@@ -188,9 +190,8 @@ Scene make_far_triangle(double distance_px) {
   const double left = std::max(0.0, far_x - 16384.0);
   scene.viewport = Viewport{float(left), -60, float(far_x - left), 128, 0, 1};
   const float near_x = float(left + 0.37);
-  scene.draws.push_back(pixel_draw(*scene.viewport, {{near_x, 0.3f, 0.2f, 1},
-                                                     {float(far_x), 1.1f, 0.9f, 1},
-                                                     {near_x, 3.7f, 0.4f, 1}}));
+  scene.draws.push_back(
+      pixel_draw(*scene.viewport, {{near_x, 0.3f, 0.2f, 1}, {float(far_x), 1.1f, 0.9f, 1}, {near_x, 3.7f, 0.4f, 1}}));
   return scene;
 }
 

@@ -71,8 +71,13 @@ struct Totals {
 
 std::vector<std::string> csv_row(const std::string& family, const std::string& method, const Scene& scene,
                                  double seconds, const Mismatch& m) {
-  return {family, method, scene.name, to_string(scene.depth_format), num(seconds),
-          num(100.0 * double(m.coverage) / double(m.samples)), num(100.0 * double(m.depth) / double(m.samples)),
+  return {family,
+          method,
+          scene.name,
+          to_string(scene.depth_format),
+          num(seconds),
+          num(100.0 * double(m.coverage) / double(m.samples)),
+          num(100.0 * double(m.depth) / double(m.samples)),
           num(double(m.samples))};
 }
 
@@ -104,11 +109,16 @@ std::vector<MethodEntry> speed_accuracy_entries() {
     const char* stage;
     const char* name;
   } classic[] = {
-      {"clipping", "clip", "sutherland_hodgman"}, {"fill", "fill", "scanline"},
-      {"fill", "fill", "float_edge"},             {"fill", "fill", "even_odd"},
-      {"fill", "fill", "winding"},                {"depth interpolation", "depth", "bilinear"},
-      {"depth interpolation", "depth", "perspective_correct"}, {"visibility", "visibility", "painter"},
-      {"visibility", "visibility", "bsp"},        {"culling", "cull", "normal_dot_view"},
+      {"clipping", "clip", "sutherland_hodgman"},
+      {"fill", "fill", "scanline"},
+      {"fill", "fill", "float_edge"},
+      {"fill", "fill", "even_odd"},
+      {"fill", "fill", "winding"},
+      {"depth interpolation", "depth", "bilinear"},
+      {"depth interpolation", "depth", "perspective_correct"},
+      {"visibility", "visibility", "painter"},
+      {"visibility", "visibility", "bsp"},
+      {"culling", "cull", "normal_dot_view"},
   };
   for (const auto& c : classic) {
     CpuOptions options = exact;
@@ -121,7 +131,9 @@ std::vector<MethodEntry> speed_accuracy_entries() {
 std::vector<size_t> pareto_front(const std::vector<EntrySummary>& entries, bool coverage) {
   std::vector<size_t> order(entries.size());
   for (size_t i = 0; i < order.size(); ++i) order[i] = i;
-  const auto miss = [&](size_t i) { return coverage ? entries[i].coverage_mismatch_pct : entries[i].depth_mismatch_pct; };
+  const auto miss = [&](size_t i) {
+    return coverage ? entries[i].coverage_mismatch_pct : entries[i].depth_mismatch_pct;
+  };
   std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
     return entries[a].seconds_per_frame != entries[b].seconds_per_frame
                ? entries[a].seconds_per_frame < entries[b].seconds_per_frame

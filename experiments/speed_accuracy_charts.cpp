@@ -16,7 +16,9 @@ namespace {
 
 std::string quoted(const std::string& text) { return "\"" + text + "\""; }
 
-double mismatch_of(const EntrySummary& e, bool coverage) { return coverage ? e.coverage_mismatch_pct : e.depth_mismatch_pct; }
+double mismatch_of(const EntrySummary& e, bool coverage) {
+  return coverage ? e.coverage_mismatch_pct : e.depth_mismatch_pct;
+}
 
 // Families in order of first appearance: one series (colour, point type) each.
 std::vector<std::string> families_of(const SpeedAccuracyRun& run) {
@@ -69,10 +71,11 @@ void chart(const std::string& dir, const SpeedAccuracyRun& run, bool coverage) {
     DataBlock block{families[f], {{"x", "x", quoted(families[f])}}};
     for (const EntrySummary& e : run.entries)
       if (e.family == families[f])
-        block.rows.push_back({fmt::format("{}", e.seconds_per_frame), fmt::format("{}", mismatch_of(e, coverage)), "x"});
+        block.rows.push_back(
+            {fmt::format("{}", e.seconds_per_frame), fmt::format("{}", mismatch_of(e, coverage)), "x"});
     blocks.push_back(block);
-    plot += fmt::format("DATA index {} using 1:2 title columnheader(3) with points pt {} ps 1.5 lc rgb '{}', \\\n     ", f,
-                        5 + 2 * int(f % 4), kColours[f % 10]);
+    plot += fmt::format("DATA index {} using 1:2 title columnheader(3) with points pt {} ps 1.5 lc rgb '{}', \\\n     ",
+                        f, 5 + 2 * int(f % 4), kColours[f % 10]);
   }
   DataBlock front{"Pareto front", {{"x", "x", "\"Pareto front\""}}};
   for (size_t i : pareto_front(run.entries, coverage))
@@ -82,18 +85,20 @@ void chart(const std::string& dir, const SpeedAccuracyRun& run, bool coverage) {
   reference.rows.push_back({fmt::format("{}", run.lavapipe.seconds_per_frame), "0", "x"});
   blocks.push_back(front);
   blocks.push_back(reference);
-  plot += fmt::format("DATA index {} using 1:2 title columnheader(3) with linespoints lw 2 pt 6 ps 2.5 lc rgb '#888888', \\\n     "
-                      "DATA index {} using 1:2 title columnheader(3) with points pt 3 ps 3 lw 2 lc rgb '#d62728'\n",
-                      families.size(), families.size() + 1);
+  plot += fmt::format(
+      "DATA index {} using 1:2 title columnheader(3) with linespoints lw 2 pt 6 ps 2.5 lc rgb '#888888', \\\n     "
+      "DATA index {} using 1:2 title columnheader(3) with points pt 3 ps 3 lw 2 lc rgb '#d62728'\n",
+      families.size(), families.size() + 1);
   const ChartAxes axes = axes_for(run, coverage);
   const std::string measure = coverage ? "coverage (owner)" : "raw depth";
   const std::string body =
       "set key noenhanced outside right top vertical\nset title " +
       gp_quote("Speed against accuracy: " + measure + " mismatch against lavapipe (numbers: the table on the page)") +
       " noenhanced\nset logscale x 10\nset xlabel 'time per frame of the scene set (seconds, log)'\n"
-      "set ylabel " + gp_quote("samples whose " + measure + " differs from lavapipe (%)") + "\n" +
-      fmt::format("set xrange [{}:{}]\nset yrange [{}:{}]\nset ytics 0, {}\nset grid\n", axes.x_min, axes.x_max, axes.y_min,
-                  axes.y_max, tick_step(axes.y_max / 1.15)) +
+      "set ylabel " +
+      gp_quote("samples whose " + measure + " differs from lavapipe (%)") + "\n" +
+      fmt::format("set xrange [{}:{}]\nset yrange [{}:{}]\nset ytics 0, {}\nset grid\n", axes.x_min, axes.x_max,
+                  axes.y_min, axes.y_max, tick_step(axes.y_max / 1.15)) +
       label_commands(run, coverage, axes) + plot;
   render_chart(dir, coverage ? "speed_accuracy_coverage" : "speed_accuracy_depth", blocks, body);
 }
@@ -103,8 +108,12 @@ std::vector<std::vector<std::string>> method_table(const SpeedAccuracyRun& run) 
   std::vector<std::vector<std::string>> table{
       {"#", "family", "method", "ms per frame", "coverage mismatch %", "depth mismatch %"}};
   const auto row = [](const std::string& number, const EntrySummary& e) {
-    return std::vector<std::string>{number, e.family, e.method, fmt::format("{:.3f}", e.seconds_per_frame * 1e3),
-                                    fmt::format("{:.4f}", e.coverage_mismatch_pct), fmt::format("{:.4f}", e.depth_mismatch_pct)};
+    return std::vector<std::string>{number,
+                                    e.family,
+                                    e.method,
+                                    fmt::format("{:.3f}", e.seconds_per_frame * 1e3),
+                                    fmt::format("{:.4f}", e.coverage_mismatch_pct),
+                                    fmt::format("{:.4f}", e.depth_mismatch_pct)};
   };
   for (size_t i = 0; i < run.entries.size(); ++i) table.push_back(row(std::to_string(i + 1), run.entries[i]));
   table.push_back(row("ref", run.lavapipe));
@@ -118,7 +127,9 @@ namespace {
 std::string summary_json(const SpeedAccuracyRun& run) {
   nlohmann::ordered_json out;
   const auto entry = [](const EntrySummary& e) {
-    return nlohmann::ordered_json{{"family", e.family}, {"method", e.method}, {"seconds_per_frame", e.seconds_per_frame},
+    return nlohmann::ordered_json{{"family", e.family},
+                                  {"method", e.method},
+                                  {"seconds_per_frame", e.seconds_per_frame},
                                   {"coverage_mismatch_pct", e.coverage_mismatch_pct},
                                   {"depth_mismatch_pct", e.depth_mismatch_pct}};
   };
@@ -127,7 +138,8 @@ std::string summary_json(const SpeedAccuracyRun& run) {
   for (const EntrySummary& e : run.entries) out["methods"].push_back(entry(e));
   for (bool coverage : {true, false}) {
     nlohmann::ordered_json front = nlohmann::ordered_json::array();
-    for (size_t i : pareto_front(run.entries, coverage)) front.push_back(run.entries[i].family + ": " + run.entries[i].method);
+    for (size_t i : pareto_front(run.entries, coverage))
+      front.push_back(run.entries[i].family + ": " + run.entries[i].method);
     out[coverage ? "pareto_front_coverage" : "pareto_front_depth"] = front;
   }
   return out.dump(2) + "\n";
@@ -139,15 +151,17 @@ void write_speed_accuracy_outputs(const std::string& dir, const SpeedAccuracyRun
   write_json_file(dir, "speed_accuracy.json", summary_json(run));
   chart(dir, run, true);
   chart(dir, run, false);
-  write_index_html(dir, "Speed against accuracy",
-                   {{"Coverage", "Each CPU method over the scene set (coplanar pair, house, sliver pair, mesh): median time "
-                                 "per frame against the share of samples whose owner differs from lavapipe. Grey: the Pareto "
-                                 "front. Red: lavapipe's own time (GPU submit to fence). Each label lists the numbers of the methods "
-                                 "at that spot; the table below gives each number's method, time and mismatches.",
-                     {"speed_accuracy_coverage"},
-                     method_table(run)},
-                    {"Depth", "The same runs, judged on the raw stored depth.", {"speed_accuracy_depth"}}},
-                   {kSpeedAccuracyCsv, "speed_accuracy.json"});
+  write_index_html(
+      dir, "Speed against accuracy",
+      {{"Coverage",
+        "Each CPU method over the scene set (coplanar pair, house, sliver pair, mesh): median time "
+        "per frame against the share of samples whose owner differs from lavapipe. Grey: the Pareto "
+        "front. Red: lavapipe's own time (GPU submit to fence). Each label lists the numbers of the methods "
+        "at that spot; the table below gives each number's method, time and mismatches.",
+        {"speed_accuracy_coverage"},
+        method_table(run)},
+       {"Depth", "The same runs, judged on the raw stored depth.", {"speed_accuracy_depth"}}},
+      {kSpeedAccuracyCsv, "speed_accuracy.json"});
 }
 
 }  // namespace rastercmp::experiments

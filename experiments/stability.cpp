@@ -62,9 +62,10 @@ void add_limits(std::vector<StabilityPoint>& plan, bool quick) {
   for (double distance : pick(quick, {64, 4096, 32767}, {64, 256, 1024, 4096, 8192, 16384, 24576, 32767}))
     plan.push_back({"far_distance", "far_triangle", "exact", distance, 0,
                     [distance] { return make_far_triangle(distance); }, exact_cpu_options(), 0});
-  for (double w : pick(quick, {1, 1e-3, 1e-20, 0, -1e-6}, {1, 1e-1, 1e-2, 1e-3, 1e-5, 1e-8, 1e-12, 1e-20, 1e-30, 1e-38, 0, -1e-6}))
-    plan.push_back({"near_w", "near_w", "exact", w, 0, [w] { return make_near_w_triangle(float(w)); },
-                    exact_cpu_options(), 0});
+  for (double w :
+       pick(quick, {1, 1e-3, 1e-20, 0, -1e-6}, {1, 1e-1, 1e-2, 1e-3, 1e-5, 1e-8, 1e-12, 1e-20, 1e-30, 1e-38, 0, -1e-6}))
+    plan.push_back(
+        {"near_w", "near_w", "exact", w, 0, [w] { return make_near_w_triangle(float(w)); }, exact_cpu_options(), 0});
   const char* components[] = {"x", "y", "z", "w"};
   const float inf = std::numeric_limits<float>::infinity();
   for (uint32_t c = 0; c < 4; ++c)
@@ -104,7 +105,7 @@ std::vector<std::string> measure(VulkanRenderer& vk, const StabilityPoint& point
 }  // namespace
 
 std::vector<std::string> stability_header() {
-  return {"experiment", "case", "method", "param_a", "param_b", "value_cpu", "value_vk",
+  return {"experiment",        "case",           "method",      "param_a", "param_b", "value_cpu", "value_vk",
           "coverage_mismatch", "depth_mismatch", "cpu_vk_agree"};
 }
 

@@ -23,8 +23,8 @@ struct StabilityPoint {
   std::string experiment, case_name, method;
   double param_a = 0, param_b = 0;
   std::function<Scene()> make_scene;
-  CpuOptions cpu;             // the method under test
-  uint32_t decal_draw = 0;    // fight_onset: the draw that should win (others: unused)
+  CpuOptions cpu;           // the method under test
+  uint32_t decal_draw = 0;  // fight_onset: the draw that should win (others: unused)
 };
 
 std::vector<StabilityPoint> stability_plan(bool quick);

@@ -35,16 +35,18 @@ void chart_fight_onset(const std::string& dir, const CsvTable& table) {
     }
     onsets.push_back(onset);
   }
-  render_chart(dir, "fight_vs_far_near", lines,
-               "set title 'Two surfaces a given distance apart (50 units away, 30 degrees): wrong surface against far/near'\n"
-               "set logscale x 10\nset format x '10^{%L}'\nset xlabel 'far / near'\nset yrange [-0.02:1.02]\n"
-               "set ylabel 'fraction won by the farther surface'\nset key outside right top\nset grid\n" +
-                   plot_blocks(lines.size(), "1:2", "with linespoints lw 2 lc (i+1)"));
-  render_chart(dir, "fight_onset_map", onsets,
-               "set title 'Far/near ratio at which surfaces start to fight, per depth format'\n"
-               "set logscale xy 10\nset format y '10^{%L}'\nset xlabel 'separation between the surfaces (world units)'\n"
-               "set ylabel 'smallest far/near with a wrong pixel'\nset key outside right top\nset grid\n" +
-                   plot_blocks(onsets.size(), "1:2", "with linespoints lw 2 pt 7 ps 1.5"));
+  render_chart(
+      dir, "fight_vs_far_near", lines,
+      "set title 'Two surfaces a given distance apart (50 units away, 30 degrees): wrong surface against far/near'\n"
+      "set logscale x 10\nset format x '10^{%L}'\nset xlabel 'far / near'\nset yrange [-0.02:1.02]\n"
+      "set ylabel 'fraction won by the farther surface'\nset key outside right top\nset grid\n" +
+          plot_blocks(lines.size(), "1:2", "with linespoints lw 2 lc (i+1)"));
+  render_chart(
+      dir, "fight_onset_map", onsets,
+      "set title 'Far/near ratio at which surfaces start to fight, per depth format'\n"
+      "set logscale xy 10\nset format y '10^{%L}'\nset xlabel 'separation between the surfaces (world units)'\n"
+      "set ylabel 'smallest far/near with a wrong pixel'\nset key outside right top\nset grid\n" +
+          plot_blocks(onsets.size(), "1:2", "with linespoints lw 2 pt 7 ps 1.5"));
 }
 
 void chart_slivers(const std::string& dir, const CsvTable& table) {
@@ -64,8 +66,9 @@ void chart_slivers(const std::string& dir, const CsvTable& table) {
   body += fmt::format("set multiplot layout {},2 title 'Sliver pairs: coverage errors against lavapipe'\n",
                       (blocks.size() + 1) / 2);
   for (size_t i = 0; i < blocks.size(); ++i)
-    body += fmt::format("set title {} noenhanced\nplot DATA index {} using 1:2:3 every ::1 with points pt 5 ps 3 palette notitle\n",
-                        gp_quote(methods[i]), i);
+    body += fmt::format(
+        "set title {} noenhanced\nplot DATA index {} using 1:2:3 every ::1 with points pt 5 ps 3 palette notitle\n",
+        gp_quote(methods[i]), i);
   body += "unset multiplot\n";
   render_chart(dir, "sliver_map", blocks, body);
 }
@@ -73,7 +76,8 @@ void chart_slivers(const std::string& dir, const CsvTable& table) {
 // Mismatches of one experiment against its parameter (log x, only positive parameters).
 void chart_limit(const std::string& dir, const CsvTable& table, const std::string& experiment, const std::string& title,
                  const std::string& xlabel) {
-  const size_t a = table.column("param_a"), cov = table.column("coverage_mismatch"), dep = table.column("depth_mismatch");
+  const size_t a = table.column("param_a"), cov = table.column("coverage_mismatch"),
+               dep = table.column("depth_mismatch");
   DataBlock coverage{"coverage", {{"coverage", "x"}}}, depth{"depth", {{"depth", "x"}}};
   for (const Row& row : select_rows(table, {{"experiment", experiment}})) {
     if (!(to_double(row[a]) > 0)) continue;
@@ -82,8 +86,10 @@ void chart_limit(const std::string& dir, const CsvTable& table, const std::strin
   }
   render_chart(dir, experiment, {coverage, depth},
                "set title " + gp_quote(title) + "\nset logscale x 10\nset format x '10^{%L}'\nset xlabel " +
-                   gp_quote(xlabel) + "\nset ylabel 'samples that differ from lavapipe'\nset yrange [-0.5:*]\n"
-                   "set key outside right top\nset grid\n" + plot_blocks(2, "1:2", "with linespoints lw 2 pt 7 ps 1.5"));
+                   gp_quote(xlabel) +
+                   "\nset ylabel 'samples that differ from lavapipe'\nset yrange [-0.5:*]\n"
+                   "set key outside right top\nset grid\n" +
+                   plot_blocks(2, "1:2", "with linespoints lw 2 pt 7 ps 1.5"));
 }
 
 void chart_non_finite(const std::string& dir, const CsvTable& table) {
@@ -100,9 +106,11 @@ void chart_non_finite(const std::string& dir, const CsvTable& table) {
   }
   render_chart(dir, "non_finite", {coverage, depth},
                "set title 'NaN and infinite vertex components: samples that differ from lavapipe'\n"
-               "set xtics (" + tics + ") rotate by -45\nset yrange [-0.5:*]\nset ylabel 'samples'\n"
-               "set key outside right top\nset grid\n"
-               "plot for [i=0:1] DATA index i using 1:3 title columnheader(2) with points pt (i==0?7:2) ps 2\n");
+               "set xtics (" +
+                   tics +
+                   ") rotate by -45\nset yrange [-0.5:*]\nset ylabel 'samples'\n"
+                   "set key outside right top\nset grid\n"
+                   "plot for [i=0:1] DATA index i using 1:3 title columnheader(2) with points pt (i==0?7:2) ps 2\n");
 }
 
 nlohmann::ordered_json summary(const CsvTable& table) {
@@ -111,8 +119,10 @@ nlohmann::ordered_json summary(const CsvTable& table) {
   for (const std::string& format : distinct(table, "case", {{"experiment", "fight_onset"}}))
     for (const std::string& sep : distinct(table, "param_a", {{"experiment", "fight_onset"}, {"case", format}})) {
       const double r = fight_onset_ratio(table, format, sep);
-      out["fight_onset"].push_back({{"format", format}, {"separation", to_double(sep)},
-                                    {"onset_far_near", std::isnan(r) ? nlohmann::ordered_json() : nlohmann::ordered_json(r)}});
+      out["fight_onset"].push_back(
+          {{"format", format},
+           {"separation", to_double(sep)},
+           {"onset_far_near", std::isnan(r) ? nlohmann::ordered_json() : nlohmann::ordered_json(r)}});
     }
   const size_t agree = table.column("cpu_vk_agree"), method = table.column("method");
   for (const char* experiment : {"sliver", "far_distance", "near_w", "non_finite"}) {
@@ -121,7 +131,8 @@ nlohmann::ordered_json summary(const CsvTable& table) {
       auto& entry = per_method[row[method]];
       if (entry.is_null()) entry = {{"points", 0}, {"points_identical_to_lavapipe", 0}};
       entry["points"] = entry["points"].get<int>() + 1;
-      if (row[agree] == "true") entry["points_identical_to_lavapipe"] = entry["points_identical_to_lavapipe"].get<int>() + 1;
+      if (row[agree] == "true")
+        entry["points_identical_to_lavapipe"] = entry["points_identical_to_lavapipe"].get<int>() + 1;
     }
     out[experiment] = per_method;
   }
@@ -133,8 +144,7 @@ nlohmann::ordered_json summary(const CsvTable& table) {
 double fight_onset_ratio(const CsvTable& table, const std::string& format, const std::string& separation) {
   const size_t ratio = table.column("param_b"), cpu = table.column("value_cpu"), vk = table.column("value_vk");
   double onset = NAN;
-  for (const Row& row :
-       select_rows(table, {{"experiment", "fight_onset"}, {"case", format}, {"param_a", separation}}))
+  for (const Row& row : select_rows(table, {{"experiment", "fight_onset"}, {"case", format}, {"param_a", separation}}))
     if ((to_double(row[cpu]) > 0 || to_double(row[vk]) > 0) && !(to_double(row[ratio]) >= onset))
       onset = to_double(row[ratio]);
   return onset;
@@ -147,15 +157,19 @@ void write_stability_outputs(const std::string& dir) {
   chart_slivers(dir, table);
   chart_limit(dir, table, "far_distance", "Exact path: a thin triangle reaching far from the origin",
               "window x of the far vertex (pixels; viewportBoundsRange ends at 32768)");
-  chart_limit(dir, table, "near_w", "Exact path: a vertex on the near plane with w approaching 0", "clip w of the vertex");
+  chart_limit(dir, table, "near_w", "Exact path: a vertex on the near plane with w approaching 0",
+              "clip w of the vertex");
   chart_non_finite(dir, table);
   write_index_html(
       dir, "Stability: where methods fail",
-      {{"Z-fighting onset", "A near-coplanar pair; the first far/near ratio at which the farther surface wins a pixel.",
+      {{"Z-fighting onset",
+        "A near-coplanar pair; the first far/near ratio at which the farther surface wins a pixel.",
         {"fight_vs_far_near", "fight_onset_map"}},
-       {"Slivers", "Two thin triangles sharing an edge through a pixel centre; colour: pixels that differ from lavapipe.",
+       {"Slivers",
+        "Two thin triangles sharing an edge through a pixel centre; colour: pixels that differ from lavapipe.",
         {"sliver_map"}},
-       {"Limits of the exact path", "Large window coordinates, w near 0, and NaN / infinite inputs (zero is exact).",
+       {"Limits of the exact path",
+        "Large window coordinates, w near 0, and NaN / infinite inputs (zero is exact).",
         {"far_distance", "near_w", "non_finite"}}},
       {kStabilityCsv, "stability.json"});
 }

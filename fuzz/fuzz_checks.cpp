@@ -5,9 +5,9 @@
 #include <cstring>
 #include <string_view>
 
+#include "cpu_raster/cpu_raster.hpp"
 #include "cpu_raster/exact/clip_triangle.hpp"
 #include "cpu_raster/exact/clip_vertex.hpp"
-#include "cpu_raster/cpu_raster.hpp"
 #include "cpu_raster/exact/viewport.hpp"
 #include "model/errors.hpp"
 #include "model/scene_io.hpp"
@@ -59,8 +59,7 @@ void check_clipper(const uint8_t* data, size_t size) {
   if (clipped.fate == cpu::ClipFate::Inside) {
     if (clipped.triangles.size() != 1) std::abort();
     for (int v = 0; v < 3; ++v)
-      if (std::memcmp(&clipped.triangles[0][v].pos_clip, &triangle[v].pos_clip, sizeof(glm::vec4)) != 0)
-        std::abort();
+      if (std::memcmp(&clipped.triangles[0][v].pos_clip, &triangle[v].pos_clip, sizeof(glm::vec4)) != 0) std::abort();
   }
   if (clipped.fate == cpu::ClipFate::Outside && !clipped.triangles.empty()) std::abort();
 }

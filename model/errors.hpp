@@ -18,8 +18,7 @@ enum ExitCode : int {
 class InputError : public std::runtime_error {
  public:
   InputError(std::string file, std::string json_path, std::string expected)
-      : std::runtime_error(file + ": " + (json_path.empty() ? std::string("$") : json_path) + ": " +
-                           expected),
+      : std::runtime_error(file + ": " + (json_path.empty() ? std::string("$") : json_path) + ": " + expected),
         file_(std::move(file)),
         json_path_(std::move(json_path)),
         expected_(std::move(expected)) {}

@@ -25,8 +25,7 @@ bool lavapipe_fuses_on_this_host() {
   const char* override_caps = std::getenv("GALLIUM_OVERRIDE_CPU_CAPS");
   if (override_caps == nullptr) return true;
   const std::string_view caps(override_caps);
-  return !(caps == "nosse" || caps == "sse" || caps == "sse2" || caps == "sse3" || caps == "ssse3" ||
-           caps == "sse4.1");
+  return !(caps == "nosse" || caps == "sse" || caps == "sse2" || caps == "sse3" || caps == "ssse3" || caps == "sse4.1");
 }
 
 }  // namespace rastercmp

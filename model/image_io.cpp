@@ -22,8 +22,7 @@ namespace {
 // A path in the same folder that is renamed over the target once complete.
 std::string temp_name_for(const std::string& path) {
   const fs::path p(path);
-  return (p.parent_path() / fmt::format(".{}.tmp{}{}", p.stem().string(), getpid(), p.extension().string()))
-      .string();
+  return (p.parent_path() / fmt::format(".{}.tmp{}{}", p.stem().string(), getpid(), p.extension().string())).string();
 }
 
 void commit_temp(const std::string& tmp, const std::string& path) {
@@ -51,8 +50,7 @@ void write_image_atomic(const std::string& path, OIIO::ImageSpec spec, const voi
   commit_temp(tmp, path);
 }
 
-std::vector<uint32_t> read_uint_image(const std::string& path, uint32_t& width, uint32_t& height,
-                                      uint32_t& channels) {
+std::vector<uint32_t> read_uint_image(const std::string& path, uint32_t& width, uint32_t& height, uint32_t& channels) {
   auto in = OIIO::ImageInput::open(path);
   if (!in) throw InputError(path, "", "expected a readable image: " + OIIO::geterror());
   const OIIO::ImageSpec& spec = in->spec();
@@ -70,8 +68,7 @@ std::vector<uint32_t> read_uint_image(const std::string& path, uint32_t& width, 
 void ensure_output_dir(const std::string& dir) {
   std::error_code ec;
   fs::create_directories(dir, ec);
-  if (ec || !fs::is_directory(dir))
-    throw InputError(dir, "", "expected a folder that can be created: " + ec.message());
+  if (ec || !fs::is_directory(dir)) throw InputError(dir, "", "expected a folder that can be created: " + ec.message());
   if (access(dir.c_str(), W_OK) != 0) throw InputError(dir, "", "expected a writable folder");
 }
 
@@ -132,10 +129,14 @@ void write_render_outputs(const RenderResult& r, const std::string& dir) {
   }
 
   const nlohmann::ordered_json meta = {
-      {"backend", r.backend},         {"device", r.device},
-      {"fma", r.fma},                 {"width", r.width},
-      {"height", r.height},           {"samples", r.samples},
-      {"depth_format", to_string(r.depth_format)}, {"depth", r.has_depth()},
+      {"backend", r.backend},
+      {"device", r.device},
+      {"fma", r.fma},
+      {"width", r.width},
+      {"height", r.height},
+      {"samples", r.samples},
+      {"depth_format", to_string(r.depth_format)},
+      {"depth", r.has_depth()},
   };
   write_text_file_atomic((fs::path(dir) / "render.json").string(), meta.dump(2) + "\n");
 }

@@ -32,9 +32,7 @@ struct RenderResult {
   // Spec profile only: per-sample must / may / must-not coverage of the union of all draws.
   std::vector<CoverageClass> coverage_class;
 
-  size_t index(uint32_t x, uint32_t y, uint32_t sample = 0) const {
-    return (size_t(y) * width + x) * samples + sample;
-  }
+  size_t index(uint32_t x, uint32_t y, uint32_t sample = 0) const { return (size_t(y) * width + x) * samples + sample; }
   bool has_depth() const { return !depth_raw.empty(); }
 };
 

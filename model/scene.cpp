@@ -78,13 +78,10 @@ const char* to_string(CompareOp op) {
 }
 
 bool is_triangle_topology(Topology topology) {
-  return topology == Topology::TriangleList || topology == Topology::TriangleStrip ||
-         topology == Topology::TriangleFan;
+  return topology == Topology::TriangleList || topology == Topology::TriangleStrip || topology == Topology::TriangleFan;
 }
 
-bool is_line_topology(Topology topology) {
-  return topology == Topology::LineList || topology == Topology::LineStrip;
-}
+bool is_line_topology(Topology topology) { return topology == Topology::LineList || topology == Topology::LineStrip; }
 
 uint32_t depth_bits(DepthFormat format) {
   switch (format) {

@@ -111,9 +111,7 @@ struct Scene {
   std::vector<MethodChoice> methods;
   std::vector<Draw> draws;
 
-  Viewport effective_viewport() const {
-    return viewport.value_or(Viewport{0, 0, float(width), float(height), 0, 1});
-  }
+  Viewport effective_viewport() const { return viewport.value_or(Viewport{0, 0, float(width), float(height), 0, 1}); }
   Rect2D effective_scissor() const { return scissor.value_or(Rect2D{0, 0, width, height}); }
   bool has_depth() const { return depth_format != DepthFormat::None; }
 };

@@ -58,9 +58,9 @@ std::string read_name(const Node& root) {
   }
   const std::string stem = std::filesystem::path(root.file()).stem().string();
   if (!is_valid_name(stem)) {
-    throw InputError(root.file(), "$.name",
-                     fmt::format("expected a \"name\" key, or a file name of {}, found the file name \"{}\"", kRule,
-                                 stem));
+    throw InputError(
+        root.file(), "$.name",
+        fmt::format("expected a \"name\" key, or a file name of {}, found the file name \"{}\"", kRule, stem));
   }
   return stem;
 }
@@ -77,18 +77,18 @@ void read_framebuffer(const Node& root, Scene& scene) {
     if (scene.samples != 1 && scene.samples != 4) samples->fail("a sample count of 1 or 4");
   }
   if (const auto format = root.find("depth_format")) {
-    scene.depth_format = format->as_enum(
-        {DepthFormat::D16Unorm, DepthFormat::X8D24Unorm, DepthFormat::D32Sfloat, DepthFormat::None});
+    scene.depth_format =
+        format->as_enum({DepthFormat::D16Unorm, DepthFormat::X8D24Unorm, DepthFormat::D32Sfloat, DepthFormat::None});
   }
   if (const auto clear = root.find("depth_clear")) {
     scene.depth_clear = float(clear->as_number(0, 1, "a depth clear value in 0..1"));
   }
   const uint64_t bytes = uint64_t(scene.width) * scene.height * scene.samples * kBytesPerSample;
   if (bytes > kFramebufferBudgetBytes) {
-    root.fail_message(fmt::format(
-        "expected width * height * samples * 8 bytes <= 1 GiB (the framebuffer memory budget), found "
-        "{} * {} * {} * 8 = {} bytes ({:.2f} GiB)",
-        scene.width, scene.height, scene.samples, bytes, double(bytes) / double(kFramebufferBudgetBytes)));
+    root.fail_message(
+        fmt::format("expected width * height * samples * 8 bytes <= 1 GiB (the framebuffer memory budget), found "
+                    "{} * {} * {} * 8 = {} bytes ({:.2f} GiB)",
+                    scene.width, scene.height, scene.samples, bytes, double(bytes) / double(kFramebufferBudgetBytes)));
   }
 }
 
@@ -120,10 +120,10 @@ Viewport read_viewport(const Node& node, const Scene& scene) {
   const double x_end = double(viewport.x) + viewport.width;
   const double y_end = double(viewport.y) + viewport.height;
   if (x_end > kViewportBound || y_end < -kViewportBound || y_end > kViewportBound) {
-    node.fail_message(fmt::format(
-        "expected x + width and y + height in -32768..32768 (viewportBoundsRange), found x + width = {}, "
-        "y + height = {}",
-        x_end, y_end));
+    node.fail_message(
+        fmt::format("expected x + width and y + height in -32768..32768 (viewportBoundsRange), found x + width = {}, "
+                    "y + height = {}",
+                    x_end, y_end));
   }
   return viewport;
 }
@@ -177,8 +177,8 @@ Camera read_camera(const Node& node) {
     camera.far_plane = far_node->as_float(what);
     if (!(camera.far_plane > camera.near_plane)) far_node->fail(what);
   } else if (!(camera.far_plane > camera.near_plane)) {
-    node.fail_message(fmt::format("expected near < far (far defaults to {}), found near = {}", camera.far_plane,
-                                  camera.near_plane));
+    node.fail_message(
+        fmt::format("expected near < far (far defaults to {}), found near = {}", camera.far_plane, camera.near_plane));
   }
   if (camera.eye == camera.target) {
     throw InputError(node.file(), node.path() + ".target",
@@ -200,10 +200,14 @@ PositionContext read_position_context(const Node& root, Scene& scene) {
   const auto space = root.find("space");
   if (space) {
     const std::string name = space->json().is_string() ? space->json().get<std::string>() : "";
-    if (name == "clip") context.space = PositionSpace::Clip;
-    else if (name == "pixels") context.space = PositionSpace::Pixels;
-    else if (name == "world") context.space = PositionSpace::World;
-    else space->fail("one of \"clip\", \"pixels\", \"world\"");
+    if (name == "clip")
+      context.space = PositionSpace::Clip;
+    else if (name == "pixels")
+      context.space = PositionSpace::Pixels;
+    else if (name == "world")
+      context.space = PositionSpace::World;
+    else
+      space->fail("one of \"clip\", \"pixels\", \"world\"");
   }
   if (context.space == PositionSpace::World && !scene.camera) {
     space->fail("\"clip\" or \"pixels\" (space \"world\" needs a \"camera\")");
@@ -214,8 +218,9 @@ PositionContext read_position_context(const Node& root, Scene& scene) {
   const Viewport viewport = scene.effective_viewport();
   context.viewport = viewport;
   if (context.space == PositionSpace::Pixels && viewport.max_depth == viewport.min_depth) {
-    space->fail_message("expected a viewport with max_depth != min_depth for space \"pixels\" (z maps through "
-                        "max_depth - min_depth), found equal depths");
+    space->fail_message(
+        "expected a viewport with max_depth != min_depth for space \"pixels\" (z maps through "
+        "max_depth - min_depth), found equal depths");
   }
   if (context.space == PositionSpace::World) {
     context.world_to_clip = camera_world_to_clip(*scene.camera, viewport.width / std::fabs(viewport.height));

@@ -103,8 +103,8 @@ void check_clip_position(const Node& position, const glm::vec4& pos_clip, const 
   }
   // w = 0 has no perspective division; only NaN/Inf experiments may ask for it.
   if (pos_clip.w == 0.0f) {
-    position.fail_message(fmt::format(
-        "expected a clip-space w != 0 (w = 0 needs \"allow_non_finite\": true), found w = 0{}", after));
+    position.fail_message(
+        fmt::format("expected a clip-space w != 0 (w = 0 needs \"allow_non_finite\": true), found w = 0{}", after));
   }
 }
 
@@ -157,8 +157,8 @@ void check_primitives(const Node& vertices, const Draw& draw) {
   if (count < rule.min || count % rule.multiple != 0) {
     const std::string need = rule.multiple > 1 ? fmt::format("a multiple of {} vertices", rule.multiple)
                                                : fmt::format("at least {} vertices", rule.min);
-    vertices.fail_message(fmt::format("expected {} for {} (at least one whole primitive), found {} {}", need,
-                                      topology, count, count == 1 ? "vertex" : "vertices"));
+    vertices.fail_message(fmt::format("expected {} for {} (at least one whole primitive), found {} {}", need, topology,
+                                      count, count == 1 ? "vertex" : "vertices"));
   }
   const uint64_t primitives = primitive_count(draw.topology, count);
   if (primitives > kMaxPrimitivesPerDraw) {

@@ -38,8 +38,8 @@ RasterState read_draw_state(const Node& object, RasterState base) {
     state.polygon_mode = node->as_enum({PolygonMode::Fill, PolygonMode::Line, PolygonMode::Point});
   }
   if (const auto node = object.find("line_mode")) {
-    state.line_mode = node->as_enum(
-        {LineMode::Default, LineMode::Rectangular, LineMode::Bresenham, LineMode::RectangularSmooth});
+    state.line_mode =
+        node->as_enum({LineMode::Default, LineMode::Rectangular, LineMode::Bresenham, LineMode::RectangularSmooth});
   }
   if (const auto node = object.find("line_width")) {
     state.line_width = float(node->as_number(kMinLineWidth, kMaxLineWidth, "a line width in 1..255 (lineWidthRange)"));

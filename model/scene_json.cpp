@@ -59,9 +59,7 @@ std::string key_path(const std::string& parent, std::string_view key) {
   return is_identifier(key) ? parent + "." + std::string(key) : parent + "[" + shown_string(key) + "]";
 }
 
-std::string index_path(const std::string& parent, size_t index) {
-  return fmt::format("{}[{}]", parent, index);
-}
+std::string index_path(const std::string& parent, size_t index) { return fmt::format("{}[{}]", parent, index); }
 
 void Node::fail(std::string_view what) const {
   throw InputError(file(), path_, fmt::format("expected {}, found {}", what, describe(json())));
@@ -75,9 +73,9 @@ void Node::expect_object(std::string_view what, std::initializer_list<std::strin
     bool known = false;
     for (const std::string_view name : allowed) known = known || key == name;
     if (!known) {
-      throw InputError(file(), key_path(path_, key),
-                       fmt::format("expected one of the keys {}, found the unknown key {}", join_keys(allowed),
-                                   shown_string(key)));
+      throw InputError(
+          file(), key_path(path_, key),
+          fmt::format("expected one of the keys {}, found the unknown key {}", join_keys(allowed), shown_string(key)));
     }
   }
 }

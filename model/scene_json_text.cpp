@@ -47,16 +47,18 @@ size_t utf8_sequence_length(std::string_view text, size_t i) {
 
 void check_encoding(std::string_view text, const std::string& file) {
   if (text.find_first_not_of(" \t\r\n") == std::string_view::npos) {
-    throw InputError(file, "$", text.empty() ? "expected a JSON object (the scene), found an empty file"
-                                             : "expected a JSON object (the scene), found only white space");
+    throw InputError(file, "$",
+                     text.empty() ? "expected a JSON object (the scene), found an empty file"
+                                  : "expected a JSON object (the scene), found only white space");
   }
   if (text.starts_with("\xFF\xFE") || text.starts_with("\xFE\xFF")) {
     throw InputError(file, "$", "expected UTF-8 text, found a UTF-16 or UTF-32 byte order mark");
   }
   for (size_t i = 0; i < text.size();) {
     if (text[i] == '\0') {
-      throw InputError(file, "$", "expected UTF-8 JSON text, found a NUL byte at " + position_of(text, i) +
-                                      " (binary data, or UTF-16 text?)");
+      throw InputError(
+          file, "$",
+          "expected UTF-8 JSON text, found a NUL byte at " + position_of(text, i) + " (binary data, or UTF-16 text?)");
     }
     const size_t length = utf8_sequence_length(text, i);
     if (length == 0) {

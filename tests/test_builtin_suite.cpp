@@ -235,8 +235,9 @@ bool any_vertex(const std::function<bool(const glm::vec4&)>& predicate) {
 }
 
 template <class Value>
-std::set<Value> collect(const std::function<Value(const Scene&, const Draw&)>& value_of,
-                        const DrawPredicate& filter = [](const Scene&, const Draw&) { return true; }) {
+std::set<Value> collect(
+    const std::function<Value(const Scene&, const Draw&)>& value_of,
+    const DrawPredicate& filter = [](const Scene&, const Draw&) { return true; }) {
   std::set<Value> values;
   any_draw([&](const Scene& scene, const Draw& draw) {
     if (filter(scene, draw)) values.insert(value_of(scene, draw));
@@ -276,7 +277,7 @@ TEST(BuiltinSuite, EverySceneHasADescription) {
 }
 
 // Documented defaults (docs/scene-format.md) that a scene file must not restate.
-const Json kDrawDefaults = {{"topology", "triangle_list"}, {"cull", "none"},        {"front_face", "ccw"},
+const Json kDrawDefaults = {{"topology", "triangle_list"}, {"cull", "none"},         {"front_face", "ccw"},
                             {"polygon_mode", "fill"},      {"line_mode", "default"}, {"line_width", 1},
                             {"depth_test", true},          {"depth_write", true},    {"depth_compare", "less"},
                             {"depth_clamp", false}};
@@ -301,13 +302,19 @@ TEST(BuiltinSuite, ScenesStateOnlyWhatDiffersFromDefaults) {
     const Json& raw = entry.raw;
     const Scene& scene = entry.scene;
     const std::string& where = scene.name;
-    expect_no_restated_keys(raw, {{"width", 64}, {"height", 64}, {"depth_format", "d32_sfloat"}, {"depth_clear", 1},
-                                  {"samples", 1}, {"space", scene.camera ? "world" : "clip"},
-                                  {"allow_non_finite", false}}, where);
+    expect_no_restated_keys(raw,
+                            {{"width", 64},
+                             {"height", 64},
+                             {"depth_format", "d32_sfloat"},
+                             {"depth_clear", 1},
+                             {"samples", 1},
+                             {"space", scene.camera ? "world" : "clip"},
+                             {"allow_non_finite", false}},
+                            where);
     const Json default_camera = {{"eye", {0, 0, 1}}, {"target", {0, 0, 0}}, {"up", {0, 1, 0}},
                                  {"fov_y", 60},      {"near", 0.1},         {"far", 100}};
     if (raw.contains("camera")) expect_no_restated_keys(raw["camera"], default_camera, where + ".camera");
-    const Json full_viewport = {{"x", 0}, {"y", 0}, {"width", scene.width}, {"height", scene.height},
+    const Json full_viewport = {{"x", 0},         {"y", 0},        {"width", scene.width}, {"height", scene.height},
                                 {"min_depth", 0}, {"max_depth", 1}};
     if (raw.contains("viewport")) expect_no_restated_keys(raw["viewport"], full_viewport, where + ".viewport");
     const Json full_scissor = {{"x", 0}, {"y", 0}, {"width", scene.width}, {"height", scene.height}};
@@ -342,8 +349,9 @@ TEST(BuiltinSuite, UnsupportedFeaturesOnlyInAtMostTwoNotSupportedScenes) {
     const Scene& s = entry.scene;
     const bool named = s.name.find("not_supported") != std::string::npos;
     const bool uses = std::any_of(s.draws.begin(), s.draws.end(), uses_unsupported_feature);
-    EXPECT_EQ(named, uses) << s.name << (named ? " is named not_supported but uses only supported features"
-                                                : " uses polygon_mode line/point, smooth lines or point_list");
+    EXPECT_EQ(named, uses) << s.name
+                           << (named ? " is named not_supported but uses only supported features"
+                                     : " uses polygon_mode line/point, smooth lines or point_list");
     if (named) {
       EXPECT_NE(s.description.find("NotSupported"), std::string::npos) << s.name;
     }
@@ -424,17 +432,20 @@ TEST(BuiltinSuiteCoverage, NearFarPlanesBehindTheEyeAndACamera) {
 TEST(BuiltinSuiteCoverage, CullModesAndFrontFaces) {
   const auto culls = collect<CullMode>([](const Scene&, const Draw& d) { return d.state.cull_mode; }, is_triangles);
   EXPECT_EQ(culls.size(), 4u) << "none, front, back, front_and_back";
-  const auto faces = collect<FrontFace>([](const Scene&, const Draw& d) { return d.state.front_face; },
-                                        [](const Scene&, const Draw& d) {
-                                          return d.state.cull_mode != CullMode::None;
-                                        });
+  const auto faces =
+      collect<FrontFace>([](const Scene&, const Draw& d) { return d.state.front_face; },
+                         [](const Scene&, const Draw& d) { return d.state.cull_mode != CullMode::None; });
   EXPECT_EQ(faces.size(), 2u) << "ccw and cw front faces, each with culling on";
 }
 
-const std::map<CompareOp, std::string> kCompareScenes = {
-    {CompareOp::Never, "never"},     {CompareOp::Less, "less"},           {CompareOp::Equal, "equal"},
-    {CompareOp::LessOrEqual, "less_or_equal"}, {CompareOp::Greater, "greater"}, {CompareOp::NotEqual, "not_equal"},
-    {CompareOp::GreaterOrEqual, "greater_or_equal"}, {CompareOp::Always, "always"}};
+const std::map<CompareOp, std::string> kCompareScenes = {{CompareOp::Never, "never"},
+                                                         {CompareOp::Less, "less"},
+                                                         {CompareOp::Equal, "equal"},
+                                                         {CompareOp::LessOrEqual, "less_or_equal"},
+                                                         {CompareOp::Greater, "greater"},
+                                                         {CompareOp::NotEqual, "not_equal"},
+                                                         {CompareOp::GreaterOrEqual, "greater_or_equal"},
+                                                         {CompareOp::Always, "always"}};
 
 TEST(BuiltinSuiteCoverage, EveryCompareOpHasItsOwnScene) {
   for (const auto& [op, suffix] : kCompareScenes) {
@@ -487,7 +498,8 @@ TEST(BuiltinSuiteCoverage, DepthBiasVariantsOnEveryFormat) {
       EXPECT_TRUE(any_draw([&](const Scene& scene, const Draw& draw) {
         return scene.depth_format == format && is_triangle_topology(draw.topology) && draw.state.depth_bias.enable &&
                check(draw.state.depth_bias);
-      })) << what << " depth bias on " << to_string(format);
+      })) << what
+          << " depth bias on " << to_string(format);
     }
   }
 }
@@ -501,8 +513,8 @@ TEST(BuiltinSuiteCoverage, DepthClampAndExplicitDepthClip) {
   for (const bool clamp : {false, true}) {
     EXPECT_TRUE(any_draw([&](const Scene&, const Draw& d) {
       return d.state.depth_clamp == clamp && beyond_near_or_far(d);
-    }))
-        << "geometry beyond near/far with depth_clamp " << clamp;
+    })) << "geometry beyond near/far with depth_clamp "
+        << clamp;
   }
   for (const bool clip : {false, true}) {
     EXPECT_TRUE(any_draw([&](const Scene&, const Draw& d) { return d.state.depth_clip == std::optional<bool>(clip); }))
@@ -555,9 +567,8 @@ TEST(BuiltinSuiteCoverage, LineTopologiesModesWidthsAndClipping) {
 }
 
 TEST(BuiltinSuiteCoverage, MultisamplingWithAScissor) {
-  EXPECT_TRUE(any_draw([](const Scene& s, const Draw& d) {
-    return s.samples == 4 && is_triangle_topology(d.topology);
-  }));
+  EXPECT_TRUE(
+      any_draw([](const Scene& s, const Draw& d) { return s.samples == 4 && is_triangle_topology(d.topology); }));
   EXPECT_TRUE(any_draw([](const Scene& s, const Draw&) { return s.samples == 4 && s.scissor.has_value(); }));
 }
 

@@ -120,7 +120,7 @@ TEST(ClassicMethods, AllExactIsTheExactPathBitForBit) {
   for (const char* relative : {"fill/scanline/fan", "visibility/bsp/cyclic_sticks", "line/dda/inside_endpoints",
                                "clip/sutherland_hodgman/clipped_triangles", "depth/no_fma/steep_plane"}) {
     const Scene scene = method_scene(relative);
-    const std::vector<MethodChoice> all_exact{{"clip", "exact"}, {"fill", "exact"},        {"line", "exact"},
+    const std::vector<MethodChoice> all_exact{{"clip", "exact"},  {"fill", "exact"},         {"line", "exact"},
                                               {"depth", "exact"}, {"visibility", "zbuffer"}, {"cull", "exact"}};
     const RenderResult exact = render_with(scene, {});
     const RenderResult classic = render_with(scene, all_exact);

@@ -59,8 +59,8 @@ Invocation render_vulkan(const BadScene& bad, const TempDir&, const fs::path& ou
 // command before it renders anything.
 Invocation compare(const BadScene& bad, const TempDir&, const fs::path& out) {
   const fs::path scene = kBadDir / bad.file;
-  return direct({"compare", kGoodScene.string(), scene.string(), "--json", (out / "compare.json").string(),
-                 "--report", (out / "report").string()},
+  return direct({"compare", kGoodScene.string(), scene.string(), "--json", (out / "compare.json").string(), "--report",
+                 (out / "report").string()},
                 scene);
 }
 

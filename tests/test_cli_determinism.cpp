@@ -15,9 +15,11 @@ namespace {
 
 // Every depth format, MSAA, lines, clipping, bias, several draws, an odd framebuffer size.
 const std::vector<std::string> kScenes = {
-    "depth/format/d16_unorm.json",     "depth/format/x8_d24_unorm.json",  "depth/format/none.json",
-    "depth/bias/d32_sfloat/slope.json", "msaa/depth/intersecting.json",    "msaa/lines/mixed_modes.json",
-    "clip/all_planes.json",             "multidraw/mixed_state.json",      "viewport/odd_size.json",
+    "depth/format/d16_unorm.json",  "depth/format/x8_d24_unorm.json",
+    "depth/format/none.json",       "depth/bias/d32_sfloat/slope.json",
+    "msaa/depth/intersecting.json", "msaa/lines/mixed_modes.json",
+    "clip/all_planes.json",         "multidraw/mixed_state.json",
+    "viewport/odd_size.json",
 };
 
 // Renders `scene` into a new folder below `tmp` and returns what it wrote.
@@ -87,8 +89,9 @@ TreeSnapshot without_durations(TreeSnapshot files) {
 
 TreeSnapshot conformance(const TempDir& tmp, const std::string& name, const std::string& threads) {
   const fs::path out = tmp / name;
-  const std::vector<std::string> args = {"conformance", "--case", "rastercmp.depth.format.*", "--case",
-                                         "rastercmp.msaa.lines.*", "--threads", threads, "--out", out.string()};
+  const std::vector<std::string> args = {
+      "conformance", "--case",    "rastercmp.depth.format.*", "--case", "rastercmp.msaa.lines.*", "--threads", threads,
+      "--out",       out.string()};
   const RunResult r = run_cli(args);
   EXPECT_EQ(r.signal, 0) << describe(args, r);
   EXPECT_TRUE(r.exit_code == 0 || r.exit_code == 1) << describe(args, r);

@@ -75,26 +75,26 @@ TEST(CliErrors, BadOrMissingOptionsExitTwoAndWriteNothing) {
   const std::string scene = kGoodScene.string();
   const std::string out = (tmp / "out").string();  // no file may be written there
   const std::vector<std::vector<std::string>> command_lines = {
-      {},                                                          // no command
-      {"frobnicate"},                                              // unknown command
-      {"render", scene, "--out", out, "--bogus"},                  // unknown option
-      {"render", scene},                                           // missing --out
-      {"render", "--backend", "cpu", "--out", out},                // missing scene
-      {"render", scene, "--out", out, "--threads"},                // option without its value
-      {"render", scene, "--out", out, "--threads", "many"},        // not a number
-      {"render", scene, "--out", out, "--backend", "opengl"},      // not a backend
-      {"render", scene, "--out", out, "--profile", "exact"},       // not a profile
-      {"render", scene, "--out", out, "--method", "fill"},         // not STAGE=NAME
-      {"render", (tmp / "missing.json").string(), "--out", out},   // no such scene file
-      {"compare"},                                                 // no scene
-      {"compare", scene, "--bogus"},                               // unknown option
-      {"explain", scene},                                          // missing --pixel
-      {"explain", scene, "--pixel", "x,y"},                        // not a pixel
-      {"explain", scene, "--pixel", "64,0"},                       // outside the 64x64 framebuffer
-      {"conformance", "--out", out, "--case"},                     // option without its value
-      {"conformance", "--out", out, "--shard", "3/2"},             // shard index beyond the count
+      {},                                                                 // no command
+      {"frobnicate"},                                                     // unknown command
+      {"render", scene, "--out", out, "--bogus"},                         // unknown option
+      {"render", scene},                                                  // missing --out
+      {"render", "--backend", "cpu", "--out", out},                       // missing scene
+      {"render", scene, "--out", out, "--threads"},                       // option without its value
+      {"render", scene, "--out", out, "--threads", "many"},               // not a number
+      {"render", scene, "--out", out, "--backend", "opengl"},             // not a backend
+      {"render", scene, "--out", out, "--profile", "exact"},              // not a profile
+      {"render", scene, "--out", out, "--method", "fill"},                // not STAGE=NAME
+      {"render", (tmp / "missing.json").string(), "--out", out},          // no such scene file
+      {"compare"},                                                        // no scene
+      {"compare", scene, "--bogus"},                                      // unknown option
+      {"explain", scene},                                                 // missing --pixel
+      {"explain", scene, "--pixel", "x,y"},                               // not a pixel
+      {"explain", scene, "--pixel", "64,0"},                              // outside the 64x64 framebuffer
+      {"conformance", "--out", out, "--case"},                            // option without its value
+      {"conformance", "--out", out, "--shard", "3/2"},                    // shard index beyond the count
       {"conformance", "--out", out, "--suite", (tmp / "none").string()},  // no such suite
-      {"merge"},                                                   // nothing to merge
+      {"merge"},                                                          // nothing to merge
   };
   for (const std::vector<std::string>& args : command_lines) {
     const RunResult r = run_cli(args, kNoVulkanDriver);
@@ -108,8 +108,8 @@ TEST(CliErrors, BadOrMissingOptionsExitTwoAndWriteNothing) {
 }
 
 TEST(CliErrors, HelpExitsZero) {
-  for (const std::vector<std::string>& args : std::vector<std::vector<std::string>>{
-           {"--help"}, {"render", "--help"}, {"conformance", "--help"}}) {
+  for (const std::vector<std::string>& args :
+       std::vector<std::vector<std::string>>{{"--help"}, {"render", "--help"}, {"conformance", "--help"}}) {
     const RunResult r = run_cli(args);
     EXPECT_EQ(r.exit_code, 0) << describe(args, r);
     EXPECT_NE(r.out.find("--"), std::string::npos) << describe(args, r);
@@ -141,8 +141,8 @@ TEST(CliErrors, WithoutAVulkanDriverTheVulkanCommandsExitThree) {
 
 TEST(CliErrors, WithoutAVulkanDriverTheCpuRendererStillWorks) {
   const TempDir tmp;
-  const std::vector<std::string> args = {"render", kGoodScene.string(), "--backend", "cpu", "--out",
-                                         (tmp / "cpu").string()};
+  const std::vector<std::string> args = {"render", kGoodScene.string(),   "--backend", "cpu",
+                                         "--out",  (tmp / "cpu").string()};
   const RunResult r = run_cli(args, kNoVulkanDriver);
   ASSERT_EQ(r.exit_code, 0) << describe(args, r);
   EXPECT_TRUE(fs::is_regular_file(tmp / "cpu" / "owner.tif"));

@@ -86,8 +86,8 @@ TEST(CliInterrupt, SigintFinishesTheCaseWritesEverythingAndSaysHowToResume) {
 
   // Resume as told, merge, and compare with one uninterrupted run.
   const fs::path resumed = tmp / "resumed", merged = tmp / "merged", whole = tmp / "whole";
-  const std::vector<std::string> resume = {"conformance", "--case", kCases, "--caselist",
-                                           (out / "not_run.txt").string(), "--out", resumed.string()};
+  const std::vector<std::string> resume = {
+      "conformance", "--case", kCases, "--caselist", (out / "not_run.txt").string(), "--out", resumed.string()};
   const RunResult rr = run_cli(resume);
   ASSERT_TRUE(rr.exit_code == 0 || rr.exit_code == 1) << describe(resume, rr);
   const std::vector<std::string> merge = {"merge", merged.string(), out.string(), resumed.string()};

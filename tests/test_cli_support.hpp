@@ -199,11 +199,11 @@ inline TreeSnapshot files_of(const TreeSnapshot& tree) {
 
 // Skips the current test when `rastercmp devices` finds no Vulkan device (exit 3, the
 // documented "no loader / ICD / device" code); any other failure of `devices` fails the test.
-#define RASTERCMP_SKIP_WITHOUT_VULKAN()                                                         \
-  do {                                                                                          \
+#define RASTERCMP_SKIP_WITHOUT_VULKAN()                                                            \
+  do {                                                                                             \
     const ::rastercmp::cli_test::RunResult devices_ = ::rastercmp::cli_test::run_cli({"devices"}); \
-    if (devices_.exit_code == 3) GTEST_SKIP() << "no Vulkan device: " << devices_.err;          \
-    ASSERT_EQ(devices_.exit_code, 0) << ::rastercmp::cli_test::describe({"devices"}, devices_);  \
+    if (devices_.exit_code == 3) GTEST_SKIP() << "no Vulkan device: " << devices_.err;             \
+    ASSERT_EQ(devices_.exit_code, 0) << ::rastercmp::cli_test::describe({"devices"}, devices_);    \
   } while (false)
 
 }  // namespace rastercmp::cli_test

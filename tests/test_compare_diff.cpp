@@ -18,14 +18,10 @@ constexpr uint32_t kOwnerB = encode_owner(1, 2);
 
 uint32_t raw_of(DepthFormat format, double depth) {
   switch (format) {
-    case DepthFormat::D16Unorm:
-      return uint32_t(depth * 65535.0 + 0.5);
-    case DepthFormat::X8D24Unorm:
-      return uint32_t(depth * 16777215.0 + 0.5);
-    case DepthFormat::D32Sfloat:
-      return std::bit_cast<uint32_t>(float(depth));
-    case DepthFormat::None:
-      break;
+    case DepthFormat::D16Unorm: return uint32_t(depth * 65535.0 + 0.5);
+    case DepthFormat::X8D24Unorm: return uint32_t(depth * 16777215.0 + 0.5);
+    case DepthFormat::D32Sfloat: return std::bit_cast<uint32_t>(float(depth));
+    case DepthFormat::None: break;
   }
   return 0;
 }

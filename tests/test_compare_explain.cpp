@@ -6,8 +6,8 @@
 #include <filesystem>
 
 #include "compare/explain_text.hpp"
-#include "cpu_raster/cpu_raster.hpp"
 #include "compare/report.hpp"
+#include "cpu_raster/cpu_raster.hpp"
 #include "model/errors.hpp"
 #include "model/host.hpp"
 #include "model/scene_io.hpp"

@@ -69,7 +69,7 @@ TEST(CpuDrawChunks, PrimitivesPerChunkFollowTheSegmentSize) {
   Draw draw = draw_of(Topology::TriangleList, 3);
   EXPECT_EQ(primitives_per_chunk(draw), 1365u);  // 4095 of 4096 vertices: whole triangles
   draw.indices = {0, 1, 2};
-  EXPECT_EQ(primitives_per_chunk(draw), 341u);   // 1023 of 1024 indices
+  EXPECT_EQ(primitives_per_chunk(draw), 341u);  // 1023 of 1024 indices
   draw.topology = Topology::TriangleStrip;
   EXPECT_EQ(primitives_per_chunk(draw), 1022u);  // segments overlap by two vertices
   draw.topology = Topology::TriangleFan;

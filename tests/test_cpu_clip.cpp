@@ -86,11 +86,11 @@ TEST(CpuClip, NonFinitePlaneDistanceDropsThePrimitive) {
 }
 
 TEST(CpuClip, DepthClipOffKeepsGeometryBeyondTheDepthPlanes) {
-  const ClippedTriangles c =
-      clip_triangle({vertex(0, 0, -3, 1, false), vertex(0.5f, 0, 3, 1, false), vertex(0, 0.5f, 0.5f, 1, false)}, kViewport);
+  const ClippedTriangles c = clip_triangle(
+      {vertex(0, 0, -3, 1, false), vertex(0.5f, 0, 3, 1, false), vertex(0, 0.5f, 0.5f, 1, false)}, kViewport);
   EXPECT_EQ(c.fate, ClipFate::Inside);
-  const ClippedTriangles on =
-      clip_triangle({vertex(0, 0, -3, 1, true), vertex(0.5f, 0, 3, 1, true), vertex(0, 0.5f, 0.5f, 1, true)}, kViewport);
+  const ClippedTriangles on = clip_triangle(
+      {vertex(0, 0, -3, 1, true), vertex(0.5f, 0, 3, 1, true), vertex(0, 0.5f, 0.5f, 1, true)}, kViewport);
   EXPECT_EQ(on.fate, ClipFate::Clipped);
 }
 

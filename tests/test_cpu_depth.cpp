@@ -49,7 +49,8 @@ TEST(CpuDepth, ClearValuesPackAsUtilPackZ) {
 
 // z = 0.1*x + 0.2*y + 0.3 from three vertices; the origin-based a0 includes the -0.5 centre shift.
 TEST(CpuDepth, TrianglePlaneIsExtrapolatedToTheFramebufferOrigin) {
-  const std::array<WindowVertex, 3> v = {WindowVertex{0, 0, 0.3f}, WindowVertex{10, 0, 1.3f}, WindowVertex{0, 10, 2.3f}};
+  const std::array<WindowVertex, 3> v = {WindowVertex{0, 0, 0.3f}, WindowVertex{10, 0, 1.3f},
+                                         WindowVertex{0, 10, 2.3f}};
   const DepthPlane plane = triangle_depth_plane(v, 0.5f);
   EXPECT_FLOAT_EQ(plane.dzdx, 0.1f);
   EXPECT_FLOAT_EQ(plane.dzdy, 0.2f);

@@ -27,7 +27,7 @@ TEST(CpuEdges, RightEdgeTraversedUpwardIsExclusive) {
   const EdgePlane e = make_edge(at(0, 256), at(0, 0), TieBreak::TopLeft);
   EXPECT_EQ(e.dcdx, 256);
   EXPECT_FALSE(e.inclusive);
-  EXPECT_EQ(edge_value(e, 0, 128), 0);  // on the edge: not covered
+  EXPECT_EQ(edge_value(e, 0, 128), 0);     // on the edge: not covered
   EXPECT_EQ(edge_value(e, -1, 128), 256);  // just inside (left of it)
 }
 
@@ -47,8 +47,8 @@ TEST(CpuEdges, BottomEdgeTraversedLeftToRightIsExclusive) {
 }
 
 TEST(CpuEdges, SlopedEdgesFollowTheSignOfDcdx) {
-  EXPECT_TRUE(make_edge(at(0, 0), at(-100, 300), TieBreak::TopLeft).inclusive);   // going down: left
-  EXPECT_FALSE(make_edge(at(0, 300), at(100, 0), TieBreak::TopLeft).inclusive);   // going up: right
+  EXPECT_TRUE(make_edge(at(0, 0), at(-100, 300), TieBreak::TopLeft).inclusive);  // going down: left
+  EXPECT_FALSE(make_edge(at(0, 300), at(100, 0), TieBreak::TopLeft).inclusive);  // going up: right
 }
 
 TEST(CpuEdges, TieBreakNoneLeavesEveryEdgeExclusive) {

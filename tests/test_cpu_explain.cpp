@@ -80,7 +80,7 @@ TEST(CpuExplain, NamesCullingCoverageAndTheDepthTest) {
   EXPECT_EQ(records[0].depth_raw, 0xBFFFu);      // 0.75
   EXPECT_TRUE(records[0].depth_passed);
   EXPECT_EQ(records[1].stored_before, 0xBFFFu);
-  EXPECT_EQ(records[1].depth_raw, 0x4000u);      // 0.25
+  EXPECT_EQ(records[1].depth_raw, 0x4000u);  // 0.25
   EXPECT_TRUE(records[1].owner_written);
   EXPECT_EQ(records[1].edge_count, 3u);
   EXPECT_EQ(records[2].cull, CullReason::Facing);

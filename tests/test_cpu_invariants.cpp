@@ -92,7 +92,6 @@ void check_exactly_once(const Scene& scene, Inside inside) {
   RC_TAG(covered > 0 ? "covers samples" : "covers nothing");
 }
 
-
 // A jittered grid of quads, each split along a random diagonal, over a rectangle that may extend
 // past the framebuffer (then the triangles are clipped).
 RC_GTEST_PROP(CpuInvariants, TessellatedRectangleCoversEachSampleOnce, ()) {
@@ -102,7 +101,8 @@ RC_GTEST_PROP(CpuInvariants, TessellatedRectangleCoversEachSampleOnce, ()) {
   const bool on_centres = *rc::gen::arbitrary<bool>();
   const auto snap = [&](float v) { return on_centres ? std::round(v * 2) / 2 : v; };
   const float x0 = snap(random_float(-6, 4)), y0 = snap(random_float(-6, 4));
-  const float x1 = snap(x0 + random_float(4, float(scene.width) + 6)), y1 = snap(y0 + random_float(4, float(scene.height) + 6));
+  const float x1 = snap(x0 + random_float(4, float(scene.width) + 6)),
+              y1 = snap(y0 + random_float(4, float(scene.height) + 6));
   const int nx = uniform_int(1, 7), ny = uniform_int(1, 7);
   std::vector<Point> grid;
   // Inner vertices move by up to 0.2 of a cell along each axis, which keeps every quad convex (a
@@ -111,10 +111,14 @@ RC_GTEST_PROP(CpuInvariants, TessellatedRectangleCoversEachSampleOnce, ()) {
   const float jitter = on_centres ? 0.0f : 0.2f;
   for (int j = 0; j <= ny; ++j)
     for (int i = 0; i <= nx; ++i) {
-      const bool inner_x = i > 0 && i < nx, inner_y = j > 0 && j < ny;
+      const bool inner_x = i > 0 && i<nx, inner_y = j> 0 && j < ny;
       const float jx = inner_x ? random_float(-jitter, jitter) : 0, jy = inner_y ? random_float(-jitter, jitter) : 0;
-      grid.push_back({i == 0 ? x0 : i == nx ? x1 : snap(x0 + (x1 - x0) * (float(i) + jx) / float(nx)),
-                      j == 0 ? y0 : j == ny ? y1 : snap(y0 + (y1 - y0) * (float(j) + jy) / float(ny))});
+      grid.push_back({i == 0    ? x0
+                      : i == nx ? x1
+                                : snap(x0 + (x1 - x0) * (float(i) + jx) / float(nx)),
+                      j == 0    ? y0
+                      : j == ny ? y1
+                                : snap(y0 + (y1 - y0) * (float(j) + jy) / float(ny))});
     }
   Draw draw;
   draw.state.depth.test_enable = false;
@@ -132,9 +136,8 @@ RC_GTEST_PROP(CpuInvariants, TessellatedRectangleCoversEachSampleOnce, ()) {
     }
   scene.draws.push_back(draw);
   const float margin = 1.0f / 64;  // window positions of odd-sized framebuffers are rounded
-  check_exactly_once(scene, [&](Point p) {
-    return p.x > x0 + margin && p.x < x1 - margin && p.y > y0 + margin && p.y < y1 - margin;
-  });
+  check_exactly_once(
+      scene, [&](Point p) { return p.x > x0 + margin && p.x < x1 - margin && p.y > y0 + margin && p.y < y1 - margin; });
 }
 
 // `count` points on an ellipse in increasing angle, one in each of `count` equal sectors (so for

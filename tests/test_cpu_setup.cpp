@@ -125,7 +125,7 @@ TEST(CpuRegion, ScissorPlanesAndTheMultisampleQuirk) {
   EXPECT_GT(edge_value(left, 4 * 256, 0), 0);
   EXPECT_GT(edge_value(multi.plane[0], 3 * 256 + 160, 0), 0);  // sample 3 of column 3
   EXPECT_LE(edge_value(multi.plane[0], 3 * 256 + 96, 0), 0);   // sample 0 of column 3
-  const EdgePlane& right = multi.plane[1];                      // right plane stays exact
+  const EdgePlane& right = multi.plane[1];                     // right plane stays exact
   EXPECT_GT(edge_value(right, 9 * 256 + 224, 0), 0);
   EXPECT_LE(edge_value(right, 10 * 256 + 32, 0), 0);
   PlaneSet inside;

@@ -20,10 +20,10 @@ int32_t snap(float x, SnapRounding rounding, float offset = kHalf) {
 // fl(x - 0.5) * 256 lands exactly on k + 0.5 for x = 0.5 + (2k+1)/512: round-to-nearest-even
 // picks the even neighbour, round-half-away the one further from zero.
 TEST(CpuSnap, TiesAtOddMultiplesOfHalfASubpixelRoundToEven) {
-  EXPECT_EQ(snap(0.5f + 1.0f / 512, SnapRounding::NearestEven), 0);  // 0.5 -> 0
-  EXPECT_EQ(snap(0.5f + 3.0f / 512, SnapRounding::NearestEven), 2);  // 1.5 -> 2
-  EXPECT_EQ(snap(0.5f + 5.0f / 512, SnapRounding::NearestEven), 2);  // 2.5 -> 2
-  EXPECT_EQ(snap(0.5f - 1.0f / 512, SnapRounding::NearestEven), 0);  // -0.5 -> -0
+  EXPECT_EQ(snap(0.5f + 1.0f / 512, SnapRounding::NearestEven), 0);   // 0.5 -> 0
+  EXPECT_EQ(snap(0.5f + 3.0f / 512, SnapRounding::NearestEven), 2);   // 1.5 -> 2
+  EXPECT_EQ(snap(0.5f + 5.0f / 512, SnapRounding::NearestEven), 2);   // 2.5 -> 2
+  EXPECT_EQ(snap(0.5f - 1.0f / 512, SnapRounding::NearestEven), 0);   // -0.5 -> -0
   EXPECT_EQ(snap(0.5f - 3.0f / 512, SnapRounding::NearestEven), -2);  // -1.5 -> -2
 }
 
@@ -73,7 +73,7 @@ TEST(CpuSnap, UtilIroundRoundsHalfAwayAfterAFloatAdd) {
 TEST(CpuSnap, LineSnapScalesBy256First) {
   EXPECT_EQ(line_snap(1.0f), 256);
   EXPECT_EQ(line_snap(-0.5f), -128);
-  EXPECT_EQ(line_snap(1.0f / 512), 1);    // 0.5 -> 1 (half away)
+  EXPECT_EQ(line_snap(1.0f / 512), 1);  // 0.5 -> 1 (half away)
   EXPECT_EQ(line_snap(-1.0f / 512), -1);
 }
 

@@ -22,9 +22,10 @@ class TotalsPrinter : public ::testing::Environment {
   void TearDown() override {
     const DiffFigures& t = totals();
     if (t.scenes == 0) return;
-    fmt::print("differential totals: {} scenes, {} primitives, {} covered samples, {} coverage mismatches, {} depth "
-               "mismatches\n",
-               t.scenes, t.primitives, t.covered_samples, t.coverage_mismatches, t.depth_mismatches);
+    fmt::print(
+        "differential totals: {} scenes, {} primitives, {} covered samples, {} coverage mismatches, {} depth "
+        "mismatches\n",
+        t.scenes, t.primitives, t.covered_samples, t.coverage_mismatches, t.depth_mismatches);
   }
 };
 const auto* const kTotalsPrinter = ::testing::AddGlobalTestEnvironment(new TotalsPrinter);
@@ -73,7 +74,8 @@ class DifferentialRegion : public ::testing::Test {
     scene.viewport = viewport;
     Draw draw;
     draw.state = always_state();
-    draw.positions_clip = {{-3, -3, 0.5f, 1}, {3, -3, 0.5f, 1}, {-3, 3, 0.5f, 1}, {3, -3, 0.5f, 1}, {3, 3, 0.5f, 1}, {-3, 3, 0.5f, 1}};
+    draw.positions_clip = {{-3, -3, 0.5f, 1}, {3, -3, 0.5f, 1}, {-3, 3, 0.5f, 1},
+                           {3, -3, 0.5f, 1},  {3, 3, 0.5f, 1},  {-3, 3, 0.5f, 1}};
     scene.draws.push_back(draw);
     std::string report;
     const DiffFigures f = run_differential(scene, CpuVariant{}, report);
@@ -135,7 +137,8 @@ INSTANTIATE_TEST_SUITE_P(CentredBresenhamLines, Differential,
 INSTANTIATE_TEST_SUITE_P(LatticeBresenhamLines, Differential,
                          Combine(Values(Family{"lines_bresenham_lattice", lattice_bresenham_lines}), Range(1u, 7u)),
                          case_name);
-INSTANTIATE_TEST_SUITE_P(Chunks, Differential, Combine(Values(Family{"chunks", chunked_draws}), Range(1u, 7u)), case_name);
+INSTANTIATE_TEST_SUITE_P(Chunks, Differential, Combine(Values(Family{"chunks", chunked_draws}), Range(1u, 7u)),
+                         case_name);
 INSTANTIATE_TEST_SUITE_P(StripsFans, Differential,
                          Combine(Values(Family{"strips_fans", strips_and_fans}), Range(1u, 6u)), case_name);
 INSTANTIATE_TEST_SUITE_P(Msaa, Differential, Combine(Values(Family{"msaa", msaa_triangles}), Range(1u, 9u)), case_name);

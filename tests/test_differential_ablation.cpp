@@ -50,7 +50,9 @@ TEST_P(Ablation, InvertedFmaChangesDepthButNotCoverage) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Seeds, Ablation, ::testing::Values(101u, 102u, 103u),
-                         [](const ::testing::TestParamInfo<uint32_t>& param_info) { return "seed" + std::to_string(param_info.param); });
+                         [](const ::testing::TestParamInfo<uint32_t>& param_info) {
+                           return "seed" + std::to_string(param_info.param);
+                         });
 
 }  // namespace
 }  // namespace rastercmp::differential

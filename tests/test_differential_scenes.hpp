@@ -85,10 +85,14 @@ inline Scene clip_space_triangles(const char* family, uint32_t seed, float reach
 }
 
 // Perspective triangles inside the view volume.
-inline Scene perspective_triangles(uint32_t seed) { return clip_space_triangles("perspective", seed, 0.8f, 0, 1, 0.4f, 3); }
+inline Scene perspective_triangles(uint32_t seed) {
+  return clip_space_triangles("perspective", seed, 0.8f, 0, 1, 0.4f, 3);
+}
 
 // Triangles that need clipping against x, y and z, including vertices behind the eye (w < 0).
-inline Scene clipped_triangles(uint32_t seed) { return clip_space_triangles("clipped", seed, 1.6f, -0.6f, 1.6f, -0.6f, 3); }
+inline Scene clipped_triangles(uint32_t seed) {
+  return clip_space_triangles("clipped", seed, 1.6f, -0.6f, 1.6f, -0.6f, 3);
+}
 
 // Slivers: a long edge and a third vertex a tiny distance from its line.
 inline Scene sliver_triangles(uint32_t seed) {
@@ -146,7 +150,8 @@ inline Scene bias_cull_triangles(uint32_t seed) {
 inline Scene clamp_scissor_triangles(uint32_t seed) {
   Random rng(seed);
   Scene scene = clip_space_triangles("clamp_scissor", seed, 1.3f, -1.0f, 2.0f, 0.3f, 3);
-  scene.scissor = Rect2D{rng.integer(0, 30), rng.integer(0, 30), uint32_t(rng.integer(10, 60)), uint32_t(rng.integer(10, 60))};
+  scene.scissor =
+      Rect2D{rng.integer(0, 30), rng.integer(0, 30), uint32_t(rng.integer(10, 60)), uint32_t(rng.integer(10, 60))};
   Viewport viewport = scene.effective_viewport();
   viewport.min_depth = rng.uniform(0, 1);
   viewport.max_depth = rng.uniform(0, 1);
@@ -181,11 +186,12 @@ inline Scene multi_triangle_draws(uint32_t seed) {
 // Lines of width 1 to 6 in one mode, some clipped, some with depth bias on (which lines ignore).
 inline Scene line_scene(uint32_t seed, LineMode mode, uint32_t samples = 1) {
   Random rng(seed);
-  Scene scene = make_scene(scene_name(mode == LineMode::Bresenham ? "lines_bresenham" : "lines_rectangular", seed),
-                           83, 71, format_for(seed));
+  Scene scene = make_scene(scene_name(mode == LineMode::Bresenham ? "lines_bresenham" : "lines_rectangular", seed), 83,
+                           71, format_for(seed));
   scene.samples = samples;
   if (samples > 1 && seed % 2 == 0)  // the multisample scissor planes of lines
-    scene.scissor = Rect2D{rng.integer(1, 30), rng.integer(1, 30), uint32_t(rng.integer(8, 50)), uint32_t(rng.integer(8, 40))};
+    scene.scissor =
+        Rect2D{rng.integer(1, 30), rng.integer(1, 30), uint32_t(rng.integer(8, 50)), uint32_t(rng.integer(8, 40))};
   for (int d = 0; d < 200; ++d) {
     Draw draw;
     draw.state = always_state();
@@ -279,7 +285,8 @@ inline ChunkSliver chunk_sliver(float row, float x0) {
 }
 
 inline Scene chunked_draws(uint32_t seed) {
-  const Topology topology = std::array{Topology::TriangleList, Topology::TriangleStrip, Topology::TriangleFan}[seed % 3];
+  const Topology topology =
+      std::array{Topology::TriangleList, Topology::TriangleStrip, Topology::TriangleFan}[seed % 3];
   const bool indexed = (seed / 3) % 2 == 1;
   Scene scene = make_scene(scene_name("chunks", seed), 128, 64, format_for(seed));
   Draw draw;
@@ -417,10 +424,10 @@ inline Scene viewport_triangles(uint32_t seed) {
   v.max_depth = rng.uniform(0, 1);
   scene.viewport = v;
   scene.depth_clear = rng.uniform(0, 1);
-  const std::vector<CompareOp> ops = {CompareOp::Never,       CompareOp::Less,    CompareOp::Less,
-                                      CompareOp::Equal,       CompareOp::LessOrEqual, CompareOp::Greater,
-                                      CompareOp::NotEqual,    CompareOp::GreaterOrEqual, CompareOp::Always,
-                                      CompareOp::Always,      CompareOp::Always};
+  const std::vector<CompareOp> ops = {CompareOp::Never,    CompareOp::Less,           CompareOp::Less,
+                                      CompareOp::Equal,    CompareOp::LessOrEqual,    CompareOp::Greater,
+                                      CompareOp::NotEqual, CompareOp::GreaterOrEqual, CompareOp::Always,
+                                      CompareOp::Always,   CompareOp::Always};
   for (Draw& draw : scene.draws) {
     draw.state.depth.compare_op = rng.pick(ops);
     draw.state.depth.write_enable = rng.chance(0.8f);

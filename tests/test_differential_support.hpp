@@ -10,11 +10,11 @@
 #include <vector>
 
 #include <fmt/core.h>
-#include <glm/vec4.hpp>
 #include <gtest/gtest.h>
+#include <glm/vec4.hpp>
 
-#include "cpu_raster/exact/assemble.hpp"
 #include "cpu_raster/cpu_raster.hpp"
+#include "cpu_raster/exact/assemble.hpp"
 #include "model/errors.hpp"
 #include "model/render_result.hpp"
 #include "model/scene.hpp"
@@ -31,7 +31,9 @@ class Random {
   int integer(int lo, int hi) { return lo + int(engine_() % uint32_t(hi - lo + 1)); }
   bool chance(float p) { return uniform(0.0f, 1.0f) < p; }
   template <class T>
-  const T& pick(const std::vector<T>& values) { return values[size_t(integer(0, int(values.size()) - 1))]; }
+  const T& pick(const std::vector<T>& values) {
+    return values[size_t(integer(0, int(values.size()) - 1))];
+  }
 
  private:
   std::mt19937 engine_;
@@ -48,7 +50,8 @@ inline std::string missing_vulkan_reason() {
 
 // One renderer with the validation layer for the whole binary.
 inline VulkanRenderer& shared_renderer() {
-  static std::unique_ptr<VulkanRenderer> renderer = std::make_unique<VulkanRenderer>(VkOptions{.device = "", .validate = true});
+  static std::unique_ptr<VulkanRenderer> renderer =
+      std::make_unique<VulkanRenderer>(VkOptions{.device = "", .validate = true});
   return *renderer;
 }
 
@@ -75,7 +78,8 @@ inline std::string describe_owner(uint32_t owner) {
 }
 
 // Compares the two results sample by sample; `report` gets the first differing samples.
-inline DiffFigures diff_results(const Scene& scene, const RenderResult& cpu, const RenderResult& vk, std::string& report) {
+inline DiffFigures diff_results(const Scene& scene, const RenderResult& cpu, const RenderResult& vk,
+                                std::string& report) {
   DiffFigures f;
   f.scenes = 1;
   f.primitives = count_primitives(scene);

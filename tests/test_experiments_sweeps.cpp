@@ -30,10 +30,10 @@ std::string vulkan_missing_reason() {
   }
 }
 
-#define SKIP_WITHOUT_VULKAN()                                                        \
-  do {                                                                               \
-    const std::string reason = vulkan_missing_reason();                              \
-    if (!reason.empty()) GTEST_SKIP() << "no Vulkan device: " << reason;            \
+#define SKIP_WITHOUT_VULKAN()                                            \
+  do {                                                                   \
+    const std::string reason = vulkan_missing_reason();                  \
+    if (!reason.empty()) GTEST_SKIP() << "no Vulkan device: " << reason; \
   } while (0)
 
 fs::path fresh_dir(const std::string& name) {
@@ -69,7 +69,8 @@ TEST(ExperimentsSweeps, PolygonOffsetQuick) {
   size_t planned = 0;
   for (const OffsetSeries& series : polygon_offset_plan(true)) planned += series.size();
   ASSERT_EQ(table.rows.size(), planned);
-  for (const Row& row : table.rows) EXPECT_EQ(row[table.column("cpu_vk_agree")], "true") << join_fields(row, row.size());
+  for (const Row& row : table.rows)
+    EXPECT_EQ(row[table.column("cpu_vk_agree")], "true") << join_fields(row, row.size());
 
   // Without offset the coplanar pair fights on D16 at far/near 10^6; with enough offset it does not.
   const Where far_near{{"experiment", "far_near"}, {"scene", "coplanar"}, {"format", "d16_unorm"}};
@@ -137,7 +138,8 @@ TEST(ExperimentsSweeps, StabilityQuick) {
   const double predicted = 100.0 * dz * 65535.0 / (z * z);
   const size_t ratio = table.column("param_b"), cpu = table.column("value_cpu"), vk = table.column("value_vk");
   size_t below = 0, above = 0;
-  for (const Row& row : select_rows(table, {{"experiment", "fight_onset"}, {"case", "d16_unorm"}, {"param_a", "0.1"}})) {
+  for (const Row& row :
+       select_rows(table, {{"experiment", "fight_onset"}, {"case", "d16_unorm"}, {"param_a", "0.1"}})) {
     const double r = to_double(row[ratio]);
     if (r < predicted / 2) {
       ++below;
@@ -151,12 +153,14 @@ TEST(ExperimentsSweeps, StabilityQuick) {
   }
   EXPECT_GT(below, 0u);
   EXPECT_GT(above, 0u);
-  const double d16 = fight_onset_ratio(table, "d16_unorm", "0.1"), d24 = fight_onset_ratio(table, "x8_d24_unorm", "0.1");
+  const double d16 = fight_onset_ratio(table, "d16_unorm", "0.1"),
+               d24 = fight_onset_ratio(table, "x8_d24_unorm", "0.1");
   EXPECT_TRUE(std::isnan(d24) || d24 > d16) << "D24 should fight later than D16";
 
   const nlohmann::json summary = nlohmann::json::parse(read_text(dir / "stability.json"));
   EXPECT_EQ(summary["far_distance"]["exact"]["points"], far.size());
-  for (const char* chart : {"fight_vs_far_near", "fight_onset_map", "sliver_map", "far_distance", "near_w", "non_finite"})
+  for (const char* chart :
+       {"fight_vs_far_near", "fight_onset_map", "sliver_map", "far_distance", "near_w", "non_finite"})
     expect_chart(dir, chart);
 }
 
@@ -170,7 +174,8 @@ TEST(ExperimentsSweeps, SpeedAccuracyQuick) {
   ASSERT_EQ(table.rows.size(), reference.size() * (speed_accuracy_entries().size() + 1));
   for (const Row& row : table.rows) EXPECT_GT(to_double(row[table.column("seconds_per_frame")]), 0.0);
   // The exact path, its fast paths and every depth format reproduce lavapipe on the whole set.
-  for (const Where& where : {Where{{"method", "exact"}}, Where{{"family", "fast path"}}, Where{{"family", "depth format"}}})
+  for (const Where& where :
+       {Where{{"method", "exact"}}, Where{{"family", "fast path"}}, Where{{"family", "depth format"}}})
     for (const Row& row : select_rows(table, where)) {
       EXPECT_EQ(to_double(row[table.column("coverage_mismatch_pct")]), 0.0) << join_fields(row, row.size());
       EXPECT_EQ(to_double(row[table.column("depth_mismatch_pct")]), 0.0) << join_fields(row, row.size());

@@ -54,7 +54,9 @@ TEST_P(FastRandomScenes, MatchExactPath) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Seeds, FastRandomScenes, ::testing::Range<uint64_t>(1, 121),
-                         [](const ::testing::TestParamInfo<uint64_t>& param_info) { return "seed_" + std::to_string(param_info.param); });
+                         [](const ::testing::TestParamInfo<uint64_t>& param_info) {
+                           return "seed_" + std::to_string(param_info.param);
+                         });
 
 // Many small triangles in one big draw: the batching and tile-row split at real sizes.
 TEST(FastDenseScenes, ManyTrianglesAcrossTileRows) {
@@ -81,7 +83,9 @@ TEST_P(FastLayeredScenes, MatchExactPath) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Seeds, FastLayeredScenes, ::testing::Range<uint64_t>(1, 41),
-                         [](const ::testing::TestParamInfo<uint64_t>& param_info) { return "seed_" + std::to_string(param_info.param); });
+                         [](const ::testing::TestParamInfo<uint64_t>& param_info) {
+                           return "seed_" + std::to_string(param_info.param);
+                         });
 
 class FastSmallMeshes : public ::testing::TestWithParam<uint64_t> {};
 
@@ -90,7 +94,9 @@ TEST_P(FastSmallMeshes, MatchExactPath) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Seeds, FastSmallMeshes, ::testing::Range<uint64_t>(1, 1 + 40 / kMeshSeedDivisor),
-                         [](const ::testing::TestParamInfo<uint64_t>& param_info) { return "seed_" + std::to_string(param_info.param); });
+                         [](const ::testing::TestParamInfo<uint64_t>& param_info) {
+                           return "seed_" + std::to_string(param_info.param);
+                         });
 
 // A jittered mesh of cells of cell_min..cell_max pixels, a list, strip or fan over the same
 // indices (read as strips and fans they make triangles that overlap inside a block, so the lanes'
@@ -115,7 +121,9 @@ Scene jittered_mesh(uint64_t seed, double cell_min, double cell_max) {
       const uint32_t v = j * (columns + 1) + i;
       for (uint32_t k : {v, v + 1, v + columns + 2, v, v + columns + 2, v + columns + 1}) draw.indices.push_back(k);
     }
-  draw.topology = seed % 3 == 0 ? Topology::TriangleList : seed % 3 == 1 ? Topology::TriangleStrip : Topology::TriangleFan;
+  draw.topology = seed % 3 == 0   ? Topology::TriangleList
+                  : seed % 3 == 1 ? Topology::TriangleStrip
+                                  : Topology::TriangleFan;
   if (seed % 6 == 0) draw.topology = Topology::TriangleList;
   draw.state.depth.compare_op = CompareOp((seed / 4) % 8);
   draw.state.depth.write_enable = seed % 5 != 0;
@@ -156,13 +164,13 @@ TEST(FastBoundingBox, CornersOnAndBesideSamplePositions) {
   for (int fx = -1; fx <= 1; ++fx) {
     for (int fy = -1; fy <= 1; ++fy, ++cell) {
       const double x = 10.0 + 80.0 * (cell % 3) + fx / 256.0, y = 10.0 + 80.0 * (cell / 3) + fy / 256.0;
-      const double shapes[3][3][2] = {{{x, y}, {x, y + 50}, {x + 50, y + 20}},          // vertical left edge
-                                      {{x, y}, {x + 50, y}, {x + 20, y + 50}},          // horizontal top edge
-                                      {{x, y + 7}, {x + 45, y}, {x + 30, y + 55}}};     // neither
+      const double shapes[3][3][2] = {{{x, y}, {x, y + 50}, {x + 50, y + 20}},       // vertical left edge
+                                      {{x, y}, {x + 50, y}, {x + 20, y + 50}},       // horizontal top edge
+                                      {{x, y + 7}, {x + 45, y}, {x + 30, y + 55}}};  // neither
       for (int s = 0; s < 3; ++s) {
         for (const auto& corner : shapes[s])
-          draw.positions_clip.emplace_back(clip(corner[0]), clip(corner[1]), 0.7f - 0.2f * float(s) + 0.001f * float(corner[0] - x),
-                                           1.0f);
+          draw.positions_clip.emplace_back(clip(corner[0]), clip(corner[1]),
+                                           0.7f - 0.2f * float(s) + 0.001f * float(corner[0] - x), 1.0f);
       }
     }
   }
@@ -263,13 +271,14 @@ std::string input_error_path(Render render) {
 TEST(FastIndexCheck, SameErrorAsTheExactPath) {
   struct Case {
     Topology topology;
-    size_t bad;      // the index made out of range (from the end when tail)
-    bool tail;       // two indices appended past the last whole triangle, the second one bad
-    bool point_draw; // a second draw of points, not supported (reported only after the indices)
+    size_t bad;       // the index made out of range (from the end when tail)
+    bool tail;        // two indices appended past the last whole triangle, the second one bad
+    bool point_draw;  // a second draw of points, not supported (reported only after the indices)
   };
-  const Case cases[] = {{Topology::TriangleList, 100, false, false}, {Topology::TriangleList, 3 * 3200 - 2, false, false},
-                        {Topology::TriangleList, 0, true, false},    {Topology::TriangleStrip, 4000, false, false},
-                        {Topology::TriangleFan, 7, false, false},    {Topology::TriangleList, 2000, false, true}};
+  const Case cases[] = {
+      {Topology::TriangleList, 100, false, false}, {Topology::TriangleList, 3 * 3200 - 2, false, false},
+      {Topology::TriangleList, 0, true, false},    {Topology::TriangleStrip, 4000, false, false},
+      {Topology::TriangleFan, 7, false, false},    {Topology::TriangleList, 2000, false, true}};
   for (const Case& c : cases) {
     Scene scene = bench::grid_scene(40, 256);  // 3200 triangles
     scene.source_path = "mesh.json";

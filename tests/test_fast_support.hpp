@@ -90,7 +90,8 @@ inline Draw random_draw(Random& r, const RandomSceneSpec& spec) {
   s.depth.write_enable = !r.chance(0.2);
   s.depth.compare_op = r.chance(0.5) ? CompareOp::Less : CompareOp(r.below(8));
   if (r.chance(0.3)) {
-    s.depth_bias = DepthBias{true, float(r.range(-4, 4)), float(r.range(-2, 2)), r.chance(0.5) ? float(r.range(-0.01, 0.01)) : 0.0f};
+    s.depth_bias = DepthBias{true, float(r.range(-4, 4)), float(r.range(-2, 2)),
+                             r.chance(0.5) ? float(r.range(-0.01, 0.01)) : 0.0f};
   }
   s.depth_clamp = r.chance(0.2);
   if (r.chance(0.2)) s.depth_clip = r.chance(0.5);
@@ -109,8 +110,12 @@ inline Scene random_scene(uint64_t seed, const RandomSceneSpec& spec = {}) {
   if (r.chance(0.4)) {
     const float w = float(r.range(8, scene.width * 1.2)), h = float(r.range(8, scene.height * 1.2));
     const float mn = float(r.range(0, 0.5)), mx = float(r.range(0.5, 1));
-    scene.viewport = Viewport{float(r.range(-10, scene.width * 0.5)), float(r.range(-10, scene.height * 0.5)), w,
-                              r.chance(0.2) ? -h : h, r.chance(0.2) ? mx : mn, r.chance(0.2) ? mn : mx};
+    scene.viewport = Viewport{float(r.range(-10, scene.width * 0.5)),
+                              float(r.range(-10, scene.height * 0.5)),
+                              w,
+                              r.chance(0.2) ? -h : h,
+                              r.chance(0.2) ? mx : mn,
+                              r.chance(0.2) ? mn : mx};
     if (scene.viewport->height < 0) scene.viewport->y += h;
   }
   if (r.chance(0.3)) {
@@ -142,7 +147,8 @@ inline Scene layered_scene(uint64_t seed) {
       const float y0 = float(r.range(-1.3, 0.2)), y1 = float(r.range(0.2, 1.3));
       const float z = float(r.range(-0.1, 1.1)), tilt_x = float(r.range(-0.2, 0.2)), tilt_y = float(r.range(-0.2, 0.2));
       const auto corner = [&](float x, float y) { return glm::vec4(x, y, z + tilt_x * x + tilt_y * y, 1.0f); };
-      for (const glm::vec4& v : {corner(x0, y0), corner(x1, y0), corner(x1, y1), corner(x0, y0), corner(x1, y1), corner(x0, y1)})
+      for (const glm::vec4& v :
+           {corner(x0, y0), corner(x1, y0), corner(x1, y1), corner(x0, y0), corner(x1, y1), corner(x0, y1)})
         draw.positions_clip.push_back(v);
     }
     draw.state.depth.compare_op = r.chance(0.5) ? CompareOp::Less : CompareOp(r.below(8));
@@ -152,8 +158,9 @@ inline Scene layered_scene(uint64_t seed) {
     if (r.chance(0.2)) draw.state.depth_bias = DepthBias{true, float(r.range(-3, 3)), float(r.range(-1, 1)), 0.0f};
     scene.draws.push_back(std::move(draw));
   }
-  if (r.chance(0.3)) scene.viewport = Viewport{float(r.range(-20, 20)), float(r.range(-20, 20)), float(scene.width),
-                                                float(scene.height), float(r.range(0, 0.3)), float(r.range(0.7, 1))};
+  if (r.chance(0.3))
+    scene.viewport = Viewport{float(r.range(-20, 20)), float(r.range(-20, 20)), float(scene.width),
+                              float(scene.height),     float(r.range(0, 0.3)),  float(r.range(0.7, 1))};
   return scene;
 }
 
@@ -193,7 +200,8 @@ inline Scene small_mesh_scene(uint64_t seed) {
   scene.draws.push_back(draw);
   draw.state.depth.compare_op = CompareOp(r.below(8));  // a second pass over the same mesh
   scene.draws.push_back(std::move(draw));
-  if (r.chance(0.3)) scene.scissor = Rect2D{int32_t(r.below(40)), int32_t(r.below(40)), 20 + r.below(200), 20 + r.below(200)};
+  if (r.chance(0.3))
+    scene.scissor = Rect2D{int32_t(r.below(40)), int32_t(r.below(40)), 20 + r.below(200), 20 + r.below(200)};
   return scene;
 }
 
@@ -249,7 +257,8 @@ inline ::testing::AssertionResult same_bytes(const RenderResult& expected, const
       }
     if (count == 0) return ::testing::AssertionSuccess();
     const size_t pixel = first / expected.samples;
-    return ::testing::AssertionFailure() << count << " " << what << " samples differ; first at x=" << pixel % expected.width
+    return ::testing::AssertionFailure() << count << " " << what
+                                         << " samples differ; first at x=" << pixel % expected.width
                                          << " y=" << pixel / expected.width << " sample " << first % expected.samples
                                          << ": expected 0x" << std::hex << a[first] << ", got 0x" << b[first];
   };

@@ -9,10 +9,11 @@
 #include <limits>
 #include <vector>
 
+#include "bench/bench_stats.hpp"
 #include "cpu_raster/exact/clip_vertex.hpp"
 #include "cpu_raster/exact/depth_sample.hpp"
 #include "cpu_raster/exact/edge_plane.hpp"
-#include "bench/bench_stats.hpp"
+#include "cpu_raster/exact/fixed_point.hpp"
 #include "cpu_raster/fast/block_rows.hpp"
 #include "cpu_raster/fast/cpu_features.hpp"
 #include "cpu_raster/fast/fast_vertices.hpp"
@@ -20,7 +21,6 @@
 #include "cpu_raster/fast/small_window.hpp"
 #include "cpu_raster/fast/tile_depth_bounds.hpp"
 #include "cpu_raster/fast/tile_edges.hpp"
-#include "cpu_raster/exact/fixed_point.hpp"
 #include "tests/test_fast_support.hpp"
 
 namespace rastercmp::cpu::fast {
@@ -32,8 +32,9 @@ std::vector<glm::vec4> awkward_positions() {
   const float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
   for (int i = 0; i < 997; ++i)
     p.emplace_back(float(r.range(-3, 3)), float(r.range(-3, 3)), float(r.range(-1, 2)), float(r.range(-0.5, 3)));
-  for (const glm::vec4& v : {glm::vec4(nan, 0, 0, 1), glm::vec4(0, inf, 0, 1), glm::vec4(0, 0, 0, 0), glm::vec4(1e30f, 0, 0, 1),
-                             glm::vec4(0.25f, -0.5f, 0.5f, 1), glm::vec4(1, 1, 1, 1), glm::vec4(-1, -1, 0, 1)})
+  for (const glm::vec4& v :
+       {glm::vec4(nan, 0, 0, 1), glm::vec4(0, inf, 0, 1), glm::vec4(0, 0, 0, 0), glm::vec4(1e30f, 0, 0, 1),
+        glm::vec4(0.25f, -0.5f, 0.5f, 1), glm::vec4(1, 1, 1, 1), glm::vec4(-1, -1, 0, 1)})
     p.push_back(v);
   return p;
 }
@@ -51,7 +52,8 @@ TEST(FastVertices, ScalarPassIsTheExactPathsPerVertexWork) {
   for (const bool fma : {true, false}) {
     std::vector<FastVertex> out(positions.size());
     std::vector<int16_t> rows(positions.size() + 8);
-    transform_vertices_scalar(VertexJob{positions.data(), viewport, fma, true}, 0, positions.size(), out.data(), rows.data());
+    transform_vertices_scalar(VertexJob{positions.data(), viewport, fma, true}, 0, positions.size(), out.data(),
+                              rows.data());
     for (size_t k = 0; k < positions.size(); ++k) {
       const ClipVertex exact = make_clip_vertex(positions[k], viewport, true, fma);
       EXPECT_EQ(out[k].flags & kVertexClipBits, exact.clip_mask);
@@ -78,7 +80,8 @@ TEST(FastVertices, Avx2PassEqualsScalarPass) {
       const VertexJob job{positions.data(), viewport, fma, depth_clip};
       std::vector<FastVertex> scalar(positions.size()), vector(positions.size());
       std::vector<int16_t> scalar_rows(positions.size() + 8), vector_rows(positions.size() + 8);
-      const uint32_t scalar_flags = transform_vertices_scalar(job, 0, positions.size(), scalar.data(), scalar_rows.data());
+      const uint32_t scalar_flags =
+          transform_vertices_scalar(job, 0, positions.size(), scalar.data(), scalar_rows.data());
       // an unaligned start, then a scalar tail
       uint32_t vector_flags = transform_vertices_avx2(job, 3, positions.size(), vector.data(), vector_rows.data());
       vector_flags |= transform_vertices_scalar(job, 0, 3, vector.data(), vector_rows.data());
@@ -131,12 +134,14 @@ TEST(FastSmallTriangles, PackedGridWordsHoldEachLanesBits) {
     if (out.grid_mask == 0) continue;
     bool fits = true;
     for (int l = 0; l < 8; ++l)
-      if ((out.grid_mask >> l) & 1u) fits = fits && out.x1[l] - out.x0[l] < kSmallGridSide && out.y1[l] - out.y0[l] < kSmallGridSide;
+      if ((out.grid_mask >> l) & 1u)
+        fits = fits && out.x1[l] - out.x0[l] < kSmallGridSide && out.y1[l] - out.y0[l] < kSmallGridSide;
     ASSERT_EQ(out.grid_shift, fits ? kSmallGridShift : 3) << "trial " << trial;
     if (!fits) continue;
     for (int l = 0; l < 8; ++l) {
       if (!((out.grid_mask >> l) & 1u)) continue;
-      EXPECT_EQ((out.grid_words[l / 4] >> (16 * (l % 4))) & 0xFFFFu, out.grid_bits[l]) << "trial " << trial << " lane " << l;
+      EXPECT_EQ((out.grid_words[l / 4] >> (16 * (l % 4))) & 0xFFFFu, out.grid_bits[l])
+          << "trial " << trial << " lane " << l;
     }
   }
 }
@@ -177,10 +182,12 @@ TEST(FastSmallTriangles, WindowCompositorEqualsGridScatter) {
     std::vector<uint32_t> stored(kSide * kSide);
     for (uint32_t& v : stored) {
       const float z = float(r.range(0.0, 1.0));
-      v = in.depth.format == DepthFormat::D32Sfloat ? std::bit_cast<uint32_t>(z)
-          : in.depth.format == DepthFormat::D16Unorm ? uint32_t(z * 65535.0f) : uint32_t(z * 16777215.0f);
+      v = in.depth.format == DepthFormat::D32Sfloat  ? std::bit_cast<uint32_t>(z)
+          : in.depth.format == DepthFormat::D16Unorm ? uint32_t(z * 65535.0f)
+                                                     : uint32_t(z * 16777215.0f);
     }
-    std::vector<uint32_t> owner_a(kSide * kSide, kOwnerBackground), owner_b = owner_a, depth_a = stored, depth_b = stored;
+    std::vector<uint32_t> owner_a(kSide * kSide, kOwnerBackground), owner_b = owner_a, depth_a = stored,
+                                                                    depth_b = stored;
     const TileTarget a{owner_a.data(), in.depth.format == DepthFormat::None ? nullptr : depth_a.data(), kSide, kSide};
     const TileTarget b{owner_b.data(), in.depth.format == DepthFormat::None ? nullptr : depth_b.data(), kSide, kSide};
     // every row, or a cut at a row inside the block (the rows of the other worker are not drawn)
@@ -190,7 +197,8 @@ TEST(FastSmallTriangles, WindowCompositorEqualsGridScatter) {
     for (uint32_t lanes = grid.grid_mask; lanes != 0; lanes &= lanes - 1) {
       const int l = std::countr_zero(lanes);  // the scatter takes rows within the lane's own (draw_small)
       const int32_t lo = std::max(row_lo, grid.y0[l]), hi = std::min(row_hi, grid.y1[l]);
-      if (lo <= hi) select_grid_scatter(in.depth.format, in.depth.op)(grid, l, 100 + uint32_t(l), lo, hi, in.depth.write, a);
+      if (lo <= hi)
+        select_grid_scatter(in.depth.format, in.depth.op)(grid, l, 100 + uint32_t(l), lo, hi, in.depth.write, a);
     }
     select_window_block_avx512(in.depth.format, in.depth.op)(window, 100, row_lo, row_hi, in.depth, b);
     ASSERT_EQ(owner_a, owner_b) << "trial " << trial;
@@ -215,7 +223,8 @@ std::vector<int64_t> lane_meaning(const SmallBlockOutput& o, int l, DepthFormat 
       m.insert(m.end(), {p % side, p / side, format == DepthFormat::None ? 0 : int64_t(o.grid_raw[p][l])});
     }
     // the packed words, where the layout has them, hold the same bits
-    m.push_back(o.grid_shift != kSmallGridShift || ((o.grid_words[l / 4] >> (16 * (l % 4))) & 0xFFFFu) == o.grid_bits[l]);
+    m.push_back(o.grid_shift != kSmallGridShift ||
+                ((o.grid_words[l / 4] >> (16 * (l % 4))) & 0xFFFFu) == o.grid_bits[l]);
   } else {
     const KernelJob j = o.job(l, 1, CompareOp::Less);
     m.insert(m.end(), {j.origin_x, bits(j.a0), bits(j.dzdx), bits(j.dzdy)});
@@ -247,7 +256,8 @@ TEST(FastSmallTriangles, PairSetupEqualsTwoBlocks) {
       }
     }
     const int32_t rx = int32_t(r.below(24)), ry = int32_t(r.below(24));
-    SmallBlockInput in0 = blocks[0].input(PixelRect{rx, ry, rx + 40 + int32_t(r.below(80)), ry + 40 + int32_t(r.below(80))});
+    SmallBlockInput in0 =
+        blocks[0].input(PixelRect{rx, ry, rx + 40 + int32_t(r.below(80)), ry + 40 + int32_t(r.below(80))});
     in0.depth.format = DepthFormat(r.below(4));
     in0.depth.op = in0.depth.format == DepthFormat::None ? CompareOp::Always : CompareOp(r.below(8));
     in0.depth.write = r.chance(0.8);
@@ -313,7 +323,8 @@ TEST(FastBlockRows, SpanAnswersAsBlockByBlock) {
     std::vector<uint32_t> spans(n, 0x12345678u);
     if (!span_tile_rows_avx2(indices.data(), n, tile_rows.data(), positions, region, spans.data())) {
       ++declined;
-      for (uint32_t b = 0; b < n; ++b) ASSERT_EQ(spans[b], 0x12345678u) << "trial " << trial << ": wrote when declining";
+      for (uint32_t b = 0; b < n; ++b)
+        ASSERT_EQ(spans[b], 0x12345678u) << "trial " << trial << ": wrote when declining";
       continue;
     }
     ++answered;
@@ -345,7 +356,8 @@ TEST(FastTileEdges, GFormAgreesWithExactEdgeValues) {
     }
     const int32_t tx = int32_t(r.below(32)) * kTileSize, ty = int32_t(r.below(32)) * kTileSize;
     const int32_t x0 = tx + int32_t(r.below(64)), y0 = ty + int32_t(r.below(64));
-    const PixelRect rect{x0, y0, x0 + int32_t(r.below(uint32_t(tx + 64 - x0))), y0 + int32_t(r.below(uint32_t(ty + 64 - y0)))};
+    const PixelRect rect{x0, y0, x0 + int32_t(r.below(uint32_t(tx + 64 - x0))),
+                         y0 + int32_t(r.below(uint32_t(ty + 64 - y0)))};
     KernelJob job;
     const EdgeSetup setup = setup_tile_edges(t, rect, job);
     ASSERT_NE(setup.fit, EdgeFit::Scalar);
@@ -354,8 +366,9 @@ TEST(FastTileEdges, GFormAgreesWithExactEdgeValues) {
         bool exact_in = true, g_in = true;
         for (int i = 0; i < 3; ++i) {
           const int j = (i + 1) % 3;
-          const EdgePlane e = make_edge(FixedPoint{Fixed24_8{t.x_fixed[i]}, Fixed24_8{t.y_fixed[i]}},
-                                        FixedPoint{Fixed24_8{t.x_fixed[j]}, Fixed24_8{t.y_fixed[j]}}, TieBreak::TopLeft);
+          const EdgePlane e =
+              make_edge(FixedPoint{Fixed24_8{t.x_fixed[i]}, Fixed24_8{t.y_fixed[i]}},
+                        FixedPoint{Fixed24_8{t.x_fixed[j]}, Fixed24_8{t.y_fixed[j]}}, TieBreak::TopLeft);
           exact_in = exact_in && edge_value(e, int64_t(px) * kFixedOne, int64_t(py) * kFixedOne) > 0;
           const int64_t g_minus_1 = int64_t(job.g_minus_1[i]) + int64_t(job.gx[i]) * (px - job.origin_x) +
                                     int64_t(job.gy[i]) * (py - rect.y0);
@@ -409,8 +422,9 @@ TEST(FastDepthBounds, FragmentRangeIsTheCornersExtremes) {
     ASSERT_TRUE(fragment_range(t, box, depth, range));
     for (int32_t y = box.y0; y <= box.y1; ++y)
       for (int32_t x = box.x0; x <= box.x1; ++x) {
-        const uint32_t raw = sample_depth(DepthPlane{t.a0, t.dzdx, t.dzdy}, 0, float(x), float(y), depth.range,
-                                          depth.format, depth.fma).raw;
+        const uint32_t raw =
+            sample_depth(DepthPlane{t.a0, t.dzdx, t.dzdy}, 0, float(x), float(y), depth.range, depth.format, depth.fma)
+                .raw;
         ASSERT_GE(raw, range.lo);
         ASSERT_LE(raw, range.hi);
       }

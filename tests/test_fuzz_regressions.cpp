@@ -46,8 +46,8 @@ size_t replay(const std::vector<std::string>& dirs, Check check) {
 }  // namespace
 
 TEST(FuzzRegressions, SceneParserInputsParseOrFailCleanly) {
-  const size_t n = replay({"fuzz/corpus/scene_parser", "fuzz/regressions/scene_parser"},
-                          rastercmp::fuzz::check_scene_parser);
+  const size_t n =
+      replay({"fuzz/corpus/scene_parser", "fuzz/regressions/scene_parser"}, rastercmp::fuzz::check_scene_parser);
   EXPECT_GT(n, 0u) << "the scene-parser seed corpus is empty";
 }
 

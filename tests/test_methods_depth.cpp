@@ -59,7 +59,7 @@ TEST(MethodsDepth, NotesTriangleWithoutRounding) {
   EXPECT_NEAR(plane_value(triangle, {3, 5}), 2.0 / 3.0, 1e-15);
   EXPECT_FALSE(m::bilinear_depth_in_triangle(triangle, {0, 5}).has_value());  // left of the edge
   EXPECT_FALSE(m::bilinear_depth_in_triangle(triangle, {3, 8}).has_value());  // above the top vertex
-  EXPECT_DOUBLE_EQ(*m::bilinear_depth_in_triangle(triangle, {1, 7}), 1.0);   // the top vertex
+  EXPECT_DOUBLE_EQ(*m::bilinear_depth_in_triangle(triangle, {1, 7}), 1.0);    // the top vertex
 }
 
 // lecture-clipping-fill-zbuffer.txt "pz At near and far": pz(near) = 1, pz(far) = -1, with the
@@ -82,7 +82,7 @@ TEST(MethodsDepth, NotesPseudoDepth) {
 // Attributes need the 1/w correction; linear interpolation in window space gets them wrong.
 TEST(MethodsDepth, PerspectiveCorrectRecoversTheSurfacePoint) {
   const std::array<Vec3, 3> eye{{{-1, -1, -2}, {3, -1, -10}, {-1, 2, -4}}};
-  const std::array<double, 3> u{0, 1, 0.25};  // e.g. a texture coordinate per vertex
+  const std::array<double, 3> u{0, 1, 0.25};        // e.g. a texture coordinate per vertex
   const std::array<double, 3> beta{0.2, 0.5, 0.3};  // a point of the 3D triangle
   const Vec3 point = eye[0] * beta[0] + eye[1] * beta[1] + eye[2] * beta[2];
   const double u_true = beta[0] * u[0] + beta[1] * u[1] + beta[2] * u[2];

@@ -76,8 +76,8 @@ TEST(MethodsFill, NotesPolygonIntersections) {
 // the whole row; (0,3)-(2,3), (5,3)-(6,3) fill x = 0, 1 and 5; the "Maybe" vertex (3,0)-(3,0) is
 // an empty pair, so the pseudo-code does not fill it.
 TEST(MethodsFill, NotesPolygonFilledPixels) {
-  const std::set<PixelXY> expected{{2, 1}, {3, 1}, {4, 1}, {0, 2}, {1, 2}, {2, 2}, {3, 2},
-                                   {4, 2}, {5, 2}, {0, 3}, {1, 3}, {5, 3}};
+  const std::set<PixelXY> expected{{2, 1}, {3, 1}, {4, 1}, {0, 2}, {1, 2}, {2, 2},
+                                   {3, 2}, {4, 2}, {5, 2}, {0, 3}, {1, 3}, {5, 3}};
   EXPECT_EQ(pixel_set(m::fill_scanline_notes(kNotesPolygon)), expected);
   // The same pixels as the even-odd rule sampled at integer points.
   EXPECT_EQ(pixel_set(m::fill_polygon_rule(kNotesPolygon, rule_options(m::FillRule::EvenOdd, 0))), expected);
@@ -119,11 +119,14 @@ TEST(MethodsFill, PentagramWindingVersusEvenOdd) {
 // top-left rule fills every pixel of the square exactly once.
 TEST(MethodsFill, FloatEdgeFillDoubleCoversSharedEdge) {
   const std::array<m::Vec2f, 3> lower{{{0, 0}, {4, 0}, {0, 4}}}, upper{{{4, 0}, {4, 4}, {0, 4}}};
-  const std::vector<uint32_t> textbook = m::coverage_counts(
-      {m::fill_triangle_edge_function(lower, m::EdgeTieRule::None), m::fill_triangle_edge_function(upper, m::EdgeTieRule::None)}, 4, 4);
-  const std::vector<uint32_t> top_left = m::coverage_counts(
-      {m::fill_triangle_edge_function(lower, m::EdgeTieRule::TopLeft),
-       m::fill_triangle_edge_function(upper, m::EdgeTieRule::TopLeft)}, 4, 4);
+  const std::vector<uint32_t> textbook =
+      m::coverage_counts({m::fill_triangle_edge_function(lower, m::EdgeTieRule::None),
+                          m::fill_triangle_edge_function(upper, m::EdgeTieRule::None)},
+                         4, 4);
+  const std::vector<uint32_t> top_left =
+      m::coverage_counts({m::fill_triangle_edge_function(lower, m::EdgeTieRule::TopLeft),
+                          m::fill_triangle_edge_function(upper, m::EdgeTieRule::TopLeft)},
+                         4, 4);
   for (int y = 0; y < 4; ++y) {
     for (int x = 0; x < 4; ++x) {
       const size_t i = size_t(y * 4 + x);
@@ -196,7 +199,8 @@ RC_GTEST_PROP(MethodsFillProperty, TopLeftFillCoversSharedEdgesOnce, ()) {
   const std::vector<Span> s2 = m::fill_triangle_edge_function(t2, m::EdgeTieRule::TopLeft);
   for (uint32_t count : m::coverage_counts({s1, s2}, 17, 17)) RC_ASSERT(count <= 1u);
   for (const auto& [t, s] : {std::pair{t1, s1}, std::pair{t2, s2}}) {
-    const std::set<PixelXY> tl = pixel_set(s), textbook = pixel_set(m::fill_triangle_edge_function(t, m::EdgeTieRule::None));
+    const std::set<PixelXY> tl = pixel_set(s),
+                            textbook = pixel_set(m::fill_triangle_edge_function(t, m::EdgeTieRule::None));
     RC_ASSERT(std::includes(textbook.begin(), textbook.end(), tl.begin(), tl.end()));
     const Polygon2 polygon{{t[0].x, t[0].y}, {t[1].x, t[1].y}, {t[2].x, t[2].y}};
     RC_ASSERT(tl == pixel_set(m::fill_polygon_rule(polygon, rule_options(m::FillRule::NonZero, 0.5))));

@@ -49,9 +49,7 @@ bool inside(Vec2 p, const Rect2& w, double tol) {
 }
 
 // Distance of p from the line through s (s must have length).
-double distance_to_line(Vec2 p, Segment2 s) {
-  return std::fabs(m::cross(s.p1 - s.p0, p - s.p0)) / length(s);
-}
+double distance_to_line(Vec2 p, Segment2 s) { return std::fabs(m::cross(s.p1 - s.p0, p - s.p0)) / length(s); }
 
 }  // namespace
 

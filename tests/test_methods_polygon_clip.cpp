@@ -195,7 +195,8 @@ RC_GTEST_PROP(MethodsPolygonClipProperty, WeilerAthertonIsTheIntersection, ()) {
   RC_PRE(!r.degenerate);
   RC_TAG(r.polygons.size());  // the distribution of piece counts is printed
   for (const Polygon2& piece : r.polygons) RC_ASSERT(m::signed_area(piece) > 0);
-  RC_ASSERT(total_area(r.polygons) <= std::min(std::fabs(m::signed_area(subject)), std::fabs(m::signed_area(clip))) + 1e-9);
+  RC_ASSERT(total_area(r.polygons) <=
+            std::min(std::fabs(m::signed_area(subject)), std::fabs(m::signed_area(clip))) + 1e-9);
   for (int i = 0; i < 40; ++i) {
     for (int j = 0; j < 40; ++j) {
       const Vec2 p{-9.3 + 0.4567 * i, -9.1 + 0.4519 * j};

@@ -39,8 +39,7 @@ std::vector<Polygon3> cyclic_sticks() {
     for (const auto& [x, y] : xy) p.vertices.push_back({x, y, z(x, y)});
     return p;
   };
-  return {quad({{0, 2}, {30, 2}, {30, 8}, {0, 8}}, z_a, 0),
-          quad({{22, 0}, {28, 0}, {28, 30}, {22, 30}}, z_b, 1),
+  return {quad({{0, 2}, {30, 2}, {30, 8}, {0, 8}}, z_a, 0), quad({{22, 0}, {28, 0}, {28, 30}, {22, 30}}, z_b, 1),
           quad({{5.5, -1.3}, {31.5, 28.7}, {28.5, 31.3}, {2.5, 1.3}}, z_c, 2)};
 }
 
@@ -166,7 +165,9 @@ RC_GTEST_PROP(MethodsVisibilityProperty, BspMatchesZBuffer, ()) {
       if (want == got) continue;
       RC_ASSERT(want != m::kNoOwner && got != m::kNoOwner);
       const m::Plane3 pw = m::plane_of(triangles[want]), pg = m::plane_of(triangles[got]);
-      auto depth = [&](const m::Plane3& p) { return -(p.normal.x * (x + 0.5) + p.normal.y * (y + 0.5) + p.d) / p.normal.z; };
+      auto depth = [&](const m::Plane3& p) {
+        return -(p.normal.x * (x + 0.5) + p.normal.y * (y + 0.5) + p.d) / p.normal.z;
+      };
       RC_ASSERT(std::fabs(depth(pw) - depth(pg)) < 1e-9);
     }
   }

@@ -282,8 +282,8 @@ TEST(SceneLoader, NonFiniteValuesWhenAllowed) {
 
 TEST(SceneLoader, EveryTopology) {
   const Scene scene = load_good("topologies.json");
-  const std::vector<Topology> expected = {Topology::PointList,     Topology::LineList,      Topology::LineStrip,
-                                          Topology::TriangleList,  Topology::TriangleStrip, Topology::TriangleFan};
+  const std::vector<Topology> expected = {Topology::PointList,    Topology::LineList,      Topology::LineStrip,
+                                          Topology::TriangleList, Topology::TriangleStrip, Topology::TriangleFan};
   ASSERT_EQ(scene.draws.size(), expected.size());
   for (size_t i = 0; i < expected.size(); ++i) EXPECT_EQ(scene.draws[i].topology, expected[i]) << i;
 }
@@ -364,9 +364,9 @@ TEST(SceneLoader, EveryDocumentationExampleParses) {
     const size_t end = doc.find("```", start);
     ASSERT_NE(end, std::string::npos);
     const std::string block = doc.substr(start, end - start);
-    const std::vector<std::string> candidates = {
-        block, "{\"draws\": [" + block + "]}", "{" + block + ", \"draws\": [" + point_draw + "}]}",
-        "{\"draws\": [" + point_draw + ", " + block + "}]}"};
+    const std::vector<std::string> candidates = {block, "{\"draws\": [" + block + "]}",
+                                                 "{" + block + ", \"draws\": [" + point_draw + "}]}",
+                                                 "{\"draws\": [" + point_draw + ", " + block + "}]}"};
     const bool parses = std::any_of(candidates.begin(), candidates.end(),
                                     [](const std::string& text) { return error_of(text).empty(); });
     EXPECT_TRUE(parses) << block << "\n" << error_of(block);
@@ -424,7 +424,8 @@ TEST_P(BadScene, FailsWithItsPathAndMessage) {
 
 std::string case_name(const testing::TestParamInfo<BadCase>& info) {
   std::string name = fs::path(info.param.file).stem().string();
-  std::replace_if(name.begin(), name.end(), [](char c) { return !std::isalnum(static_cast<unsigned char>(c)); }, '_');
+  std::replace_if(
+      name.begin(), name.end(), [](char c) { return !std::isalnum(static_cast<unsigned char>(c)); }, '_');
   return name;
 }
 

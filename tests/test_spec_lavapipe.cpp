@@ -69,8 +69,8 @@ bool in_msaa_scissor_leak(const Scene& scene, uint32_t x, uint32_t y, uint32_t s
 }
 
 // Every violation of the known deviation's scene lies in the leak band, and the leak is seen.
-void expect_only_the_scissor_leak(const Scene& scene, const std::vector<CoverageClass>& classes,
-                                  const RenderResult& vk, const Violations& v) {
+void expect_only_the_scissor_leak(const Scene& scene, const std::vector<CoverageClass>& classes, const RenderResult& vk,
+                                  const Violations& v) {
   EXPECT_EQ(v.must_missing, 0u) << describe(v);
   EXPECT_GT(v.must_not_covered, 0u) << "the profile should report lavapipe's scissor leak";
   for (uint32_t y = 0; y < vk.height; ++y)
@@ -78,7 +78,8 @@ void expect_only_the_scissor_leak(const Scene& scene, const std::vector<Coverage
       for (uint32_t s = 0; s < vk.samples; ++s) {
         const size_t i = vk.index(x, y, s);
         if (classes[i] == CoverageClass::MustNot && vk.owner[i] != kOwnerBackground) {
-          EXPECT_TRUE(in_msaa_scissor_leak(scene, x, y, s)) << "covered MustNot sample (" << x << ", " << y << ") " << s;
+          EXPECT_TRUE(in_msaa_scissor_leak(scene, x, y, s))
+              << "covered MustNot sample (" << x << ", " << y << ") " << s;
         }
       }
 }
@@ -117,9 +118,10 @@ TEST(SpecProfileLavapipe, AcceptsLavapipeOnEveryBuiltinScene) {
     total.must_not_covered += v.must_not_covered;
     ++judged;
   }
-  fmt::print("{} scenes judged ({} not supported): Must {}, May {}, MustNot {} samples; {} Must-missing, {} "
-             "MustNot-covered\n",
-             judged, not_supported, total.must, total.may, total.must_not, total.must_missing, total.must_not_covered);
+  fmt::print(
+      "{} scenes judged ({} not supported): Must {}, May {}, MustNot {} samples; {} Must-missing, {} "
+      "MustNot-covered\n",
+      judged, not_supported, total.must, total.may, total.must_not, total.must_missing, total.must_not_covered);
   EXPECT_GT(judged, 40u);
   EXPECT_GT(total.must, 0u);
 }

@@ -7,8 +7,8 @@
 
 #include <gtest/gtest.h>
 
-#include "cpu_raster/spec/spec_profile.hpp"
 #include "cpu_raster/spec/spec_primitives.hpp"
+#include "cpu_raster/spec/spec_profile.hpp"
 #include "cpu_raster/spec/subpixel.hpp"
 #include "cpu_raster/spec/triangle_coverage.hpp"
 #include "model/errors.hpp"
@@ -100,8 +100,8 @@ TEST(SpecProfile, HalfAQuadKeepsItsDiagonalMay) {
 // x + y = 15 (centres with x + y = 14) is promoted except at the two corners it shares with them.
 TEST(SpecProfile, QuadOuterEdgesThroughCentresAreMayDiagonalIsMust) {
   Scene scene = make_scene(16, 16);
-  scene.draws.push_back(window_triangles(scene, {{2.5, 2.5}, {12.5, 2.5}, {2.5, 12.5}, {12.5, 2.5}, {12.5, 12.5},
-                                                 {2.5, 12.5}}));
+  scene.draws.push_back(
+      window_triangles(scene, {{2.5, 2.5}, {12.5, 2.5}, {2.5, 12.5}, {12.5, 2.5}, {12.5, 12.5}, {2.5, 12.5}}));
   const std::vector<std::string> rows = class_rows(scene, classify(scene));
   for (uint32_t x = 3; x <= 11; ++x) EXPECT_EQ(rows[14 - x][x], 'M') << "diagonal at x " << x;
   for (uint32_t k = 2; k <= 12; ++k) {
@@ -272,7 +272,8 @@ TEST(SpecProfile, WideLinesAreMustOnlyInsideTheViewport) {
   line.state.line_mode = LineMode::Rectangular;
   line.state.line_width = 6;
   // Window (4, 4) to (28, 28) through the viewport [0, 16] x [0, 32]: clip x = x / 8 - 1.
-  line.positions_clip = {glm::vec4(4.0f / 8 - 1, 4.0f / 16 - 1, 0.5f, 1), glm::vec4(28.0f / 8 - 1, 28.0f / 16 - 1, 0.5f, 1)};
+  line.positions_clip = {glm::vec4(4.0f / 8 - 1, 4.0f / 16 - 1, 0.5f, 1),
+                         glm::vec4(28.0f / 8 - 1, 28.0f / 16 - 1, 0.5f, 1)};
   scene.draws.push_back(line);
   const std::vector<std::string> rows = class_rows(scene, classify(scene));
   EXPECT_EQ(rows[10][10], 'M');

@@ -58,7 +58,8 @@ glm::vec4 random_vertex(const Scene& scene) {
   const double x = window_coordinate(scene.width, coin(20) ? 24 : 2);
   const double y = window_coordinate(scene.height, coin(20) ? 24 : 2);
   const Viewport v = scene.effective_viewport();
-  const double z_window = coin(15) ? pick(-40, 140) / 100.0 : v.min_depth + (v.max_depth - v.min_depth) * pick(0, 100) / 100.0;
+  const double z_window =
+      coin(15) ? pick(-40, 140) / 100.0 : v.min_depth + (v.max_depth - v.min_depth) * pick(0, 100) / 100.0;
   const float w = coin(10) ? -float(pick(1, 8)) / 4 : (coin(70) ? 1.0f : float(pick(1, 16)) / 4);
   return pixels_to_clip(v, glm::vec4(float(x), float(y), float(z_window), w));
 }
@@ -70,7 +71,9 @@ RasterState random_state(bool lines) {
   s.depth.test_enable = coin(80);
   s.depth.write_enable = coin(80);
   s.depth.compare_op = coin(70) ? CompareOp::Less : CompareOp(pick(0, 7));
-  if (coin(25)) s.depth_bias = DepthBias{true, float(pick(-40, 40)), float(pick(-8, 8)) / 4, coin(50) ? 0.0f : float(pick(-4, 4)) / 64};
+  if (coin(25))
+    s.depth_bias =
+        DepthBias{true, float(pick(-40, 40)), float(pick(-8, 8)) / 4, coin(50) ? 0.0f : float(pick(-4, 4)) / 64};
   s.depth_clamp = coin(20);
   if (coin(15)) s.depth_clip = coin(50);
   if (lines) {
@@ -95,10 +98,10 @@ Draw random_draw(const Scene& scene, Topology topology, int primitives) {
   Draw draw;
   draw.topology = topology;
   draw.state = random_state(is_line_topology(topology));
-  const int vertices = topology == Topology::TriangleList  ? 3 * primitives
-                       : topology == Topology::LineList    ? 2 * primitives
-                       : topology == Topology::LineStrip   ? primitives + 1
-                                                           : primitives + 2;
+  const int vertices = topology == Topology::TriangleList ? 3 * primitives
+                       : topology == Topology::LineList   ? 2 * primitives
+                       : topology == Topology::LineStrip  ? primitives + 1
+                                                          : primitives + 2;
   for (int k = 0; k < vertices; ++k) draw.positions_clip.push_back(random_vertex(scene));
   if (coin(30) && topology == Topology::TriangleList) {  // reuse vertices: shared edges
     draw.indices.clear();

@@ -35,7 +35,8 @@ inline Scene make_scene(uint32_t w, uint32_t h, uint32_t samples = 1) {
 // A triangle list from window-space vertices at depth z.
 inline Draw window_triangles(const Scene& scene, const std::vector<glm::dvec2>& xy, float z = 0.5f) {
   Draw draw;
-  for (const glm::dvec2& p : xy) draw.positions_clip.push_back(clip_from_window(p.x, p.y, z, scene.width, scene.height));
+  for (const glm::dvec2& p : xy)
+    draw.positions_clip.push_back(clip_from_window(p.x, p.y, z, scene.width, scene.height));
   return draw;
 }
 
@@ -55,7 +56,7 @@ inline CpuOptions spec_options(uint32_t bits = 8) {
 struct Violations {
   uint64_t must_missing = 0, must_not_covered = 0;
   uint64_t must = 0, may = 0, must_not = 0;  // the class counts
-  std::string first;                          // "" when there is none
+  std::string first;                         // "" when there is none
   bool any() const { return must_missing + must_not_covered > 0; }
 };
 
@@ -76,7 +77,8 @@ inline Violations judge(const std::vector<CoverageClass>& classes, const RenderR
         v.must_missing += missing;
         v.must_not_covered += unexpected;
         if ((missing || unexpected) && v.first.empty())
-          v.first = fmt::format("first at ({}, {}) sample {}: {}", x, y, s, missing ? "Must but uncovered" : "MustNot but covered");
+          v.first = fmt::format("first at ({}, {}) sample {}: {}", x, y, s,
+                                missing ? "Must but uncovered" : "MustNot but covered");
       }
   return v;
 }
@@ -90,10 +92,10 @@ inline std::string describe(const Violations& v) {
 inline std::string describe(const Scene& scene) {
   const Viewport v = scene.effective_viewport();
   const Rect2D sc = scene.effective_scissor();
-  std::string text = fmt::format("{}x{} samples {} depth {} clear {} viewport ({}, {}, {}, {}, {}..{}) scissor ({}, {}, {}, {})\n",
-                                 scene.width, scene.height, scene.samples, to_string(scene.depth_format),
-                                 scene.depth_clear, v.x, v.y, v.width, v.height, v.min_depth, v.max_depth, sc.x, sc.y,
-                                 sc.width, sc.height);
+  std::string text =
+      fmt::format("{}x{} samples {} depth {} clear {} viewport ({}, {}, {}, {}, {}..{}) scissor ({}, {}, {}, {})\n",
+                  scene.width, scene.height, scene.samples, to_string(scene.depth_format), scene.depth_clear, v.x, v.y,
+                  v.width, v.height, v.min_depth, v.max_depth, sc.x, sc.y, sc.width, sc.height);
   for (const Draw& d : scene.draws) {
     const RasterState& s = d.state;
     text += fmt::format("draw {} cull {} front {} test {} op {} bias {} ({}, {}, {}) clamp {} clip {} line {} w {}\n",

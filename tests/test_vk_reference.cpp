@@ -4,13 +4,13 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
-#include <utility>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <fmt/core.h>
-#include <glm/vec2.hpp>
 #include <gtest/gtest.h>
+#include <glm/vec2.hpp>
 
 #include "model/errors.hpp"
 #include "model/host.hpp"

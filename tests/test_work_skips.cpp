@@ -59,7 +59,8 @@ uint64_t expect_same_values(const PlaneSet& planes, const PixelRect& box) {
   for (int32_t py = box.y0; py <= box.y1; ++py) {
     for (int32_t px = box.x0; px <= box.x1; ++px) {
       for (uint32_t s = 0; s < 5; ++s) {
-        const cpu::SamplePoint p = s == 0 ? cpu::sample_point(px, py, 0, false) : cpu::sample_point(px, py, s - 1, true);
+        const cpu::SamplePoint p =
+            s == 0 ? cpu::sample_point(px, py, 0, false) : cpu::sample_point(px, py, s - 1, true);
         const int32_t dx = int32_t(p.x_fixed - frame->x0_fixed), dy = int32_t(p.y_fixed - frame->y0_fixed);
         for (uint32_t i = 0; i < planes.count; ++i) {
           const int64_t wide = cpu::edge_value(planes.plane[i], p.x_fixed, p.y_fixed);
@@ -83,14 +84,17 @@ TEST(Edges32, LargestBoxMatches64BitAtEverySample) {
   // windings (the edges of one are inclusive where the other's are not).
   const PixelRect box{3000, 1700, 3063, 1763};
   const int64_t x0 = 3000 * 256, y0 = 1700 * 256, d = cpu::kEdges32MaxDelta;
-  EXPECT_EQ(expect_same_values(triangle_planes(at(x0, y0), at(x0 + 37, y0 + d), at(x0 + d, y0 + d - 5)), box), 64u * 64 * 5);
+  EXPECT_EQ(expect_same_values(triangle_planes(at(x0, y0), at(x0 + 37, y0 + d), at(x0 + d, y0 + d - 5)), box),
+            64u * 64 * 5);
   expect_same_values(triangle_planes(at(x0, y0 + d), at(x0 + d, y0), at(x0 + 1, y0 + 3)), box);
   expect_same_values(triangle_planes(at(x0 + d, y0 + d), at(x0, y0 + d / 2), at(x0 + d, y0)), box);
 }
 
 TEST(Edges32, NegativeCoordinatesMatch) {
   const PixelRect box{-40, -17, 23, 10};  // crosses both axes
-  expect_same_values(triangle_planes(at(-40 * 256 + 3, -17 * 256), at(23 * 256 + 255, 2 * 256 + 7), at(-3 * 256, 10 * 256 + 200)), box);
+  expect_same_values(
+      triangle_planes(at(-40 * 256 + 3, -17 * 256), at(23 * 256 + 255, 2 * 256 + 7), at(-3 * 256, 10 * 256 + 200)),
+      box);
   expect_same_values(triangle_planes(at(-40 * 256, 10 * 256), at(-1, -1), at(0, 0)), box);
 }
 
@@ -164,7 +168,8 @@ TEST(Edges32, RandomTrianglesWithScissorPlanesMatch) {
     const PixelRect box{bx, by, bx + w - 1, by + h - 1};
     // Vertices anywhere the deltas allow: within 62 px of the box origin, any sub-pixel position.
     std::array<FixedPoint, 3> v;
-    for (FixedPoint& p : v) p = at(int64_t(bx) * 256 + rng.integer(-256, 62 * 256), int64_t(by) * 256 + rng.integer(-256, 62 * 256));
+    for (FixedPoint& p : v)
+      p = at(int64_t(bx) * 256 + rng.integer(-256, 62 * 256), int64_t(by) * 256 + rng.integer(-256, 62 * 256));
     PlaneSet planes = triangle_planes(v[0], v[1], v[2]);
     const PixelRect region{bx + rng.integer(0, w / 2), by + rng.integer(0, h / 2), bx + w - 1 - rng.integer(0, w / 2),
                            by + h - 1 - rng.integer(0, h / 2)};
@@ -218,7 +223,8 @@ TEST(ClipSkip, NonFiniteDistancesTheClipTestLetsThroughStillPassUnchanged) {
   const float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
   const float huge = 3e38f;
   // w = +Inf: inside every plane, but w - x = Inf, which makes do_clip_tri discard.
-  const auto a = clip_vertex({0.5f, 0.25f, 0.5f, inf}), b = clip_vertex({0, 0, 0.5f, 1}), c = clip_vertex({0.5f, 0, 0.5f, 1});
+  const auto a = clip_vertex({0.5f, 0.25f, 0.5f, inf}), b = clip_vertex({0, 0, 0.5f, 1}),
+             c = clip_vertex({0.5f, 0, 0.5f, 1});
   ASSERT_EQ(a.clip_mask | b.clip_mask | c.clip_mask, 0u);
   expect_unchanged({a, b, c}, cpu::tested_clip_planes(true));
   // x + w overflows to +Inf (the test computes the same sum, 0 > Inf is false).
@@ -262,7 +268,8 @@ TEST(BiasSkip, TermsFormedWithZeroFactorsLeaveTheOffsetAtZero) {
   EXPECT_EQ(formed.offset, 0.0f);
   // A triangle with zero float area: m is Inf or NaN, m * 0 is NaN; the offset must stay 0.
   const std::array<cpu::WindowVertex, 3> flat{{{1, 1, 0.1f}, {2, 2, 0.7f}, {3, 3, 0.4f}}};
-  const cpu::DepthOffset nan_terms = cpu::triangle_depth_offset(flat, DepthBias{true, 0, 0, 0}, DepthFormat::D32Sfloat, false);
+  const cpu::DepthOffset nan_terms =
+      cpu::triangle_depth_offset(flat, DepthBias{true, 0, 0, 0}, DepthFormat::D32Sfloat, false);
   EXPECT_FALSE(std::isfinite(nan_terms.m));
   EXPECT_EQ(nan_terms.offset, 0.0f);
   EXPECT_FALSE(std::signbit(nan_terms.offset));
@@ -293,9 +300,10 @@ std::string first_difference(const RenderResult& a, const RenderResult& b) {
   if (a.owner.size() != b.owner.size() || a.depth_raw.size() != b.depth_raw.size()) return "different sizes";
   for (size_t i = 0; i < a.owner.size(); ++i)
     if (a.owner[i] != b.owner[i] || (!a.depth_raw.empty() && a.depth_raw[i] != b.depth_raw[i]))
-      return fmt::format("sample index {} (x {}, y {}): owner {} / {}{}", i, i / a.samples % a.width, i / a.samples / a.width,
-                         differential::describe_owner(a.owner[i]), differential::describe_owner(b.owner[i]),
-                         a.depth_raw.empty() ? "" : fmt::format(", depth {:#x} / {:#x}", a.depth_raw[i], b.depth_raw[i]));
+      return fmt::format(
+          "sample index {} (x {}, y {}): owner {} / {}{}", i, i / a.samples % a.width, i / a.samples / a.width,
+          differential::describe_owner(a.owner[i]), differential::describe_owner(b.owner[i]),
+          a.depth_raw.empty() ? "" : fmt::format(", depth {:#x} / {:#x}", a.depth_raw[i], b.depth_raw[i]));
   return "";
 }
 
@@ -319,7 +327,8 @@ void expect_skips_change_nothing(const Scene& scene) {
     options.skips = config.skips;
     results.push_back(render_cpu(scene, options));
     EXPECT_TRUE(results.back().owner == results.front().owner && results.back().depth_raw == results.front().depth_raw)
-        << scene.name << ", " << config.name << " against all skips on: " << first_difference(results.front(), results.back());
+        << scene.name << ", " << config.name
+        << " against all skips on: " << first_difference(results.front(), results.back());
   }
   if (!vulkan) return;
   VulkanRenderer& renderer = differential::shared_renderer();
@@ -391,16 +400,16 @@ struct SkipScene {
 std::vector<SkipScene> skip_scene_list() {
   using skip_scenes::MeshSpec;
   return {
-      {"inside", MeshSpec{128, 16}},                                            // clip: nothing to clip
-      {"crossing", MeshSpec{128, 16, 1.4f}},                                    // clip: the border triangles
-      {"depthless", MeshSpec{128, 16, 0.95f, DepthFormat::None}},               // depth: no attachment
+      {"inside", MeshSpec{128, 16}},                               // clip: nothing to clip
+      {"crossing", MeshSpec{128, 16, 1.4f}},                       // clip: the border triangles
+      {"depthless", MeshSpec{128, 16, 0.95f, DepthFormat::None}},  // depth: no attachment
       {"depthless_crossing", MeshSpec{128, 12, 1.3f, DepthFormat::None}},
       {"test_off", MeshSpec{128, 16, 0.95f, DepthFormat::D16Unorm}, 1, false},  // depth: attachment, test off
       {"bias_on", MeshSpec{128, 16, 0.95f, DepthFormat::D32Sfloat, true}},      // bias: applied
       {"bias_off", MeshSpec{128, 16, 0.95f, DepthFormat::D32Sfloat}},           // bias: off
       {"tiny_boxes", MeshSpec{128, 64}},                                        // edges32: 2 px cells
       {"boxes_at_the_limit", MeshSpec{256, 4, 0.95f, DepthFormat::X8D24Unorm, false, 3}},  // ~60 px cells
-      {"huge_boxes", MeshSpec{1024, 2, 1.2f}},                                  // edges32: 64-bit only
+      {"huge_boxes", MeshSpec{1024, 2, 1.2f}},                                             // edges32: 64-bit only
       {"msaa", MeshSpec{128, 12, 1.2f, DepthFormat::X8D24Unorm, true}, 4},
       {"msaa_depthless", MeshSpec{128, 12, 0.95f, DepthFormat::None}, 4},
   };
@@ -466,8 +475,10 @@ SceneCounts count(const Scene& scene) {
     if (!o.rasterized()) return;
     ++c.rasterized;
     c.with_depth_plane += o.raster.has_depth;
-    if (cpu::make_edge_frame32(o.raster.planes, o.raster.visit)) ++c.boxes32;
-    else ++c.boxes64;
+    if (cpu::make_edge_frame32(o.raster.planes, o.raster.visit))
+      ++c.boxes32;
+    else
+      ++c.boxes64;
   });
   return c;
 }

@@ -11,15 +11,23 @@
 namespace rastercmp::vk {
 
 ImageSpec owner_image_spec(const AttachmentConfig& config, uint32_t width, uint32_t height) {
-  ImageSpec spec{kOwnerFormat, width, height, to_vk_samples(config.samples), VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT,
+  ImageSpec spec{kOwnerFormat,
+                 width,
+                 height,
+                 to_vk_samples(config.samples),
+                 VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT,
                  VK_IMAGE_ASPECT_COLOR_BIT};
   spec.usage |= config.samples == 1 ? VK_IMAGE_USAGE_TRANSFER_SRC_BIT : VK_IMAGE_USAGE_SAMPLED_BIT;
   return spec;
 }
 
 ImageSpec depth_image_spec(const AttachmentConfig& config, uint32_t width, uint32_t height) {
-  ImageSpec spec{to_vk_format(config.depth_format), width, height, to_vk_samples(config.samples),
-                 VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT};
+  ImageSpec spec{to_vk_format(config.depth_format),
+                 width,
+                 height,
+                 to_vk_samples(config.samples),
+                 VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
+                 VK_IMAGE_ASPECT_DEPTH_BIT};
   if (config.samples == 1) spec.usage |= VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
   return spec;
 }
@@ -34,9 +42,9 @@ void require_attachment_support(const Context& context, const AttachmentConfig& 
   require_image_support(context, owner_image_spec(config, width, height),
                         fmt::format("an R32_UINT owner attachment with {} samples", config.samples));
   if (config.depth_format == DepthFormat::None) return;
-  require_image_support(context, depth_image_spec(config, width, height),
-                        fmt::format("a {} depth attachment with {} samples", to_string(config.depth_format),
-                                    config.samples));
+  require_image_support(
+      context, depth_image_spec(config, width, height),
+      fmt::format("a {} depth attachment with {} samples", to_string(config.depth_format), config.samples));
 }
 
 Attachments create_attachments(const Context& context, VkRenderPass render_pass, const AttachmentConfig& config,

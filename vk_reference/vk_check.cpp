@@ -33,8 +33,8 @@ const char* result_name(VkResult result) {
 
 void check(VkResult result, const char* call) {
   if (result == VK_SUCCESS) return;
-  const std::string what = std::string(call) + " failed: " + result_name(result) + " (" +
-                           std::to_string(static_cast<int>(result)) + ")";
+  const std::string what =
+      std::string(call) + " failed: " + result_name(result) + " (" + std::to_string(static_cast<int>(result)) + ")";
   switch (result) {
     case VK_ERROR_DEVICE_LOST: throw DeviceError(what, false);
     case VK_ERROR_OUT_OF_HOST_MEMORY:

@@ -111,8 +111,8 @@ uint32_t Context::memory_type(uint32_t type_bits, VkMemoryPropertyFlags required
     const bool allowed = type_bits & (1u << i);
     if (allowed && (memory_.memoryTypes[i].propertyFlags & required) == required) return i;
   }
-  throw NotSupportedError(fmt::format("{} has no memory type with properties {:#x} among types {:#x}",
-                                      info_.name, required, type_bits));
+  throw NotSupportedError(
+      fmt::format("{} has no memory type with properties {:#x} among types {:#x}", info_.name, required, type_bits));
 }
 
 }  // namespace rastercmp::vk

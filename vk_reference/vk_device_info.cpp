@@ -30,8 +30,7 @@ std::string version_string(uint32_t version) {
 }
 
 bool driver_properties_available(VkPhysicalDevice device, uint32_t api_version) {
-  return api_version >= VK_API_VERSION_1_2 ||
-         has_device_extension(device, VK_KHR_DRIVER_PROPERTIES_EXTENSION_NAME);
+  return api_version >= VK_API_VERSION_1_2 || has_device_extension(device, VK_KHR_DRIVER_PROPERTIES_EXTENSION_NAME);
 }
 
 std::vector<DepthFormat> renderable_depth_formats(VkPhysicalDevice device) {
@@ -66,8 +65,7 @@ bool contains_ignoring_case(const std::string& text, const std::string& part) {
 
 bool has_device_extension(VkPhysicalDevice device, const char* name) {
   uint32_t count = 0;
-  check(vkEnumerateDeviceExtensionProperties(device, nullptr, &count, nullptr),
-        "vkEnumerateDeviceExtensionProperties");
+  check(vkEnumerateDeviceExtensionProperties(device, nullptr, &count, nullptr), "vkEnumerateDeviceExtensionProperties");
   std::vector<VkExtensionProperties> extensions(count);
   check(vkEnumerateDeviceExtensionProperties(device, nullptr, &count, extensions.data()),
         "vkEnumerateDeviceExtensionProperties");
@@ -130,10 +128,9 @@ DeviceInfo describe_device(VkPhysicalDevice device, uint32_t index) {
   info.api_version = version_string(p.apiVersion);
   info.sub_pixel_precision_bits = p.limits.subPixelPrecisionBits;
   info.depth_formats = renderable_depth_formats(device);
-  info.sample_counts =
-      sample_count_list(p.limits.framebufferColorSampleCounts & p.limits.framebufferDepthSampleCounts);
-  info.is_lavapipe = (has_driver && driver.driverID == VK_DRIVER_ID_MESA_LLVMPIPE) ||
-                     info.name.find("llvmpipe") != std::string::npos;
+  info.sample_counts = sample_count_list(p.limits.framebufferColorSampleCounts & p.limits.framebufferDepthSampleCounts);
+  info.is_lavapipe =
+      (has_driver && driver.driverID == VK_DRIVER_ID_MESA_LLVMPIPE) || info.name.find("llvmpipe") != std::string::npos;
   // docs/lavapipe-rules.md §1.3, §7.1: whether lavapipe's JIT fuses llvm.fmuladd here.
   info.fma = info.is_lavapipe && lavapipe_fuses_on_this_host();
   return info;
@@ -149,20 +146,20 @@ std::string format_device_list(const std::vector<DeviceInfo>& devices) {
 }
 
 uint32_t choose_device(const std::vector<DeviceInfo>& devices, const std::string& selector) {
-  const bool is_index = !selector.empty() && std::all_of(selector.begin(), selector.end(),
-                                                         [](unsigned char c) { return std::isdigit(c); });
+  const bool is_index = !selector.empty() &&
+                        std::all_of(selector.begin(), selector.end(), [](unsigned char c) { return std::isdigit(c); });
   if (is_index) {
     const unsigned long index = selector.size() <= 9 ? std::stoul(selector) : devices.size();
     if (index < devices.size()) return static_cast<uint32_t>(index);
-    throw EnvironmentError(fmt::format("no Vulkan device with index {}; devices: {}", selector,
-                                       format_device_list(devices)));
+    throw EnvironmentError(
+        fmt::format("no Vulkan device with index {}; devices: {}", selector, format_device_list(devices)));
   }
   const std::string wanted = selector.empty() ? std::string("llvmpipe") : selector;
   for (const DeviceInfo& d : devices) {
     if (contains_ignoring_case(d.name, wanted)) return d.index;
   }
-  const std::string hint = selector.empty() ? std::string("; for lavapipe, apt-get install mesa-vulkan-drivers")
-                                            : std::string();
+  const std::string hint =
+      selector.empty() ? std::string("; for lavapipe, apt-get install mesa-vulkan-drivers") : std::string();
   throw EnvironmentError(fmt::format("no Vulkan device whose name contains \"{}\"; devices: {}{}", wanted,
                                      format_device_list(devices), hint));
 }

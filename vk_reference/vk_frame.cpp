@@ -34,8 +34,8 @@ Geometry upload_geometry(const Context& context, PipelineCache& pipelines, const
     geometry.calls.push_back(call);
   }
   // A buffer may not be empty; a scene of empty draws still gets a (never read) vertex buffer.
-  geometry.vertices =
-      create_host_buffer(context, std::max<VkDeviceSize>(vertex_bytes, sizeof(glm::vec4)), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+  geometry.vertices = create_host_buffer(context, std::max<VkDeviceSize>(vertex_bytes, sizeof(glm::vec4)),
+                                         VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
   if (index_bytes > 0) geometry.indices = create_host_buffer(context, index_bytes, VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
   for (size_t i = 0; i < scene.draws.size(); ++i) {
     const Draw& draw = scene.draws[i];
@@ -198,7 +198,8 @@ RenderResult Frame::read_back() const {
     const auto* texels = static_cast<const unsigned char*>(read_back_.depth->mapped);
     const uint32_t texel_bytes = depth_copy_texel_bytes(depth_format_);
     result.depth_raw.resize(count);
-    for (size_t i = 0; i < count; ++i) result.depth_raw[i] = depth_raw_from_copy(depth_format_, texels + i * texel_bytes);
+    for (size_t i = 0; i < count; ++i)
+      result.depth_raw[i] = depth_raw_from_copy(depth_format_, texels + i * texel_bytes);
   }
   return result;
 }

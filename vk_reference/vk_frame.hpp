@@ -36,8 +36,8 @@ struct Geometry {
 
 // Where the recorded copies put the results. Multisampled depth is not read back.
 struct ReadBack {
-  Buffer owner;                           // width*height*samples uint32
-  std::optional<Buffer> depth;            // single-sample scenes with depth: the depth-aspect copy
+  Buffer owner;                                // width*height*samples uint32
+  std::optional<Buffer> depth;                 // single-sample scenes with depth: the depth-aspect copy
   std::optional<OwnerGather::Binding> gather;  // multisampled scenes
 };
 
@@ -70,8 +70,8 @@ class Frame final : public VulkanRenderer::Prepared {
 void check_scene(const Scene& scene);
 
 // Records the whole frame into `commands` (between begin and end).
-void record_frame(VkCommandBuffer commands, const Scene& scene, VkRenderPass render_pass,
-                  VkPipelineLayout layout, const Attachments& attachments, const Geometry& geometry,
-                  const ReadBack& read_back, const OwnerGather* gather);
+void record_frame(VkCommandBuffer commands, const Scene& scene, VkRenderPass render_pass, VkPipelineLayout layout,
+                  const Attachments& attachments, const Geometry& geometry, const ReadBack& read_back,
+                  const OwnerGather* gather);
 
 }  // namespace rastercmp::vk

@@ -160,8 +160,7 @@ void OwnerGather::record(VkCommandBuffer commands, const Binding& binding) const
   vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.get());
   for (const Band& band : binding.bands) {
     const GatherConstants constants{binding.width, binding.samples, band.first_row, band.rows};
-    vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0, 1, &band.set, 0,
-                            nullptr);
+    vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0, 1, &band.set, 0, nullptr);
     vkCmdPushConstants(commands, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof constants, &constants);
     vkCmdDispatch(commands, (binding.width + kLocalSize - 1) / kLocalSize, (band.rows + kLocalSize - 1) / kLocalSize,
                   1);

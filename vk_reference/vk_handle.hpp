@@ -14,8 +14,7 @@ template <typename Handle>
 class Owned {
  public:
   Owned() = default;
-  Owned(Handle handle, std::function<void(Handle)> destroy)
-      : handle_(handle), destroy_(std::move(destroy)) {}
+  Owned(Handle handle, std::function<void(Handle)> destroy) : handle_(handle), destroy_(std::move(destroy)) {}
   ~Owned() { reset(); }
 
   Owned(const Owned&) = delete;
@@ -46,8 +45,7 @@ class Owned {
 
 // Owns a handle created from `device` and destroyed by vkDestroyX(device, handle, nullptr).
 template <typename Handle>
-Owned<Handle> own(VkDevice device, void (*destroy)(VkDevice, Handle, const VkAllocationCallbacks*),
-                  Handle handle) {
+Owned<Handle> own(VkDevice device, void (*destroy)(VkDevice, Handle, const VkAllocationCallbacks*), Handle handle) {
   return Owned<Handle>(handle, [device, destroy](Handle h) { destroy(device, h, nullptr); });
 }
 

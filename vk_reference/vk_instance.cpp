@@ -27,8 +27,7 @@ const char* severity_name(VkDebugUtilsMessageSeverityFlagBitsEXT severity) {
 
 VKAPI_ATTR VkBool32 VKAPI_CALL collect_message(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
                                                VkDebugUtilsMessageTypeFlagsEXT,
-                                               const VkDebugUtilsMessengerCallbackDataEXT* data,
-                                               void* user_data) {
+                                               const VkDebugUtilsMessengerCallbackDataEXT* data, void* user_data) {
   auto* log = static_cast<MessageLog*>(user_data);
   std::string text = severity_name(severity);
   text += ": ";
@@ -44,8 +43,7 @@ VkDebugUtilsMessengerCreateInfoEXT messenger_info(MessageLog* log) {
   info.sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT;
   info.messageSeverity =
       VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
-  info.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
-                     VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+  info.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
                      VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
   info.pfnUserCallback = collect_message;
   info.pUserData = log;
@@ -87,8 +85,8 @@ Instance::Instance(bool validate) {
   VkInstance instance = VK_NULL_HANDLE;
   const VkResult created = vkCreateInstance(&info, nullptr, &instance);
   if (created == VK_ERROR_INCOMPATIBLE_DRIVER) {
-    throw EnvironmentError(std::string("no Vulkan driver found (vkCreateInstance: ") +
-                           result_name(created) + "); " + kInstallVulkanHint);
+    throw EnvironmentError(std::string("no Vulkan driver found (vkCreateInstance: ") + result_name(created) + "); " +
+                           kInstallVulkanHint);
   }
   check(created, "vkCreateInstance");
   instance_ = Owned<VkInstance>(instance, [](VkInstance h) { vkDestroyInstance(h, nullptr); });

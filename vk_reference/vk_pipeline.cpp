@@ -60,10 +60,8 @@ Owned<VkRenderPass> create_render_pass(VkDevice device, const AttachmentConfig& 
   after_read_back.dstSubpass = 0;
   after_read_back.srcStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
   after_read_back.dstStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT |
-                                 VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT |
-                                 VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
-  after_read_back.dstAccessMask =
-      VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+                                 VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
+  after_read_back.dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
   VkRenderPassCreateInfo info{};
   info.sType = VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO;
   info.attachmentCount = has_depth ? 2 : 1;
@@ -157,7 +155,7 @@ void require_state_support(const Context& context, Topology topology, const Rast
   if (state.line_mode == LineMode::Default) return;
   const std::string why = std::string("line mode ") + to_string(state.line_mode);
   require(caps.line_rasterization_ext, context, "VK_EXT_line_rasterization", why);
-  const bool feature = state.line_mode == LineMode::Rectangular   ? caps.rectangular_lines
+  const bool feature = state.line_mode == LineMode::Rectangular ? caps.rectangular_lines
                        : state.line_mode == LineMode::Bresenham ? caps.bresenham_lines
                                                                 : caps.smooth_lines;
   require(feature, context, "the matching VK_EXT_line_rasterization feature", why);
@@ -166,17 +164,17 @@ void require_state_support(const Context& context, Topology topology, const Rast
   // with or without validation). Smooth-line coverage is outside the CPU model anyway
   // (docs/lavapipe-rules.md §5.2), so refuse it instead of taking the process down.
   if (state.line_mode == LineMode::RectangularSmooth && rasterizes_lines && context.info().is_lavapipe) {
-    throw NotSupportedError(fmt::format("{}: rectangular_smooth lines crash lavapipe when drawn into the "
-                                        "R32_UINT owner attachment",
-                                        context.info().name));
+    throw NotSupportedError(
+        fmt::format("{}: rectangular_smooth lines crash lavapipe when drawn into the "
+                    "R32_UINT owner attachment",
+                    context.info().name));
   }
 }
 
 PipelineCache::PipelineCache(const Context& context)
     : context_(context),
       vertex_(create_shader_module(context.device(), passthrough_vert, sizeof(passthrough_vert))),
-      vertex_points_(
-          create_shader_module(context.device(), passthrough_points_vert, sizeof(passthrough_points_vert))),
+      vertex_points_(create_shader_module(context.device(), passthrough_points_vert, sizeof(passthrough_points_vert))),
       fragment_(create_shader_module(context.device(), owner_frag, sizeof(owner_frag))),
       layout_(create_graphics_layout(context.device())) {}
 

@@ -85,10 +85,9 @@ VkBufferImageCopy whole_image(const Scene& scene, VkImageAspectFlags aspect) {
 // Single sample: owner and the depth aspect copied to buffers as they are stored.
 void record_copies(VkCommandBuffer commands, const Scene& scene, const Attachments& attachments,
                    const ReadBack& read_back) {
-  std::vector<VkImageMemoryBarrier> barriers = {
-      layout_barrier(attachments.owner.image.get(), VK_IMAGE_ASPECT_COLOR_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
-                     VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_ACCESS_TRANSFER_READ_BIT,
-                     VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL)};
+  std::vector<VkImageMemoryBarrier> barriers = {layout_barrier(
+      attachments.owner.image.get(), VK_IMAGE_ASPECT_COLOR_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
+      VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_ACCESS_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL)};
   if (attachments.depth) {
     barriers.push_back(layout_barrier(attachments.depth->image.get(), VK_IMAGE_ASPECT_DEPTH_BIT,
                                       VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
@@ -117,8 +116,8 @@ void record_gather(VkCommandBuffer commands, const Attachments& attachments, con
   const VkImageMemoryBarrier to_sampled = layout_barrier(
       attachments.owner.image.get(), VK_IMAGE_ASPECT_COLOR_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
       VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_ACCESS_SHADER_READ_BIT, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-  vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                       0, 0, nullptr, 0, nullptr, 1, &to_sampled);
+  vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0,
+                       0, nullptr, 0, nullptr, 1, &to_sampled);
   gather.record(commands, *read_back.gather);
   host_read_barrier(commands, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT);
 }

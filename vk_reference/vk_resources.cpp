@@ -37,8 +37,8 @@ Buffer create_host_buffer(const Context& context, VkDeviceSize size, VkBufferUsa
   vkGetBufferMemoryRequirements(device, handle, &requirements);
   // Coherent memory: host writes before vkQueueSubmit and reads after the fence need no
   // flush or invalidate. Every device has such a type (Vulkan spec, "Memory Types").
-  buffer.memory = allocate(context, requirements,
-                           VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+  buffer.memory =
+      allocate(context, requirements, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
   check(vkBindBufferMemory(device, handle, buffer.memory.get(), 0), "vkBindBufferMemory");
   check(vkMapMemory(device, buffer.memory.get(), 0, VK_WHOLE_SIZE, 0, &buffer.mapped), "vkMapMemory");
   return buffer;
@@ -83,8 +83,7 @@ Image create_image(const Context& context, const ImageSpec& spec) {
 void require_image_support(const Context& context, const ImageSpec& spec, const std::string& role) {
   VkImageFormatProperties properties{};
   const VkResult result = vkGetPhysicalDeviceImageFormatProperties(
-      context.physical_device(), spec.format, VK_IMAGE_TYPE_2D, VK_IMAGE_TILING_OPTIMAL, spec.usage, 0,
-      &properties);
+      context.physical_device(), spec.format, VK_IMAGE_TYPE_2D, VK_IMAGE_TILING_OPTIMAL, spec.usage, 0, &properties);
   const std::string what = fmt::format("{} on {} (usage {:#x})", role, context.info().name, spec.usage);
   if (result == VK_ERROR_FORMAT_NOT_SUPPORTED) throw NotSupportedError(what + " is not supported");
   check(result, "vkGetPhysicalDeviceImageFormatProperties");
@@ -92,8 +91,8 @@ void require_image_support(const Context& context, const ImageSpec& spec, const 
     throw NotSupportedError(fmt::format("{} does not support {} samples", what, static_cast<int>(spec.samples)));
   }
   if (spec.width > properties.maxExtent.width || spec.height > properties.maxExtent.height) {
-    throw NotSupportedError(fmt::format("{} is limited to {}x{}", what, properties.maxExtent.width,
-                                        properties.maxExtent.height));
+    throw NotSupportedError(
+        fmt::format("{} is limited to {}x{}", what, properties.maxExtent.width, properties.maxExtent.height));
   }
 }
 

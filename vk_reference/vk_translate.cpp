@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cstring>
 #include <limits>
-#include <utility>
 #include <string>
+#include <utility>
 
 #include "model/errors.hpp"
 
@@ -122,8 +122,7 @@ std::pair<int32_t, uint32_t> clip_span(int32_t offset, uint32_t extent) {
 }  // namespace
 
 VkViewport to_vk(const Viewport& viewport) {
-  return VkViewport{viewport.x, viewport.y, viewport.width, viewport.height, viewport.min_depth,
-                    viewport.max_depth};
+  return VkViewport{viewport.x, viewport.y, viewport.width, viewport.height, viewport.min_depth, viewport.max_depth};
 }
 
 VkRect2D to_vk_scissor(const Rect2D& scissor) {

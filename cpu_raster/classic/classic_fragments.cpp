@@ -49,7 +49,8 @@ std::vector<methods::Span> coverage_spans(const ClassicPrimitive& p, FillMethod 
     }
     case FillMethod::EvenOdd:
     case FillMethod::Winding: {
-      const methods::FillRule rule = fill == FillMethod::EvenOdd ? methods::FillRule::EvenOdd : methods::FillRule::NonZero;
+      const methods::FillRule rule =
+          fill == FillMethod::EvenOdd ? methods::FillRule::EvenOdd : methods::FillRule::NonZero;
       return methods::fill_polygon_rule(window_polygon(p, 0), {rule, 0.5, bounds});
     }
   }
@@ -57,9 +58,7 @@ std::vector<methods::Span> coverage_spans(const ClassicPrimitive& p, FillMethod 
 }
 
 // The pixel holding a window point.
-methods::PixelXY pixel_of(const WindowVertex& v) {
-  return {int32_t(std::floor(v.x)), int32_t(std::floor(v.y))};
-}
+methods::PixelXY pixel_of(const WindowVertex& v) { return {int32_t(std::floor(v.x)), int32_t(std::floor(v.y))}; }
 
 std::vector<methods::PixelXY> line_pixels(const ClassicPrimitive& p, LineMethod line) {
   const methods::PixelXY p0 = pixel_of(p.window[0]), p1 = pixel_of(p.window[1]);
@@ -75,8 +74,7 @@ uint32_t finish_depth(const ClassicPrimitive& p, float z) {
 
 uint32_t plane_depth_raw(const ClassicPrimitive& p, int32_t px, int32_t py, bool fma) {
   const SamplePoint point = sample_point(px, py, 0, false);
-  return sample_depth(p.raster.depth, p.raster.offset.offset, point.x, point.y, p.depth.range, p.depth.format, fma)
-      .raw;
+  return sample_depth(p.raster.depth, p.raster.offset.offset, point.x, point.y, p.depth.range, p.depth.format, fma).raw;
 }
 
 }  // namespace

@@ -1,8 +1,8 @@
 #include "cpu_raster/classic/classic_front_end.hpp"
 
-#include "cpu_raster/exact/assemble.hpp"
 #include "cpu_raster/classic/classic_clip.hpp"
 #include "cpu_raster/classic/classic_cull.hpp"
+#include "cpu_raster/exact/assemble.hpp"
 #include "cpu_raster/exact/clip_line.hpp"
 #include "cpu_raster/exact/clip_test.hpp"
 #include "cpu_raster/exact/line_setup.hpp"
@@ -127,8 +127,10 @@ void collect_primitives(const FrameContext& frame, uint32_t draw_index, const Cl
   const uint32_t count = primitive_count(draw);
   for (uint32_t i = 0; i < count; ++i) {
     const AssembledPrimitive prim = assemble_primitive(draw, i);
-    if (is_line) run_line(dc, prim, out);
-    else run_triangle(dc, prim, out);
+    if (is_line)
+      run_line(dc, prim, out);
+    else
+      run_triangle(dc, prim, out);
   }
 }
 

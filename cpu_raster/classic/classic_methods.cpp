@@ -28,9 +28,8 @@ constexpr NameTable<DepthMethod, 4> kDepth{{{"exact", DepthMethod::Exact},
                                             {"no_fma", DepthMethod::NoFma},
                                             {"bilinear", DepthMethod::Bilinear},
                                             {"perspective_correct", DepthMethod::PerspectiveCorrect}}};
-constexpr NameTable<VisibilityMethod, 3> kVisibility{{{"zbuffer", VisibilityMethod::ZBuffer},
-                                                      {"painter", VisibilityMethod::Painter},
-                                                      {"bsp", VisibilityMethod::Bsp}}};
+constexpr NameTable<VisibilityMethod, 3> kVisibility{
+    {{"zbuffer", VisibilityMethod::ZBuffer}, {"painter", VisibilityMethod::Painter}, {"bsp", VisibilityMethod::Bsp}}};
 constexpr NameTable<CullMethod, 2> kCull{
     {{"exact", CullMethod::Exact}, {"normal_dot_view", CullMethod::NormalDotView}}};
 
@@ -59,13 +58,20 @@ ClassicMethods parse_classic_methods(const std::vector<MethodChoice>& choices) {
   ClassicMethods methods;
   std::vector<MethodChoice> setup_choices;
   for (const MethodChoice& choice : choices) {
-    if (choice.stage == "snap" || choice.stage == "tie_break") setup_choices.push_back(choice);
-    else if (choice.stage == "clip") methods.clip = lookup(choice, kClip);
-    else if (choice.stage == "fill") methods.fill = lookup(choice, kFill);
-    else if (choice.stage == "line") methods.line = lookup(choice, kLine);
-    else if (choice.stage == "depth") methods.depth = lookup(choice, kDepth);
-    else if (choice.stage == "visibility") methods.visibility = lookup(choice, kVisibility);
-    else if (choice.stage == "cull") methods.cull = lookup(choice, kCull);
+    if (choice.stage == "snap" || choice.stage == "tie_break")
+      setup_choices.push_back(choice);
+    else if (choice.stage == "clip")
+      methods.clip = lookup(choice, kClip);
+    else if (choice.stage == "fill")
+      methods.fill = lookup(choice, kFill);
+    else if (choice.stage == "line")
+      methods.line = lookup(choice, kLine);
+    else if (choice.stage == "depth")
+      methods.depth = lookup(choice, kDepth);
+    else if (choice.stage == "visibility")
+      methods.visibility = lookup(choice, kVisibility);
+    else if (choice.stage == "cull")
+      methods.cull = lookup(choice, kCull);
     else
       throw UsageError("method " + choice.stage + "=" + choice.name + ": unknown stage \"" + choice.stage +
                        "\"; known stages: " + std::string(kClassicStages) + ", snap, tie_break");

@@ -104,7 +104,7 @@ std::vector<PaintedFragment> bsp_fragments(const std::vector<ClassicPrimitive>& 
 std::vector<PaintedFragment> back_to_front_fragments(const std::vector<ClassicPrimitive>& primitives,
                                                      const ClassicMethods& chosen, const PixelRect& region) {
   return chosen.visibility == VisibilityMethod::Bsp ? bsp_fragments(primitives, chosen, region)
-                                                     : painter_fragments(primitives, chosen, region);
+                                                    : painter_fragments(primitives, chosen, region);
 }
 
 }  // namespace rastercmp::cpu::classic

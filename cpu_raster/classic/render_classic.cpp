@@ -23,8 +23,10 @@ void check_classic_support(const Scene& scene, const CpuOptions& options, const 
   if (chosen.line == LineMethod::Exact) return;
   for (size_t d = 0; d < scene.draws.size(); ++d)
     if (is_line_topology(scene.draws[d].topology) && scene.draws[d].state.line_width != 1)
-      throw NotSupportedError("$.draws[" + std::to_string(d) + "]: line=dda and line=bresenham draw 1-pixel lines; "
-                              "line_width is " + std::to_string(scene.draws[d].state.line_width));
+      throw NotSupportedError("$.draws[" + std::to_string(d) +
+                              "]: line=dda and line=bresenham draw 1-pixel lines; "
+                              "line_width is " +
+                              std::to_string(scene.draws[d].state.line_width));
 }
 
 std::string describe_methods(const CpuOptions& options) {

@@ -17,9 +17,9 @@
 namespace rastercmp::cpu {
 
 struct AssembledPrimitive {
-  uint32_t primitive_index = 0;           // gl_PrimitiveID
-  std::array<uint32_t, 3> position{};     // indices into Draw::positions_clip
-  uint32_t vertex_count = 0;              // 3 for triangles, 2 for lines
+  uint32_t primitive_index = 0;        // gl_PrimitiveID
+  std::array<uint32_t, 3> position{};  // indices into Draw::positions_clip
+  uint32_t vertex_count = 0;           // 3 for triangles, 2 for lines
 };
 
 // Number of primitives the draw's vertex count forms under its topology.

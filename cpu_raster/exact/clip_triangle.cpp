@@ -77,9 +77,10 @@ ClippedTriangles clip_triangle(const std::array<ClipVertex, 3>& triangle, const 
                                uint32_t inside_planes) {
   ClippedTriangles result;
   const uint32_t union_mask = triangle[0].clip_mask | triangle[1].clip_mask | triangle[2].clip_mask;
-  if (union_mask == 0) {  // passed unchanged (§1.5)
+  if (union_mask == 0) {       // passed unchanged (§1.5)
     if (inside_planes != 0) {  // WorkSkips::clip_only_when_needed off: the clipper returns it unchanged
-      const std::optional<Polygon> same = clip_polygon(Polygon(triangle.begin(), triangle.end()), inside_planes, viewport);
+      const std::optional<Polygon> same =
+          clip_polygon(Polygon(triangle.begin(), triangle.end()), inside_planes, viewport);
       if (same) {
         emit_fan(*same, result);
         return result;

@@ -4,10 +4,8 @@
 
 namespace rastercmp::cpu {
 
-ClipVertex make_clip_vertex(const glm::vec4& pos_clip, const ViewportTransform& viewport, bool depth_clip,
-                            bool fma) {
-  return ClipVertex{pos_clip, window_from_clip_jit(pos_clip, viewport, fma), clip_mask(pos_clip, depth_clip),
-                    false};
+ClipVertex make_clip_vertex(const glm::vec4& pos_clip, const ViewportTransform& viewport, bool depth_clip, bool fma) {
+  return ClipVertex{pos_clip, window_from_clip_jit(pos_clip, viewport, fma), clip_mask(pos_clip, depth_clip), false};
 }
 
 ClipVertex interpolate_clip_vertex(float t, const ClipVertex& out, const ClipVertex& in,

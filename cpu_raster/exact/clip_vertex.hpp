@@ -18,8 +18,7 @@ struct ClipVertex {
 };
 
 // An original vertex: clip test, then the JIT viewport transform.
-ClipVertex make_clip_vertex(const glm::vec4& pos_clip, const ViewportTransform& viewport, bool depth_clip,
-                            bool fma);
+ClipVertex make_clip_vertex(const glm::vec4& pos_clip, const ViewportTransform& viewport, bool depth_clip, bool fma);
 
 // draw_pipe_clip.c interp(): pos = out + t*(in - out) per component, window coordinates in C.
 ClipVertex interpolate_clip_vertex(float t, const ClipVertex& out, const ClipVertex& in,

@@ -81,8 +81,10 @@ DepthOffset triangle_depth_offset(const std::array<WindowVertex, 3>& v, const De
   }
   o.unclamped = o.constant_term + mult;
   o.offset = o.unclamped;
-  if (bias.clamp > 0.0f) o.offset = sse_min(bias.clamp, o.offset);
-  else if (bias.clamp < 0.0f) o.offset = sse_max(bias.clamp, o.offset);
+  if (bias.clamp > 0.0f)
+    o.offset = sse_min(bias.clamp, o.offset);
+  else if (bias.clamp < 0.0f)
+    o.offset = sse_max(bias.clamp, o.offset);
   o.clamped = float_bits(o.offset) != float_bits(o.unclamped);
   o.computed = applied;
   if (!applied) o.offset = 0.0f;  // m may be Inf or NaN, so m * 0 need not be 0

@@ -20,14 +20,14 @@ struct DepthPlane {
 
 // How the polygon offset o was formed (kept for explain).
 struct DepthOffset {
-  bool computed = false;  // false: bias off or both factors 0 after conversion, o = 0 exactly (the terms
-                          // below are then 0, or formed with zero factors and unused: WorkSkips)
-  float m = 0;            // max(|dz/dx|, |dz/dy|)
-  float r = 0;            // minimum resolvable difference applied to the constant factor
+  bool computed = false;    // false: bias off or both factors 0 after conversion, o = 0 exactly (the terms
+                            // below are then 0, or formed with zero factors and unused: WorkSkips)
+  float m = 0;              // max(|dz/dx|, |dz/dy|)
+  float r = 0;              // minimum resolvable difference applied to the constant factor
   float constant_term = 0;  // r * constant factor, as lavapipe forms it
   float unclamped = 0;
   bool clamped = false;
-  float offset = 0;       // o, added to every fragment before the [0,1] clamp
+  float offset = 0;  // o, added to every fragment before the [0,1] clamp
 };
 
 // pixel_center: 0.5 single sample, 0 multisample (key->multisample).

@@ -39,7 +39,7 @@ SampleDepth sample_depth(const DepthPlane& plane, float offset, float px, float 
                          DepthFormat format, bool fma) {
   SampleDepth d;
   d.interpolated = interpolate_depth(plane, px, py, fma);
-  d.with_offset = d.interpolated + offset;  // a separate fadd, always issued
+  d.with_offset = d.interpolated + offset;                     // a separate fadd, always issued
   d.clamped_01 = sse_max(sse_min(d.with_offset, 1.0f), 0.0f);  // lp_build_clamp: min, then max
   d.depth_clamped = range.clamp ? sse_max(sse_min(d.clamped_01, range.zmax), range.zmin) : d.clamped_01;
   d.raw = depth_to_raw(format, d.depth_clamped);
@@ -50,7 +50,7 @@ uint32_t depth_to_raw(DepthFormat format, float z) {
   switch (format) {
     case DepthFormat::D16Unorm: {
       const float scaled = z * 0.9999847412109375f;  // 65535/65536, exact in float
-      return float_bits(scaled + 128.0f) & 0xFFFFu;   // the magic-number trick
+      return float_bits(scaled + 128.0f) & 0xFFFFu;  // the magic-number trick
     }
     case DepthFormat::X8D24Unorm: return static_cast<uint32_t>(std::nearbyint(z * 16777215.0f));  // cvtps2dq
     case DepthFormat::D32Sfloat: return float_bits(z);

@@ -11,10 +11,10 @@ uint32_t primitives_per_chunk(const Draw& draw) {
   switch (draw.topology) {
     case Topology::PointList: return s;
     case Topology::LineList: return s / 2;
-    case Topology::LineStrip: return s - 1;                // consecutive segments share a vertex
-    case Topology::TriangleList: return s / 3;             // whole triangles: 1023 / 4095 vertices
-    case Topology::TriangleStrip: return s - 2;            // consecutive segments share two vertices
-    case Topology::TriangleFan: return s - 2;              // ... and every segment the first vertex
+    case Topology::LineStrip: return s - 1;      // consecutive segments share a vertex
+    case Topology::TriangleList: return s / 3;   // whole triangles: 1023 / 4095 vertices
+    case Topology::TriangleStrip: return s - 2;  // consecutive segments share two vertices
+    case Topology::TriangleFan: return s - 2;    // ... and every segment the first vertex
   }
   return s;
 }

@@ -53,7 +53,7 @@ void add_scissor_planes(const PixelRect& bbox, const PixelRect& r, bool multisam
   const int64_t one = kFixedOne;
   if (bbox.x0 < r.x0) planes.push(EdgePlane{-((r.x0 - 1) * one + adj), -1, 0, false});  // left
   if (bbox.x1 > r.x1) planes.push(EdgePlane{r.x1 * one + 127 + adj, 1, 0, false});      // right
-  if (bbox.y0 < r.y0) planes.push(EdgePlane{-((r.y0 - 1) * one + adj), 0, 1, false});  // top
+  if (bbox.y0 < r.y0) planes.push(EdgePlane{-((r.y0 - 1) * one + adj), 0, 1, false});   // top
   if (bbox.y1 > r.y1) planes.push(EdgePlane{r.y1 * one + 127 + adj, 0, -1, false});     // bottom
 }
 

@@ -29,8 +29,8 @@ namespace rastercmp::cpu {
 
 inline constexpr int32_t kEdges32MaxBoxPixels = 64;
 inline constexpr int64_t kEdges32MaxOffset = int64_t(kEdges32MaxBoxPixels) * kFixedOne - 1;  // dX, dY
-inline constexpr int64_t kEdges32MaxDelta = int64_t(1) << 14;                                 // |dcdx|, |dcdy|
-inline constexpr int64_t kEdges32MaxC0 = int64_t(1) << 30;                                    // |c0|
+inline constexpr int64_t kEdges32MaxDelta = int64_t(1) << 14;                                // |dcdx|, |dcdy|
+inline constexpr int64_t kEdges32MaxC0 = int64_t(1) << 30;                                   // |c0|
 static_assert(kEdges32MaxOffset < (int64_t(1) << 14), "sample offsets in the box are below 2^14");
 static_assert(kEdges32MaxC0 + kEdges32MaxDelta * kEdges32MaxOffset <= std::numeric_limits<int32_t>::max(),
               "c0 + dcdy*dY must fit in int32");

@@ -14,9 +14,9 @@
 namespace rastercmp::cpu {
 
 struct EdgePlane {
-  int64_t c = 0;     // constant, including the +1 of an inclusive edge
-  int64_t dcdx = 0;  // per fixed unit of x
-  int64_t dcdy = 0;  // per fixed unit of y
+  int64_t c = 0;           // constant, including the +1 of an inclusive edge
+  int64_t dcdx = 0;        // per fixed unit of x
+  int64_t dcdy = 0;        // per fixed unit of y
   bool inclusive = false;  // got the top-left +1
 };
 

@@ -117,9 +117,9 @@ std::optional<FragmentRecord> trace(const PrimitiveOutcome& o, const cpu::DepthT
   r.covered = visited && verdict.covered();
   r.failing_plane = verdict.failing_plane;
   r.miss = r.covered ? MissReason::None
-           : !verdict.covered() ? (uint32_t(verdict.failing_plane) < raster.edge_count ? MissReason::Edge
-                                                                                     : MissReason::Scissor)
-                                : MissReason::NotVisited;
+           : !verdict.covered()
+               ? (uint32_t(verdict.failing_plane) < raster.edge_count ? MissReason::Edge : MissReason::Scissor)
+               : MissReason::NotVisited;
   if (r.covered && depth.active) record_depth(r, raster, verdict, depth, draw, probe);
   r.owner_written = r.covered && verdict.depth_passed;
   return r;
@@ -133,8 +133,10 @@ std::vector<FragmentRecord> explain_pixel(const Scene& scene, const CpuOptions& 
   if (x >= scene.width || y >= scene.height || sample >= scene.samples)
     throw UsageError("explain: pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") sample " +
                      std::to_string(sample) + " is outside the " + std::to_string(scene.width) + "x" +
-                     std::to_string(scene.height) + " framebuffer with " + std::to_string(scene.samples) + " sample(s)");
-  const cpu::FrameContext frame = cpu::make_frame_context(scene, options.fma, cpu::parse_setup_methods(options.methods));
+                     std::to_string(scene.height) + " framebuffer with " + std::to_string(scene.samples) +
+                     " sample(s)");
+  const cpu::FrameContext frame =
+      cpu::make_frame_context(scene, options.fma, cpu::parse_setup_methods(options.methods));
   Probe probe{int32_t(x), int32_t(y), sample,
               scene.has_depth() ? cpu::clear_depth_raw(scene.depth_format, scene.depth_clear) : 0};
   std::vector<FragmentRecord> records;

@@ -40,15 +40,15 @@ struct FragmentRecord {
   uint32_t primitive_index = 0;
   bool is_line = false;
 
-  bool clipped = false;        // the clipper cut this primitive
-  uint32_t clip_piece = 0;     // which triangle of the clipped fan this record is
-  uint32_t clip_pieces = 1;    // how many triangles (or lines) the clipper produced
+  bool clipped = false;      // the clipper cut this primitive
+  uint32_t clip_piece = 0;   // which triangle of the clipped fan this record is
+  uint32_t clip_pieces = 1;  // how many triangles (or lines) the clipper produced
 
   CullReason cull = CullReason::None;
   bool front_facing = false;
-  int64_t fixed_area = 0;      // doubled signed area in 1/256 px units (triangles, before the swap)
+  int64_t fixed_area = 0;  // doubled signed area in 1/256 px units (triangles, before the swap)
   bool float_cull_ran = false;
-  float float_det = 0;         // draw_pipe_cull.c determinant when the float cull ran
+  float float_det = 0;  // draw_pipe_cull.c determinant when the float cull ran
 
   // Set-up passed: the planes at the sample, in 24.8 fixed point.
   int64_t sample_x_fixed = 0, sample_y_fixed = 0;  // the sample in the snapped frame
@@ -63,23 +63,23 @@ struct FragmentRecord {
 
   // Depth (covered samples of draws with an active depth test).
   bool depth_tested = false;
-  float depth_interpolated = 0;   // before the bias
+  float depth_interpolated = 0;  // before the bias
   bool bias_computed = false;
-  float bias_m = 0, bias_r = 0;   // max slope and the resolvable difference r
+  float bias_m = 0, bias_r = 0;  // max slope and the resolvable difference r
   float bias_constant_factor = 0, bias_slope_factor = 0, bias_clamp = 0;
   bool bias_clamp_applied = false;
-  float bias_offset = 0;          // o
+  float bias_offset = 0;  // o
   float depth_with_offset = 0;
   float depth_clamped_01 = 0;
   bool depth_clamp_enabled = false;
-  float depth_clamped = 0;        // after the depth clamp (equal when it is off)
-  uint32_t depth_raw = 0;         // what the attachment would store
+  float depth_clamped = 0;  // after the depth clamp (equal when it is off)
+  uint32_t depth_raw = 0;   // what the attachment would store
   CompareOp compare_op = CompareOp::Always;
   uint32_t stored_before = 0;
   bool depth_passed = false;
   uint32_t stored_after = 0;
 
-  bool owner_written = false;     // this primitive's id is the sample's owner after it
+  bool owner_written = false;  // this primitive's id is the sample's owner after it
 };
 
 // Throws NotSupportedError (state the profile cannot reproduce), UsageError (a pixel or sample

@@ -44,7 +44,8 @@ std::string coverage_text(const FragmentRecord& r) {
 }
 
 std::string depth_columns(const FragmentRecord& r) {
-  if (!r.depth_tested) return fmt::format("{:>13} {:>13} {:>13} {:>10} {:>8} {:>10} {:>4} {:>10}", "-", "-", "-", "-", "-", "-", "-", "-");
+  if (!r.depth_tested)
+    return fmt::format("{:>13} {:>13} {:>13} {:>10} {:>8} {:>10} {:>4} {:>10}", "-", "-", "-", "-", "-", "-", "-", "-");
   return fmt::format("{:>13.9g} {:>13.9g} {:>13.9g} {:>#10x} {:>8} {:>#10x} {:>4} {:>#10x}", r.depth_interpolated,
                      r.bias_offset, r.depth_clamped, r.depth_raw, to_string(r.compare_op), r.stored_before,
                      r.depth_passed ? "pass" : "fail", r.stored_after);
@@ -67,9 +68,10 @@ std::string detail_lines(const FragmentRecord& r) {
 
 std::string format_explanation(const std::vector<FragmentRecord>& records) {
   if (records.empty()) return "no primitive reached this pixel\n";
-  std::string text = fmt::format("{:>4} {:>6} {:>8} {:>5} {:<18} {:<40} {:<15} {:>13} {:>13} {:>13} {:>10} {:>8} {:>10} {:>4} {:>10} {}\n",
-                                 "draw", "prim", "kind", "clip", "set-up", "E (* top-left +1, s scissor)", "covered",
-                                 "z", "o", "z final", "raw", "op", "before", "test", "after", "owner");
+  std::string text = fmt::format(
+      "{:>4} {:>6} {:>8} {:>5} {:<18} {:<40} {:<15} {:>13} {:>13} {:>13} {:>10} {:>8} {:>10} {:>4} {:>10} {}\n", "draw",
+      "prim", "kind", "clip", "set-up", "E (* top-left +1, s scissor)", "covered", "z", "o", "z final", "raw", "op",
+      "before", "test", "after", "owner");
   for (const FragmentRecord& r : records) {
     text += fmt::format("{:>4} {:>6} {:>8} {:>5} {:<18} {:<40} {:<15} {} {}\n", r.draw_index, r.primitive_index,
                         r.is_line ? "line" : "triangle", clip_text(r), cull_text(r.cull), edges_text(r),

@@ -14,11 +14,11 @@ std::optional<int32_t> to_int32(float integral_value) {
 }  // namespace
 
 std::optional<Fixed24_8> snap_vertex(float x_window, float pixel_offset, SnapRounding rounding) {
-  const float shifted = x_window - pixel_offset;          // a float subtraction first (§2.2)
-  const float scaled = shifted * float(kFixedOne);         // exact: a power of two
+  const float shifted = x_window - pixel_offset;    // a float subtraction first (§2.2)
+  const float scaled = shifted * float(kFixedOne);  // exact: a power of two
   const float rounded = rounding == SnapRounding::NearestEven
-                            ? std::nearbyint(scaled)      // default rounding mode: to nearest even
-                            : std::round(scaled);         // half away from zero
+                            ? std::nearbyint(scaled)  // default rounding mode: to nearest even
+                            : std::round(scaled);     // half away from zero
   const std::optional<int32_t> raw = to_int32(rounded);
   if (!raw) return std::nullopt;
   return Fixed24_8{*raw};

@@ -37,8 +37,7 @@ inline constexpr int64_t kMaxSampleFixed = int64_t(16384 + 1) << kFixedOrder;
 // Edge coefficients are coordinate differences (< 2^26); the edge constant c = dcdx*X - dcdy*Y,
 // the doubled area and the edge value at a sample c + dcdy*Ys - dcdx*Xs all fit in int64.
 inline constexpr int64_t kMaxEdgeDelta = 2 * Fixed24_8::kMaxMagnitude;
-static_assert(kMaxEdgeDelta * Fixed24_8::kMaxMagnitude * 2 + 1 <=
-                  std::numeric_limits<int64_t>::max() / 4,
+static_assert(kMaxEdgeDelta * Fixed24_8::kMaxMagnitude * 2 + 1 <= std::numeric_limits<int64_t>::max() / 4,
               "24.8 edge constants must fit in int64 with room to spare");
 static_assert(2 * kMaxEdgeDelta * kMaxSampleFixed <= std::numeric_limits<int64_t>::max() / 4,
               "edge values at a sample must fit in int64");

@@ -9,9 +9,7 @@
 namespace rastercmp::cpu {
 
 // llvm.fmuladd as the JIT emits it: fused on an FMA host, multiply-then-add otherwise.
-inline float mul_add(float a, float b, float c, bool fused) {
-  return fused ? std::fma(a, b, c) : a * b + c;
-}
+inline float mul_add(float a, float b, float c, bool fused) { return fused ? std::fma(a, b, c) : a * b + c; }
 
 // SSE minps/maxps: the second operand is returned when the comparison is unordered
 // (gallivm lp_build_min/max with GALLIVM_NAN_BEHAVIOR_UNDEFINED).

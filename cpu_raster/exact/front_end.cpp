@@ -70,8 +70,8 @@ void run_line(const FrameContext& frame, const SetupContext& ctx, const Draw& dr
   }
   outcome.piece_count = 1;
   outcome.window = {clipped.line[0].window, clipped.line[1].window, WindowVertex{}};
-  const LineSetup setup =
-      setup_line({clipped.line[0].window, clipped.line[1].window}, encode_owner(ctx.draw_index, prim.primitive_index), ctx);
+  const LineSetup setup = setup_line({clipped.line[0].window, clipped.line[1].window},
+                                     encode_owner(ctx.draw_index, prim.primitive_index), ctx);
   outcome.reached_setup = true;
   outcome.setup_fate = setup.fate;
   outcome.has_bbox = setup.fate != SetupFate::NonFinite && setup.fate != SetupFate::Degenerate;
@@ -122,8 +122,10 @@ void run_front_end(const FrameContext& frame, uint32_t draw_index, const Outcome
     PrimitiveOutcome outcome = base;
     outcome.primitive_index = i;
     outcome.pipelined = pipelined[i / per_chunk];
-    if (base.is_line) run_line(frame, ctx, draw, prim, outcome, sink);
-    else run_triangle(frame, ctx, draw, prim, outcome, sink);
+    if (base.is_line)
+      run_line(frame, ctx, draw, prim, outcome, sink);
+    else
+      run_triangle(frame, ctx, draw, prim, outcome, sink);
   }
 }
 

@@ -36,22 +36,22 @@ struct PrimitiveOutcome {
   uint32_t draw_index = 0;
   uint32_t primitive_index = 0;
   bool is_line = false;
-  bool pipelined = false;         // some vertex of the primitive's draw chunk needed clipping (§1.5, draw_chunks.hpp)
+  bool pipelined = false;  // some vertex of the primitive's draw chunk needed clipping (§1.5, draw_chunks.hpp)
   ClipFate clip_fate = ClipFate::Inside;
-  uint32_t piece = 0;             // which triangle of the clipped fan
-  uint32_t piece_count = 0;       // triangles (or lines) that reached set-up; 0: none did
-  bool float_culled = false;      // dropped by the pipeline float cull (§2.6)
-  float float_det = 0;            // its determinant, when it ran
+  uint32_t piece = 0;         // which triangle of the clipped fan
+  uint32_t piece_count = 0;   // triangles (or lines) that reached set-up; 0: none did
+  bool float_culled = false;  // dropped by the pipeline float cull (§2.6)
+  float float_det = 0;        // its determinant, when it ran
   bool float_cull_ran = false;
   std::array<WindowVertex, 3> window{};  // set-up input (post clip, pre swap)
   SetupFate setup_fate = SetupFate::Rasterized;
-  bool reached_setup = false;     // false: clipped away or float-culled
-  bool front_facing = false;      // triangles
-  int64_t area = 0;               // triangles: doubled fixed-point area
+  bool reached_setup = false;  // false: clipped away or float-culled
+  bool front_facing = false;   // triangles
+  int64_t area = 0;            // triangles: doubled fixed-point area
   bool swapped = false;
-  PixelRect bbox;                 // valid when snapped
+  PixelRect bbox;  // valid when snapped
   bool has_bbox = false;
-  RasterPrimitive raster;         // valid when setup_fate == Rasterized and reached_setup
+  RasterPrimitive raster;  // valid when setup_fate == Rasterized and reached_setup
   bool rasterized() const { return reached_setup && setup_fate == SetupFate::Rasterized; }
 };
 

@@ -23,7 +23,7 @@ std::optional<int64_t> snap(float value) {
   return fixed ? std::optional<int64_t>(*fixed) : std::nullopt;
 }
 
-bool nonneg(float value) { return value >= 0; }      // lp_setup_line.c sign()
+bool nonneg(float value) { return value >= 0; }  // lp_setup_line.c sign()
 float fracf(float value) { return value - std::floor(value); }
 
 // Rectangular quad: v1 - t, v2 - t, v2 + t, v1 + t with t the snapped half-width normal (§5.3).
@@ -59,16 +59,22 @@ DiamondExit diamond_exit_x_major(Endpoint v1, Endpoint v2, float dx, float dy) {
   float y2diff = v2.y - std::floor(v2.y) - 0.5f;
   const float dydx = dy / dx;
   if (y2diff == -0.5f && dy < 0.0f) y2diff = 0.5f;
-  if (std::fabs(x1diff) + std::fabs(y1diff) < 0.5f) d.draw_start = true;
-  else if (nonneg(x1diff) == nonneg(-dx)) d.draw_start = false;
-  else if (nonneg(-y1diff) != nonneg(dy)) d.draw_start = true;
+  if (std::fabs(x1diff) + std::fabs(y1diff) < 0.5f)
+    d.draw_start = true;
+  else if (nonneg(x1diff) == nonneg(-dx))
+    d.draw_start = false;
+  else if (nonneg(-y1diff) != nonneg(dy))
+    d.draw_start = true;
   else {
     const float yintersect = fracf(v1.y) + x1diff * dydx;
     d.draw_start = yintersect < 1.0f && yintersect > 0.0f;
   }
-  if (std::fabs(x2diff) + std::fabs(y2diff) < 0.5f) d.draw_end = false;
-  else if (nonneg(x2diff) != nonneg(-dx)) d.draw_end = false;
-  else if (nonneg(-y2diff) == nonneg(dy)) d.draw_end = true;
+  if (std::fabs(x2diff) + std::fabs(y2diff) < 0.5f)
+    d.draw_end = false;
+  else if (nonneg(x2diff) != nonneg(-dx))
+    d.draw_end = false;
+  else if (nonneg(-y2diff) == nonneg(dy))
+    d.draw_end = true;
   else {
     const float yintersect = fracf(v2.y) + x2diff * dydx;
     d.draw_end = yintersect < 1.0f && yintersect > 0.0f;
@@ -105,16 +111,22 @@ DiamondExit diamond_exit_y_major(Endpoint v1, Endpoint v2, float dx, float dy) {
   const float y2diff = v2.y - std::floor(v2.y) - 0.5f;
   const float dxdy = dx / dy;
   if (x2diff == -0.5f && dx < 0.0f) x2diff = 0.5f;
-  if (std::fabs(x1diff) + std::fabs(y1diff) < 0.5f) d.draw_start = true;
-  else if (nonneg(-y1diff) == nonneg(dy)) d.draw_start = false;
-  else if (nonneg(x1diff) != nonneg(-dx)) d.draw_start = true;
+  if (std::fabs(x1diff) + std::fabs(y1diff) < 0.5f)
+    d.draw_start = true;
+  else if (nonneg(-y1diff) == nonneg(dy))
+    d.draw_start = false;
+  else if (nonneg(x1diff) != nonneg(-dx))
+    d.draw_start = true;
   else {
     const float xintersect = fracf(v1.x) + y1diff * dxdy;
     d.draw_start = xintersect < 1.0f && xintersect > 0.0f;
   }
-  if (std::fabs(x2diff) + std::fabs(y2diff) < 0.5f) d.draw_end = false;
-  else if (nonneg(-y2diff) != nonneg(dy)) d.draw_end = false;
-  else if (nonneg(x2diff) == nonneg(-dx)) d.draw_end = true;
+  if (std::fabs(x2diff) + std::fabs(y2diff) < 0.5f)
+    d.draw_end = false;
+  else if (nonneg(-y2diff) != nonneg(dy))
+    d.draw_end = false;
+  else if (nonneg(x2diff) == nonneg(-dx))
+    d.draw_end = true;
   else {
     const float xintersect = fracf(v2.x) + y2diff * dxdy;
     d.draw_end = xintersect < 1.0f && xintersect >= 0.0f;  // ">=" here, ">" in the x-major branch
@@ -234,7 +246,8 @@ LineSetup setup_line(const std::array<WindowVertex, 2>& window, uint32_t owner, 
   raster.per_sample = per_sample;
   raster.edge_count = 4;
   raster.vertex_fixed = *corners;
-  for (size_t i = 0; i < 4; ++i) raster.planes.push(make_edge((*corners)[i], (*corners)[(i + 1) % 4], ctx.methods.tie_break));
+  for (size_t i = 0; i < 4; ++i)
+    raster.planes.push(make_edge((*corners)[i], (*corners)[(i + 1) % 4], ctx.methods.tie_break));
   if (!place_in_region(raster, setup.bbox, ctx.region, ctx.framebuffer, per_sample)) {
     setup.fate = SetupFate::OutsideRegion;
     return setup;

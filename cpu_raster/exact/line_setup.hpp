@@ -17,10 +17,10 @@ namespace rastercmp::cpu {
 
 struct LineSetup {
   SetupFate fate = SetupFate::Rasterized;
-  bool x_major = false;          // Bresenham only
-  bool draw_start = false;       // Bresenham diamond-exit decisions
+  bool x_major = false;     // Bresenham only
+  bool draw_start = false;  // Bresenham diamond-exit decisions
   bool draw_end = false;
-  PixelRect bbox;                // unclamped, valid once snapped
+  PixelRect bbox;  // unclamped, valid once snapped
   RasterPrimitive raster;
 };
 

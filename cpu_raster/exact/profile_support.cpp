@@ -38,14 +38,16 @@ void check_indices(const Scene& scene, size_t d) {
 void check_draw_state(const Scene& scene, size_t d) {
   const Draw& draw = scene.draws[d];
   if (draw.topology == Topology::PointList)
-    throw NotSupportedError(draw_path(d) + ": point_list is not reproduced by the CPU lavapipe profile "
+    throw NotSupportedError(draw_path(d) +
+                            ": point_list is not reproduced by the CPU lavapipe profile "
                             "(lavapipe draws points through its guard-band point path, which is not modelled)");
   if (is_triangle_topology(draw.topology) && draw.state.polygon_mode != PolygonMode::Fill)
     throw NotSupportedError(draw_path(d) + ": polygon_mode \"" + to_string(draw.state.polygon_mode) +
                             "\" is not reproduced by the CPU lavapipe profile (lavapipe converts such polygons to "
                             "lines or points in its draw module, with the bias applied per vertex)");
   if (is_line_topology(draw.topology) && draw.state.line_mode == LineMode::RectangularSmooth)
-    throw NotSupportedError(draw_path(d) + ": line_mode \"rectangular_smooth\" is not reproduced by the CPU lavapipe "
+    throw NotSupportedError(draw_path(d) +
+                            ": line_mode \"rectangular_smooth\" is not reproduced by the CPU lavapipe "
                             "profile (lavapipe draws smooth lines with its anti-aliased line stage, a shader effect)");
 }
 

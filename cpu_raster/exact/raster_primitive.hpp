@@ -37,7 +37,7 @@ struct RasterPrimitive {
   uint32_t edge_count = 0;  // planes [0, edge_count) are the primitive's edges, the rest scissor planes
   PlaneSet planes;
   std::array<FixedPoint, 4> vertex_fixed{};  // 3 triangle vertices (post swap) or 4 line quad corners
-  PixelRect bbox;   // llvmpipe's bounding box, clamped at 0
+  PixelRect bbox;                            // llvmpipe's bounding box, clamped at 0
   PixelRect visit;  // pixels tested: binned area ∩ framebuffer ∩ pixels whose samples the planes reach
   // Multisample rasterization: each sample at its own location. Otherwise the pixel-centre result
   // (and depth) goes to every sample of the pixel.

@@ -22,13 +22,12 @@ SampleVerdict evaluate_sample(const RasterPrimitive& p, const DepthTestState& de
   SampleVerdict verdict;
   // Without multisample rasterization every sample takes the pixel-centre result.
   verdict.point = sample_point(px, py, p.per_sample ? sample : 0, p.per_sample);
-  verdict.failing_plane =
-      frame32 ? first_failing_plane32(*frame32, int32_t(verdict.point.x_fixed - frame32->x0_fixed),
-                                      int32_t(verdict.point.y_fixed - frame32->y0_fixed))
-              : first_failing_plane(p.planes, verdict.point.x_fixed, verdict.point.y_fixed);
+  verdict.failing_plane = frame32 ? first_failing_plane32(*frame32, int32_t(verdict.point.x_fixed - frame32->x0_fixed),
+                                                          int32_t(verdict.point.y_fixed - frame32->y0_fixed))
+                                  : first_failing_plane(p.planes, verdict.point.x_fixed, verdict.point.y_fixed);
   if (!verdict.covered() || !(depth.active || depth.compute_when_inactive)) return verdict;
-  verdict.depth = sample_depth(p.depth, p.offset.offset, verdict.point.x, verdict.point.y, depth.range, depth.format,
-                               depth.fma);
+  verdict.depth =
+      sample_depth(p.depth, p.offset.offset, verdict.point.x, verdict.point.y, depth.range, depth.format, depth.fma);
   if (depth.active) {
     verdict.depth_passed = depth_test_passes(depth.op, depth.format, verdict.depth.raw, stored_raw);
   } else if (depth.format != DepthFormat::None) {  // the depth skip is off: compared, and discarded

@@ -43,9 +43,9 @@ inline int first_failing_plane(const PlaneSet& planes, int64_t x_fixed, int64_t 
 // One sample of one primitive against the stored depth value.
 struct SampleVerdict {
   SamplePoint point;
-  int failing_plane = -1;   // -1: covered
-  SampleDepth depth;        // valid when covered and depth is active
-  bool depth_passed = true; // true when depth is not active
+  int failing_plane = -1;    // -1: covered
+  SampleDepth depth;         // valid when covered and depth is active
+  bool depth_passed = true;  // true when depth is not active
   bool covered() const { return failing_plane < 0; }
   bool passes() const { return covered() && depth_passed; }
 };

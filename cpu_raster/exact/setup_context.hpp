@@ -11,11 +11,11 @@ namespace rastercmp::cpu {
 
 struct SetupContext {
   PixelRect framebuffer;
-  PixelRect region;            // framebuffer ∩ scissor ∩ vpwh
-  bool multisample = false;    // the framebuffer has 4 samples
-  bool fma = true;             // llvm.fmuladd fused
+  PixelRect region;          // framebuffer ∩ scissor ∩ vpwh
+  bool multisample = false;  // the framebuffer has 4 samples
+  bool fma = true;           // llvm.fmuladd fused
   SetupMethods methods;
-  WorkSkips skips;             // depth and bias work done anyway when off (work_skips.hpp)
+  WorkSkips skips;  // depth and bias work done anyway when off (work_skips.hpp)
   DepthFormat depth_format = DepthFormat::None;
   const RasterState* state = nullptr;  // the draw's state
   uint32_t draw_index = 0;

@@ -8,8 +8,8 @@ namespace rastercmp::cpu {
 namespace {
 
 [[noreturn]] void unknown_name(const MethodChoice& choice, const char* known) {
-  throw UsageError("method " + choice.stage + "=" + choice.name + ": unknown name for stage \"" +
-                   choice.stage + "\"; known: " + known);
+  throw UsageError("method " + choice.stage + "=" + choice.name + ": unknown name for stage \"" + choice.stage +
+                   "\"; known: " + known);
 }
 
 SnapRounding parse_snap(const MethodChoice& choice) {

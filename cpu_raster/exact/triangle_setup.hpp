@@ -23,11 +23,11 @@ enum class SetupFate {
 
 struct TriangleSetup {
   SetupFate fate = SetupFate::Rasterized;
-  int64_t area = 0;         // doubled signed area in fixed units^2, before the swap
+  int64_t area = 0;  // doubled signed area in fixed units^2, before the swap
   bool front_facing = false;
-  bool swapped = false;     // v1 and v2 were exchanged to make the triangle counter-clockwise
-  PixelRect bbox;           // unclamped bounding box, valid once snapped
-  RasterPrimitive raster;   // valid when Rasterized (and partly filled before)
+  bool swapped = false;    // v1 and v2 were exchanged to make the triangle counter-clockwise
+  PixelRect bbox;          // unclamped bounding box, valid once snapped
+  RasterPrimitive raster;  // valid when Rasterized (and partly filled before)
 };
 
 // Whether the cull mode drops a triangle of this facing (§2.3).

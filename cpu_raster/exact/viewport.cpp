@@ -6,7 +6,7 @@ namespace rastercmp::cpu {
 
 ViewportTransform make_viewport_transform(const Viewport& viewport) {
   ViewportTransform t;
-  const float half_width = 0.5f * viewport.width;    // docs/lavapipe-rules.md §1.2
+  const float half_width = 0.5f * viewport.width;  // docs/lavapipe-rules.md §1.2
   const float half_height = 0.5f * viewport.height;
   t.scale[0] = half_width;
   t.translate[0] = half_width + viewport.x;
@@ -30,8 +30,7 @@ WindowVertex window_from_clip_jit(const glm::vec4& pos_clip, const ViewportTrans
 
 WindowVertex window_from_clip_c(const glm::vec4& pos_clip, const ViewportTransform& v) {
   const float oow = 1.0f / pos_clip.w;  // draw_pipe_clip.c interp()
-  return WindowVertex{pos_clip.x * oow * v.scale[0] + v.translate[0],
-                      pos_clip.y * oow * v.scale[1] + v.translate[1],
+  return WindowVertex{pos_clip.x * oow * v.scale[0] + v.translate[0], pos_clip.y * oow * v.scale[1] + v.translate[1],
                       pos_clip.z * oow * v.scale[2] + v.translate[2]};
 }
 

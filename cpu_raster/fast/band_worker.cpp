@@ -8,11 +8,11 @@
 #include "cpu_raster/exact/clip_triangle.hpp"
 #include "cpu_raster/exact/clip_vertex.hpp"
 #include "cpu_raster/exact/depth_plane.hpp"
+#include "cpu_raster/exact/pipeline_cull.hpp"
+#include "cpu_raster/exact/triangle_setup.hpp"
 #include "cpu_raster/fast/small_block_input.hpp"
 #include "cpu_raster/fast/tile_depth_bounds.hpp"
 #include "cpu_raster/fast/tile_edges.hpp"
-#include "cpu_raster/exact/pipeline_cull.hpp"
-#include "cpu_raster/exact/triangle_setup.hpp"
 #include "model/render_result.hpp"
 
 namespace rastercmp::cpu::fast {
@@ -47,8 +47,10 @@ BandWorker::BandWorker(FastFrame& frame, uint32_t index) : frame_(frame), index_
 
 void BandWorker::run() {
   for (uint32_t d = 0; d < frame_.draws.size(); ++d) {
-    if (frame_.draws[d].fast) walk_fast(d);
-    else walk_exact(d);
+    if (frame_.draws[d].fast)
+      walk_fast(d);
+    else
+      walk_exact(d);
     flush(frame_.draws[d].raster);
   }
   for (int32_t ty = int32_t(index_); ty < frame_.raster.tiles_y; ty += int32_t(workers_))
@@ -90,8 +92,10 @@ void BandWorker::walk_triangles(uint32_t d) {
   const uint32_t count = primitive_count(draw);
   for (uint32_t i = 0; i < count; ++i) {
     const std::array<uint32_t, 3> n = vertex_numbers<T>(i);
-    if constexpr (Indexed) triangle(d, i, indices[n[0]], indices[n[1]], indices[n[2]]);
-    else triangle(d, i, n[0], n[1], n[2]);
+    if constexpr (Indexed)
+      triangle(d, i, indices[n[0]], indices[n[1]], indices[n[2]]);
+    else
+      triangle(d, i, n[0], n[1], n[2]);
   }
 }
 
@@ -155,7 +159,8 @@ void BandWorker::triangle(uint32_t d, uint32_t primitive, uint32_t a, uint32_t b
   const int32_t x1 = std::min((std::max({fx[0], fx[1], fx[2]}) - 1) >> kFixedOrder, region.x1);
   if (x0 > x1) return;
   // area = dx01*dy20 - dx20*dy01 (§2.3), int64
-  const int64_t area = int64_t(fx[0] - fx[1]) * int64_t(fy[2] - fy[0]) - int64_t(fx[2] - fx[0]) * int64_t(fy[0] - fy[1]);
+  const int64_t area =
+      int64_t(fx[0] - fx[1]) * int64_t(fy[2] - fy[0]) - int64_t(fx[2] - fx[0]) * int64_t(fy[0] - fy[1]);
   if (area == 0) return;  // always dropped
   const RasterState& state = frame_.scene->draws[d].state;
   if (face_culled((area > 0) == (state.front_face == FrontFace::CounterClockwise), state.cull_mode)) return;
@@ -177,7 +182,8 @@ void BandWorker::triangle(uint32_t d, uint32_t primitive, uint32_t a, uint32_t b
     t.a0 = plane.a0;
     t.dzdx = plane.dzdx;
     t.dzdy = plane.dzdy;
-    if (state.depth_bias.enable) t.offset = triangle_depth_offset(window, state.depth_bias, fd.setup.depth_format).offset;
+    if (state.depth_bias.enable)
+      t.offset = triangle_depth_offset(window, state.depth_bias, fd.setup.depth_format).offset;
   }
   submit(t, fd.raster);
 }
@@ -207,8 +213,8 @@ void BandWorker::clipped_triangle(uint32_t d, uint32_t primitive, uint32_t a, ui
 }
 
 void BandWorker::submit(const FastTriangle& t, const DrawRaster& raster) {
-  const bool one_tile = (t.rect.x0 >> kTileOrder) == (t.rect.x1 >> kTileOrder) &&
-                        (t.rect.y0 >> kTileOrder) == (t.rect.y1 >> kTileOrder);
+  const bool one_tile =
+      (t.rect.x0 >> kTileOrder) == (t.rect.x1 >> kTileOrder) && (t.rect.y0 >> kTileOrder) == (t.rect.y1 >> kTileOrder);
   if (one_tile) {
     if (!batch_.empty()) flush(raster);  // keep submission order: earlier batched triangles first
     raster_all_tiles(t, raster);
@@ -285,7 +291,7 @@ size_t BandWorker::first_visible(const PixelRect& tile, const DrawRaster& raster
     TileTriangle& p = prepared_[i];
     const PixelRect r = intersect(batch_[i].rect, tile);
     p = r.empty() ? TileTriangle{} : prepare_in_tile(batch_[i], r, raster, true);  // TileTriangle{}: edges None
-    if (p.edges.fit == EdgeFit::None || !provable) continue;  // no sample of r in the triangle
+    if (p.edges.fit == EdgeFit::None || !provable) continue;                       // no sample of r in the triangle
     if (!p.ranged) {
       provable = false;  // nothing later can be proven
       continue;

@@ -30,7 +30,7 @@ class BandWorker {
 
  private:
   bool owns_tile_row(int32_t tile_y) const { return owned_rows_[size_t(tile_y)] != 0; }
-  bool owns_rows(int32_t y0, int32_t y1) const;            // pixel rows
+  bool owns_rows(int32_t y0, int32_t y1) const;  // pixel rows
   bool owns_tile_rows(int32_t tile_y0, int32_t tile_y1) const;
 
   template <Topology T, bool Indexed>
@@ -60,8 +60,8 @@ class BandWorker {
   uint32_t index_, workers_;
   std::vector<FastTriangle> batch_;
   std::vector<TileTriangle> prepared_;  // flush: the batch's triangles in the current tile
-  std::vector<uint8_t> owned_rows_;  // per tile row: 1 when this worker draws it
-  SmallBlock block_, next_block_;  // the small-triangle blocks being set up and drawn
+  std::vector<uint8_t> owned_rows_;     // per tile row: 1 when this worker draws it
+  SmallBlock block_, next_block_;       // the small-triangle blocks being set up and drawn
 };
 
 }  // namespace rastercmp::cpu::fast

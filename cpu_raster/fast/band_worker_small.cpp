@@ -15,7 +15,7 @@ template <Topology T, bool Indexed>
 bool measure_rows(FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end) {
   bool bad = false;
   const uint32_t positions = uint32_t(frame.scene->draws[d].positions_clip.size());
-  if (positions == 0) return begin == end;  // every corner would be out of range
+  if (positions == 0) return begin == end;                 // every corner would be out of range
   if constexpr (T == Topology::TriangleList && Indexed) {  // the full blocks of a mesh
     const uint32_t full_end = std::min(end, primitive_count(frame.scene->draws[d]) / 8);
     const uint32_t* indices = frame.scene->draws[d].indices.data();
@@ -37,7 +37,8 @@ bool measure_rows(FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end) {
   const uint32_t count = primitive_count(frame.scene->draws[d]);
   for (uint32_t b = begin; b < end; ++b) {
     fill_block_corners<T, Indexed>(frame.scene->draws[d].indices.data(), count, b, block);
-    frame.draws[d].block_rows[b] = block_tile_rows(block.in, frame.draws[d].tile_rows, positions, frame.exact.region, bad);
+    frame.draws[d].block_rows[b] =
+        block_tile_rows(block.in, frame.draws[d].tile_rows, positions, frame.exact.region, bad);
   }
   return !bad;
 }
@@ -54,8 +55,8 @@ void BandWorker::draw_block(uint32_t d, const SmallBlock& block) {
     if (out.scalar_mask & bit) {
       const std::array<uint32_t, 3> v = assemble_primitive(frame_.scene->draws[d], block.first + l).position;
       triangle(d, block.first + l, v[0], v[1], v[2]);
-    }
-    else if ((out.grid_mask | out.job_mask) & bit) draw_small(out, int(l), encode_owner(d, block.first + l), raster);
+    } else if ((out.grid_mask | out.job_mask) & bit)
+      draw_small(out, int(l), encode_owner(d, block.first + l), raster);
   }
 }
 

@@ -71,8 +71,8 @@ uint32_t pack_rows(int32_t lo, int32_t hi, const PixelRect& region) {
 // The tile rows a block's triangles may reach, from the corners' tile rows (fast_vertices.hpp):
 // the bounding boxes lie within them. kBlockAnyRow when a corner needs clipping or failed to snap
 // (its window position says nothing then), or names no position (`bad` is set then).
-uint32_t block_tile_rows(const SmallBlockInput& in, const int16_t* tile_rows, uint32_t positions, const PixelRect& region,
-                         bool& bad) {
+uint32_t block_tile_rows(const SmallBlockInput& in, const int16_t* tile_rows, uint32_t positions,
+                         const PixelRect& region, bool& bad) {
   int32_t lo = INT32_MAX, hi = INT32_MIN;
   for (uint32_t l = 0; l < in.count; ++l) {
     for (int k = 0; k < 3; ++k) {

@@ -15,8 +15,8 @@ uint32_t pack_rows(int32_t lo, int32_t hi, const PixelRect& region);
 
 // Any block: kBlockAnyRow when a corner needs clipping or failed to snap (its window position
 // says nothing then), or names no position (`bad` is set then).
-uint32_t block_tile_rows(const SmallBlockInput& in, const int16_t* tile_rows, uint32_t positions, const PixelRect& region,
-                         bool& bad);
+uint32_t block_tile_rows(const SmallBlockInput& in, const int16_t* tile_rows, uint32_t positions,
+                         const PixelRect& region, bool& bad);
 
 // AVX2 hosts only: the same for a full block of an indexed list (24 consecutive indices);
 // tile_rows is readable 2 bytes past its last position (thread_row_scratch).

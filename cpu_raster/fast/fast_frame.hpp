@@ -7,10 +7,10 @@
 #include <cstdint>
 #include <vector>
 
-#include "cpu_raster/fast/fast_vertices.hpp"
-#include "cpu_raster/fast/tile_raster.hpp"
 #include "cpu_raster/exact/front_end.hpp"
 #include "cpu_raster/exact/render_targets.hpp"
+#include "cpu_raster/fast/fast_vertices.hpp"
+#include "cpu_raster/fast/tile_raster.hpp"
 
 namespace rastercmp::cpu::fast {
 
@@ -18,8 +18,8 @@ struct FastDraw {
   // Triangles of a single-sample frame take the fast walk; anything else (lines, 4x) the exact
   // front end and rasterizer, restricted to each worker's rows.
   bool fast = false;
-  FastVertex* vertices = nullptr;           // fast draws: one per position (VertexScratch)
-  int16_t* tile_rows = nullptr;       // fast draws: per position, its tile row or kRowUnknown
+  FastVertex* vertices = nullptr;  // fast draws: one per position (VertexScratch)
+  int16_t* tile_rows = nullptr;    // fast draws: per position, its tile row or kRowUnknown
   // docs/lavapipe-rules.md §1.5: per driver chunk (draw_chunks.hpp), whether it takes the pipeline path;
   // empty when no position of the draw is outside the clip volume.
   std::vector<bool> pipelined_chunks;
@@ -30,9 +30,9 @@ struct FastDraw {
   bool any_pipelined() const {
     return std::find(pipelined_chunks.begin(), pipelined_chunks.end(), true) != pipelined_chunks.end();
   }
-  SetupContext setup;                      // for the exact set-up of clipped triangles
+  SetupContext setup;  // for the exact set-up of clipped triangles
   DrawRaster raster;
-  bool small_blocks = false;  // set up eight triangles at a time (small_triangles.hpp)
+  bool small_blocks = false;       // set up eight triangles at a time (small_triangles.hpp)
   uint32_t* block_rows = nullptr;  // per block of 8: the tile rows it may reach (band_worker.cpp)
 };
 

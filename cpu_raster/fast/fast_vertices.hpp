@@ -18,8 +18,8 @@
 
 namespace rastercmp::cpu::fast {
 
-inline constexpr uint32_t kVertexClipBits = 0x3Fu;         // cpu::ClipPlane bits 0..5
-inline constexpr uint32_t kVertexSnapFailed = 1u << 6;     // snap_vertex gave nullopt (NaN, Inf, out of range)
+inline constexpr uint32_t kVertexClipBits = 0x3Fu;      // cpu::ClipPlane bits 0..5
+inline constexpr uint32_t kVertexSnapFailed = 1u << 6;  // snap_vertex gave nullopt (NaN, Inf, out of range)
 
 // Trivial on purpose: a draw's array is allocated without initialisation and filled by a pass.
 // 16 bytes: the snapped coordinates are not stored but recomputed where they are used

@@ -3,9 +3,9 @@
 // clip compares and the same round-to-nearest-even snap (§2.2).
 #include <immintrin.h>
 
+#include "cpu_raster/exact/fixed_point.hpp"
 #include "cpu_raster/fast/cpu_features.hpp"
 #include "cpu_raster/fast/fast_vertices.hpp"
-#include "cpu_raster/exact/fixed_point.hpp"
 
 namespace rastercmp::cpu::fast {
 namespace {
@@ -61,7 +61,8 @@ RASTERCMP_AVX2 inline void store_vertices(__m256 x, __m256 y, __m256 z, __m256i 
   const __m256 f = _mm256_castsi256_ps(flags);
   const __m256 a0 = _mm256_unpacklo_ps(x, y), a1 = _mm256_unpackhi_ps(x, y);  // x0 y0 x1 y1 | x4 y4 x5 y5; 2, 3 | 6, 7
   const __m256 b0 = _mm256_unpacklo_ps(z, f), b1 = _mm256_unpackhi_ps(z, f);
-  const __m256 v04 = _mm256_shuffle_ps(a0, b0, 0x44), v15 = _mm256_shuffle_ps(a0, b0, 0xEE);  // vertex 0 | vertex 4, ...
+  const __m256 v04 = _mm256_shuffle_ps(a0, b0, 0x44),
+               v15 = _mm256_shuffle_ps(a0, b0, 0xEE);  // vertex 0 | vertex 4, ...
   const __m256 v26 = _mm256_shuffle_ps(a1, b1, 0x44), v37 = _mm256_shuffle_ps(a1, b1, 0xEE);
   float* o = reinterpret_cast<float*>(out);
   _mm256_storeu_ps(o + 0, _mm256_permute2f128_ps(v04, v15, 0x20));
@@ -86,14 +87,14 @@ RASTERCMP_AVX2 uint32_t transform_vertices_avx2(const VertexJob& job, size_t beg
     __m256 ok_x, ok_y;
     snap8(x, ok_x);  // only whether it succeeds: the set-up snaps again (snap_fixed)
     const __m256i fy = snap8(y, ok_y);
-    const __m256i failed = _mm256_andnot_si256(_mm256_castps_si256(_mm256_and_ps(ok_x, ok_y)),
-                                               _mm256_set1_epi32(int(kVertexSnapFailed)));
+    const __m256i failed =
+        _mm256_andnot_si256(_mm256_castps_si256(_mm256_and_ps(ok_x, ok_y)), _mm256_set1_epi32(int(kVertexSnapFailed)));
     const __m256i lane_flags = _mm256_or_si256(clip_mask8(p, job.depth_clip), failed);
     all_flags = _mm256_or_si256(all_flags, lane_flags);
     // the tile row of y (kRowUnknown where a flag is set), packed to 16 bits
-    const __m256i row = _mm256_blendv_epi8(_mm256_srai_epi32(fy, kFixedOrder + 6),
-                                           _mm256_set1_epi32(kRowUnknown),
-                                           _mm256_xor_si256(_mm256_cmpeq_epi32(lane_flags, _mm256_setzero_si256()), _mm256_set1_epi32(-1)));
+    const __m256i row = _mm256_blendv_epi8(
+        _mm256_srai_epi32(fy, kFixedOrder + 6), _mm256_set1_epi32(kRowUnknown),
+        _mm256_xor_si256(_mm256_cmpeq_epi32(lane_flags, _mm256_setzero_si256()), _mm256_set1_epi32(-1)));
     const __m128i row16 = _mm_packs_epi32(_mm256_castsi256_si128(row), _mm256_extracti128_si256(row, 1));
     _mm_storeu_si128(reinterpret_cast<__m128i*>(rows + k), row16);
     store_vertices(x, y, z, lane_flags, out + k);  // eight FastVertex {x, y, z, flags}

@@ -14,13 +14,13 @@
 #include "cpu_raster/exact/assemble.hpp"
 #include "cpu_raster/exact/depth_sample.hpp"
 #include "cpu_raster/exact/draw_chunks.hpp"
+#include "cpu_raster/exact/profile_support.hpp"
+#include "cpu_raster/exact/render_exact.hpp"
+#include "cpu_raster/exact/setup_methods.hpp"
 #include "cpu_raster/fast/band_worker.hpp"
 #include "cpu_raster/fast/cpu_features.hpp"
 #include "cpu_raster/fast/frame_memory.hpp"
 #include "cpu_raster/fast/worker_pool.hpp"
-#include "cpu_raster/exact/profile_support.hpp"
-#include "cpu_raster/exact/render_exact.hpp"
-#include "cpu_raster/exact/setup_methods.hpp"
 #include "model/render_result.hpp"
 
 namespace rastercmp {
@@ -50,8 +50,10 @@ void init_targets(FastFrame& frame, const Scene& scene, RenderResult& result) {
   t.owner = std::move(result.owner);
   size_buffer(t.owner, count);
   t.depth_raw = std::move(result.depth_raw);
-  if (scene.has_depth()) size_buffer(t.depth_raw, count);
-  else t.depth_raw.clear();
+  if (scene.has_depth())
+    size_buffer(t.depth_raw, count);
+  else
+    t.depth_raw.clear();
   frame.raster.depth_clear_raw = scene.has_depth() ? clear_depth_raw(scene.depth_format, scene.depth_clear) : 0;
   if (scene.samples != 1) {
     std::fill(t.owner.begin(), t.owner.end(), kOwnerBackground);
@@ -84,7 +86,8 @@ void init_frame(FastFrame& frame, const Scene& scene, const CpuOptions& options,
     const Draw& draw = scene.draws[d];
     fd.fast = scene.samples == 1 && is_triangle_topology(draw.topology);
     fd.setup = make_setup_context(frame.exact, d);
-    fd.raster = make_draw_raster(make_depth_test_state(scene, draw, frame.exact.viewport, options.fma), false, false, false);
+    fd.raster =
+        make_draw_raster(make_depth_test_state(scene, draw, frame.exact.viewport, options.fma), false, false, false);
   }
   const bool bounds = frame_bounds_usable(scene, frame.draws);
   const bool avx2 = config.allow_avx2 && host_has_avx2_fma();
@@ -160,8 +163,8 @@ void transform_all_vertices(FastFrame& frame, bool check_pending) {
     fd.chunk_size = primitives_per_chunk(draw);
     fd.pipelined_chunks.clear();
     if (draw_flags[d] & kVertexClipBits)  // the §1.5 chunk flags, from the vertices' clip bits
-      fd.pipelined_chunks =
-          pipelined_chunks_by(draw, [&fd](uint32_t position) { return (fd.vertices[position].flags & kVertexClipBits) != 0; });
+      fd.pipelined_chunks = pipelined_chunks_by(
+          draw, [&fd](uint32_t position) { return (fd.vertices[position].flags & kVertexClipBits) != 0; });
     // The eight-wide set-up leaves out what it does not model: depth bias, the pipeline float cull.
     fd.small_blocks = fd.raster.small_fn && fd.raster.vector_ok && !draw.state.depth_bias.enable &&
                       !(fd.any_pipelined() && draw.state.cull_mode != CullMode::None);
@@ -176,7 +179,8 @@ struct RowTask {
 // whole triangle, or those of a draw without a primitive, belong to no block).
 bool blocks_read_every_index(const FastDraw& fd, const Draw& draw) {
   const uint32_t count = primitive_count(draw);
-  return fd.small_blocks && count > 0 && (draw.topology != Topology::TriangleList || 3 * size_t(count) == draw.indices.size());
+  return fd.small_blocks && count > 0 &&
+         (draw.topology != Topology::TriangleList || 3 * size_t(count) == draw.indices.size());
 }
 
 // The index scans the profile check left out, for the draws the block-row phase does not read
@@ -185,7 +189,8 @@ bool blocks_read_every_index(const FastDraw& fd, const Draw& draw) {
 void check_index_ranges(const FastFrame& frame) {
   for (uint32_t d = 0; d < frame.draws.size(); ++d) {
     const Draw& draw = frame.scene->draws[d];
-    if (!blocks_read_every_index(frame.draws[d], draw) && !indices_in_range(draw)) check_lavapipe_profile_support(*frame.scene);
+    if (!blocks_read_every_index(frame.draws[d], draw) && !indices_in_range(draw))
+      check_lavapipe_profile_support(*frame.scene);
   }
 }
 

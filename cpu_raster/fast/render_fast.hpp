@@ -21,9 +21,9 @@ namespace cpu::fast {
 
 // Knobs for tests and benchmarks; the defaults are what render_cpu_fast uses.
 struct FastConfig {
-  bool allow_avx2 = true;      // false: the scalar kernels even on an AVX2 host
-  bool every_thread = false;   // true: options.threads workers even where one would do (tests)
-  bool allow_avx512 = true;    // false: the AVX2 kernels even on an AVX-512 host
+  bool allow_avx2 = true;     // false: the scalar kernels even on an AVX2 host
+  bool every_thread = false;  // true: options.threads workers even where one would do (tests)
+  bool allow_avx512 = true;   // false: the AVX2 kernels even on an AVX-512 host
 };
 
 void render_fast_into(const Scene& scene, const CpuOptions& options, const FastConfig& config, RenderResult& result);

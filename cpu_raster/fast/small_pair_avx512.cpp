@@ -62,8 +62,12 @@ RASTERCMP_AVX512 inline Corners16 load_corners16(const SmallBlockInput& in0, con
   return c;
 }
 
-RASTERCMP_AVX512 inline __m512i min3(__m512i a, __m512i b, __m512i c) { return _mm512_min_epi32(a, _mm512_min_epi32(b, c)); }
-RASTERCMP_AVX512 inline __m512i max3(__m512i a, __m512i b, __m512i c) { return _mm512_max_epi32(a, _mm512_max_epi32(b, c)); }
+RASTERCMP_AVX512 inline __m512i min3(__m512i a, __m512i b, __m512i c) {
+  return _mm512_min_epi32(a, _mm512_min_epi32(b, c));
+}
+RASTERCMP_AVX512 inline __m512i max3(__m512i a, __m512i b, __m512i c) {
+  return _mm512_max_epi32(a, _mm512_max_epi32(b, c));
+}
 
 RASTERCMP_AVX512 inline void swap_where(Lanes swap, __m512i& a, __m512i& b) {
   const __m512i na = _mm512_mask_blend_epi32(swap, a, b), nb = _mm512_mask_blend_epi32(swap, b, a);
@@ -105,7 +109,8 @@ RASTERCMP_AVX512 inline Plane16 depth_plane16(const Corners16& p0, const Corners
   Plane16 plane;
   plane.dzdx = _mm512_sub_ps(_mm512_mul_ps(dz01, dy20_ooa), _mm512_mul_ps(dz20, dy01_ooa));
   plane.dzdy = _mm512_sub_ps(_mm512_mul_ps(dz20, dx01_ooa), _mm512_mul_ps(dz01, dx20_ooa));
-  plane.a0 = _mm512_sub_ps(p0.z, _mm512_add_ps(_mm512_mul_ps(plane.dzdx, x0_center), _mm512_mul_ps(plane.dzdy, y0_center)));
+  plane.a0 =
+      _mm512_sub_ps(p0.z, _mm512_add_ps(_mm512_mul_ps(plane.dzdx, x0_center), _mm512_mul_ps(plane.dzdy, y0_center)));
   return plane;
 }
 
@@ -130,7 +135,9 @@ RASTERCMP_AVX512 inline __m512i edge_at(const Edge16& e, __m512i ox, __m512i oy)
                                      _mm512_mullo_epi32(e.dcdy, _mm512_sub_epi32(e.yi, _mm512_slli_epi32(oy, 8))));
   return _mm512_add_epi32(v, e.bias_minus_1);
 }
-RASTERCMP_AVX512 inline __m512i step_x(const Edge16& e) { return _mm512_slli_epi32(_mm512_sub_epi32(_mm512_setzero_si512(), e.dcdx), 8); }
+RASTERCMP_AVX512 inline __m512i step_x(const Edge16& e) {
+  return _mm512_slli_epi32(_mm512_sub_epi32(_mm512_setzero_si512(), e.dcdx), 8);
+}
 RASTERCMP_AVX512 inline __m512i step_y(const Edge16& e) { return _mm512_slli_epi32(e.dcdy, 8); }
 
 // Lanes 0-7 of v to block 0's array, lanes 8-15 to block 1's.
@@ -154,9 +161,9 @@ constexpr Lanes kHalf[2] = {0x00FF, 0xFF00};
 inline uint32_t half_bits(Lanes m, int h) { return (uint32_t(m) >> (8 * h)) & 0xFFu; }
 
 struct GridLanes16 {
-  Lanes mask;                  // the lanes evaluated
-  __m512i x0, y0, w, h;        // w, h: rectangle width and height minus 1
-  int columns, rows, shift;    // the largest over the evaluated lanes; the common bit layout
+  Lanes mask;                // the lanes evaluated
+  __m512i x0, y0, w, h;      // w, h: rectangle width and height minus 1
+  int columns, rows, shift;  // the largest over the evaluated lanes; the common bit layout
 };
 
 // evaluate_grid on sixteen lanes: coverage bits and raw depth of every candidate pixel, each
@@ -188,7 +195,8 @@ RASTERCMP_AVX512 void evaluate_grid16(const GridLanes16& g, const Edge16 (&edges
     __m512i row_bits = _mm512_setzero_si512();
     for (int dx = 0; dx < columns; ++dx) {
       // covered: every E - 1 >= 0, i.e. the sign bit of e0 | e1 | e2 clear
-      const Lanes covered = _mm512_cmpge_epi32_mask(_mm512_ternarylogic_epi32(e[0], e[1], e[2], 0xFE), _mm512_setzero_si512());
+      const Lanes covered =
+          _mm512_cmpge_epi32_mask(_mm512_ternarylogic_epi32(e[0], e[1], e[2], 0xFE), _mm512_setzero_si512());
       row_bits = _mm512_mask_or_epi32(row_bits, covered, row_bits, column_bit[dx]);
       if constexpr (F != DepthFormat::None) {
         const int p = (dy << Shift) + dx;
@@ -199,15 +207,19 @@ RASTERCMP_AVX512 void evaluate_grid16(const GridLanes16& g, const Edge16 (&edges
     }
     const int p0 = dy << Shift;  // the row's first position
     const __m512i placed = _mm512_sll_epi32(_mm512_maskz_mov_epi32(in_y, row_bits), _mm_cvtsi32_si128(p0 & 31));
-    if (p0 < 32) bits_lo = _mm512_or_si512(bits_lo, placed);
-    else bits_hi = _mm512_or_si512(bits_hi, placed);
+    if (p0 < 32)
+      bits_lo = _mm512_or_si512(bits_lo, placed);
+    else
+      bits_hi = _mm512_or_si512(bits_hi, placed);
     for (int i = 0; i < 3; ++i) row_e[i] = _mm512_add_epi32(row_e[i], gy[i]);
   }
   // grid_bits[l] = lo[l] | hi[l] << 32: unpack gives lanes (4c, 4c + 1) and (4c + 2, 4c + 3) of
   // quarter c as 64-bit lanes; two permutes put them in lane order, block by block.
   const __m512i lo = _mm512_unpacklo_epi32(bits_lo, bits_hi), hi = _mm512_unpackhi_epi32(bits_lo, bits_hi);
-  _mm512_storeu_si512(pair.out[0]->grid_bits, _mm512_permutex2var_epi64(lo, _mm512_setr_epi64(0, 1, 8, 9, 2, 3, 10, 11), hi));
-  _mm512_storeu_si512(pair.out[1]->grid_bits, _mm512_permutex2var_epi64(lo, _mm512_setr_epi64(4, 5, 12, 13, 6, 7, 14, 15), hi));
+  _mm512_storeu_si512(pair.out[0]->grid_bits,
+                      _mm512_permutex2var_epi64(lo, _mm512_setr_epi64(0, 1, 8, 9, 2, 3, 10, 11), hi));
+  _mm512_storeu_si512(pair.out[1]->grid_bits,
+                      _mm512_permutex2var_epi64(lo, _mm512_setr_epi64(4, 5, 12, 13, 6, 7, 14, 15), hi));
   if constexpr (Shift == kSmallGridShift) {  // 16 bits per lane, four lanes to a word (bits < 2^16: vpmovdw keeps them)
     const __m256i packed = _mm512_cvtepi32_epi16(bits_lo);
     const __m128i words0 = _mm256_castsi256_si128(packed), words1 = _mm256_extracti128_si256(packed, 1);
@@ -221,14 +233,16 @@ RASTERCMP_AVX512 void evaluate_grid16(const GridLanes16& g, const Edge16 (&edges
 template <DepthFormat F>
 RASTERCMP_AVX512 void evaluate_grid16(const GridLanes16& g, const Edge16 (&edges)[3], const Plane16& plane,
                                       const Depth16& depth, const Pair& pair) {
-  if (g.shift == kSmallGridShift) evaluate_grid16<F, kSmallGridShift>(g, edges, plane, depth, pair);
-  else evaluate_grid16<F, 3>(g, edges, plane, depth, pair);
+  if (g.shift == kSmallGridShift)
+    evaluate_grid16<F, kSmallGridShift>(g, edges, plane, depth, pair);
+  else
+    evaluate_grid16<F, 3>(g, edges, plane, depth, pair);
 }
 
 // One block's grid lanes (`grid`: lanes of its half only): the union of their rectangles (the
 // grid_x0.. fields), and the columns and rows their own layout would take.
-RASTERCMP_AVX512 void measure_grid_half(Lanes grid, __m512i x0, __m512i y0, __m512i x1, __m512i y1, __m512i w, __m512i h,
-                                        SmallBlockOutput& out, int& columns, int& rows) {
+RASTERCMP_AVX512 void measure_grid_half(Lanes grid, __m512i x0, __m512i y0, __m512i x1, __m512i y1, __m512i w,
+                                        __m512i h, SmallBlockOutput& out, int& columns, int& rows) {
   out.grid_x0 = _mm512_mask_reduce_min_epi32(grid, x0);
   out.grid_y0 = _mm512_mask_reduce_min_epi32(grid, y0);
   out.grid_x1 = _mm512_mask_reduce_max_epi32(grid, x1);
@@ -239,8 +253,8 @@ RASTERCMP_AVX512 void measure_grid_half(Lanes grid, __m512i x0, __m512i y0, __m5
 
 }  // namespace
 
-RASTERCMP_AVX512 void setup_small_pair_avx512(const SmallBlockInput& in0, const SmallBlockInput& in1, SmallBlockOutput& out0,
-                                              SmallBlockOutput& out1) {
+RASTERCMP_AVX512 void setup_small_pair_avx512(const SmallBlockInput& in0, const SmallBlockInput& in1,
+                                              SmallBlockOutput& out0, SmallBlockOutput& out1) {
   const Pair pair{{&out0, &out1}};
   out0.window = out1.window = false;
   const Corners16 p0 = load_corners16(in0, in1, 0);
@@ -257,8 +271,10 @@ RASTERCMP_AVX512 void setup_small_pair_avx512(const SmallBlockInput& in0, const 
   const PixelRect& region = in0.region;
   // The rectangle starts at the first column and row whose sample can be in the triangle,
   // (min + 255) >> 8 (BandWorker::triangle); `small` keeps lavapipe's box (the 32-bit bound).
-  const __m512i tx0 = _mm512_srai_epi32(_mm512_add_epi32(min3(p0.x_fixed, p1.x_fixed, p2.x_fixed), splat(kFixedOne - 1)), 8);
-  const __m512i ty0 = _mm512_srai_epi32(_mm512_add_epi32(min3(p0.y_fixed, p1.y_fixed, p2.y_fixed), splat(kFixedOne - 1)), 8);
+  const __m512i tx0 =
+      _mm512_srai_epi32(_mm512_add_epi32(min3(p0.x_fixed, p1.x_fixed, p2.x_fixed), splat(kFixedOne - 1)), 8);
+  const __m512i ty0 =
+      _mm512_srai_epi32(_mm512_add_epi32(min3(p0.y_fixed, p1.y_fixed, p2.y_fixed), splat(kFixedOne - 1)), 8);
   const __m512i x0 = _mm512_max_epi32(tx0, splat(region.x0)), x1 = _mm512_min_epi32(bx1, splat(region.x1));
   const __m512i y0 = _mm512_max_epi32(ty0, splat(region.y0)), y1 = _mm512_min_epi32(by1, splat(region.y1));
   const Lanes small = _mm512_cmplt_epi32_mask(_mm512_sub_epi32(bx1, bx0), splat(kSmallWidth)) &
@@ -277,7 +293,8 @@ RASTERCMP_AVX512 void setup_small_pair_avx512(const SmallBlockInput& in0, const 
   const Lanes used = Lanes(((1u << in0.count) - 1u) | (((1u << in1.count) - 1u) << 8));
   const Lanes live = Lanes(simple & ~dropped);
   const __m512i w = _mm512_sub_epi32(x1, x0), h = _mm512_sub_epi32(y1, y0);
-  const Lanes grid = live & _mm512_cmplt_epi32_mask(w, splat(kGridSide)) & _mm512_cmplt_epi32_mask(h, splat(kGridSide)) & used;
+  const Lanes grid =
+      live & _mm512_cmplt_epi32_mask(w, splat(kGridSide)) & _mm512_cmplt_epi32_mask(h, splat(kGridSide)) & used;
   const Lanes job = Lanes(live & ~grid & one_tile & used);  // grid lanes may span tiles
   const Lanes scalar = Lanes((~simple | (live & ~grid & ~job)) & used);
   for (int b = 0; b < 2; ++b) {

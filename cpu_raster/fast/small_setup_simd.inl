@@ -32,8 +32,9 @@ RASTERCMP_SMALL_TARGET inline __m256i snap_fixed8(__m256 c) {
 RASTERCMP_SMALL_TARGET inline Corners load_corners(const FastVertex* v, const uint32_t* index, uint32_t stride) {
   __m256 r[4];  // vertices k and k + 4
   for (uint32_t k = 0; k < 4; ++k)
-    r[k] = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(reinterpret_cast<const float*>(v + index[k * stride]))),
-                                _mm_loadu_ps(reinterpret_cast<const float*>(v + index[(k + 4) * stride])), 1);
+    r[k] = _mm256_insertf128_ps(
+        _mm256_castps128_ps256(_mm_loadu_ps(reinterpret_cast<const float*>(v + index[k * stride]))),
+        _mm_loadu_ps(reinterpret_cast<const float*>(v + index[(k + 4) * stride])), 1);
   const __m256 t0 = _mm256_unpacklo_ps(r[0], r[1]), t1 = _mm256_unpackhi_ps(r[0], r[1]);  // x0 x1 y0 y1, z0 z1 f0 f1
   const __m256 t2 = _mm256_unpacklo_ps(r[2], r[3]), t3 = _mm256_unpackhi_ps(r[2], r[3]);
   Corners c;
@@ -46,8 +47,12 @@ RASTERCMP_SMALL_TARGET inline Corners load_corners(const FastVertex* v, const ui
   return c;
 }
 
-RASTERCMP_SMALL_TARGET inline __m256i min3(__m256i a, __m256i b, __m256i c) { return _mm256_min_epi32(a, _mm256_min_epi32(b, c)); }
-RASTERCMP_SMALL_TARGET inline __m256i max3(__m256i a, __m256i b, __m256i c) { return _mm256_max_epi32(a, _mm256_max_epi32(b, c)); }
+RASTERCMP_SMALL_TARGET inline __m256i min3(__m256i a, __m256i b, __m256i c) {
+  return _mm256_min_epi32(a, _mm256_min_epi32(b, c));
+}
+RASTERCMP_SMALL_TARGET inline __m256i max3(__m256i a, __m256i b, __m256i c) {
+  return _mm256_max_epi32(a, _mm256_max_epi32(b, c));
+}
 RASTERCMP_SMALL_TARGET inline __m256i not_mask(__m256i m) { return _mm256_xor_si256(m, _mm256_set1_epi32(-1)); }
 RASTERCMP_SMALL_TARGET inline uint32_t lanes(__m256i m) { return uint32_t(_mm256_movemask_ps(_mm256_castsi256_ps(m))); }
 
@@ -92,7 +97,8 @@ RASTERCMP_SMALL_TARGET inline Plane8 depth_plane8(const Corners& p0, const Corne
   Plane8 plane;
   plane.dzdx = _mm256_sub_ps(_mm256_mul_ps(dz01, dy20_ooa), _mm256_mul_ps(dz20, dy01_ooa));
   plane.dzdy = _mm256_sub_ps(_mm256_mul_ps(dz20, dx01_ooa), _mm256_mul_ps(dz01, dx20_ooa));
-  plane.a0 = _mm256_sub_ps(p0.z, _mm256_add_ps(_mm256_mul_ps(plane.dzdx, x0_center), _mm256_mul_ps(plane.dzdy, y0_center)));
+  plane.a0 =
+      _mm256_sub_ps(p0.z, _mm256_add_ps(_mm256_mul_ps(plane.dzdx, x0_center), _mm256_mul_ps(plane.dzdy, y0_center)));
   return plane;
 }
 
@@ -105,8 +111,9 @@ struct Edge8 {
 RASTERCMP_SMALL_TARGET inline Edge8 edge8(__m256i xi, __m256i yi, __m256i xj, __m256i yj) {
   const __m256i zero = _mm256_setzero_si256();
   Edge8 e{xi, yi, _mm256_sub_epi32(yi, yj), _mm256_sub_epi32(xi, xj), zero};
-  const __m256i inclusive = _mm256_or_si256(_mm256_cmpgt_epi32(zero, e.dcdx),
-                                            _mm256_and_si256(_mm256_cmpeq_epi32(e.dcdx, zero), _mm256_cmpgt_epi32(e.dcdy, zero)));
+  const __m256i inclusive =
+      _mm256_or_si256(_mm256_cmpgt_epi32(zero, e.dcdx),
+                      _mm256_and_si256(_mm256_cmpeq_epi32(e.dcdx, zero), _mm256_cmpgt_epi32(e.dcdy, zero)));
   e.bias_minus_1 = not_mask(inclusive);
   return e;
 }
@@ -117,7 +124,9 @@ RASTERCMP_SMALL_TARGET inline __m256i edge_at(const Edge8& e, __m256i ox, __m256
                                      _mm256_mullo_epi32(e.dcdy, _mm256_sub_epi32(e.yi, _mm256_slli_epi32(oy, 8))));
   return _mm256_add_epi32(v, e.bias_minus_1);
 }
-RASTERCMP_SMALL_TARGET inline __m256i step_x(const Edge8& e) { return _mm256_slli_epi32(_mm256_sub_epi32(_mm256_setzero_si256(), e.dcdx), 8); }
+RASTERCMP_SMALL_TARGET inline __m256i step_x(const Edge8& e) {
+  return _mm256_slli_epi32(_mm256_sub_epi32(_mm256_setzero_si256(), e.dcdx), 8);
+}
 RASTERCMP_SMALL_TARGET inline __m256i step_y(const Edge8& e) { return _mm256_slli_epi32(e.dcdy, 8); }
 
 // The per-triangle kernel jobs' edges, relative to (origin_x, y0).
@@ -141,7 +150,7 @@ struct GridLanes {
 // the lanes that reach the row and shifted into place.
 template <DepthFormat F, int Shift>
 RASTERCMP_SMALL_TARGET void evaluate_grid(const GridLanes& g, const Edge8 (&edges)[3], const Plane8& plane,
-                                  const KernelDepth& depth, SmallBlockOutput& out) {
+                                          const KernelDepth& depth, SmallBlockOutput& out) {
   const int columns = g.columns, rows = g.rows;
   __m256i row_e[3], gx[3], gy[3];
   for (int i = 0; i < 3; ++i) {
@@ -168,7 +177,8 @@ RASTERCMP_SMALL_TARGET void evaluate_grid(const GridLanes& g, const Edge8 (&edge
     __m256i e[3] = {row_e[0], row_e[1], row_e[2]};
     __m256 row_bits = _mm256_setzero_ps();
     for (int dx = 0; dx < columns; ++dx) {
-      const __m256 outside = _mm256_castsi256_ps(_mm256_or_si256(_mm256_or_si256(e[0], e[1]), e[2]));  // sign: some E <= 0
+      const __m256 outside =
+          _mm256_castsi256_ps(_mm256_or_si256(_mm256_or_si256(e[0], e[1]), e[2]));  // sign: some E <= 0
       row_bits = _mm256_blendv_ps(_mm256_or_ps(row_bits, _mm256_castsi256_ps(column_bit[dx])), row_bits, outside);
       if constexpr (F != DepthFormat::None) {
         // + o with o = 0 (draws with depth bias take the scalar set-up); the add turns -0 into +0
@@ -178,9 +188,12 @@ RASTERCMP_SMALL_TARGET void evaluate_grid(const GridLanes& g, const Edge8 (&edge
       for (int i = 0; i < 3; ++i) e[i] = _mm256_add_epi32(e[i], gx[i]);
     }
     const int p0 = dy << Shift;  // the row's first position
-    const __m256i placed = _mm256_sll_epi32(_mm256_and_si256(_mm256_castps_si256(row_bits), in_y), _mm_cvtsi32_si128(p0 & 31));
-    if (p0 < 32) bits_lo = _mm256_or_si256(bits_lo, placed);
-    else bits_hi = _mm256_or_si256(bits_hi, placed);
+    const __m256i placed =
+        _mm256_sll_epi32(_mm256_and_si256(_mm256_castps_si256(row_bits), in_y), _mm_cvtsi32_si128(p0 & 31));
+    if (p0 < 32)
+      bits_lo = _mm256_or_si256(bits_lo, placed);
+    else
+      bits_hi = _mm256_or_si256(bits_hi, placed);
     for (int i = 0; i < 3; ++i) row_e[i] = _mm256_add_epi32(row_e[i], gy[i]);
   }
   // Interleave into 64-bit lanes: grid_bits[l] = lo[l] | hi[l] << 32.
@@ -196,9 +209,11 @@ RASTERCMP_SMALL_TARGET void evaluate_grid(const GridLanes& g, const Edge8 (&edge
 
 template <DepthFormat F>
 RASTERCMP_SMALL_TARGET void evaluate_grid(const GridLanes& g, const Edge8 (&edges)[3], const Plane8& plane,
-                                  const KernelDepth& depth, SmallBlockOutput& out) {
-  if (g.shift == kSmallGridShift) evaluate_grid<F, kSmallGridShift>(g, edges, plane, depth, out);
-  else evaluate_grid<F, 3>(g, edges, plane, depth, out);
+                                          const KernelDepth& depth, SmallBlockOutput& out) {
+  if (g.shift == kSmallGridShift)
+    evaluate_grid<F, kSmallGridShift>(g, edges, plane, depth, out);
+  else
+    evaluate_grid<F, 3>(g, edges, plane, depth, out);
 }
 
 // Smallest and largest lane of v.
@@ -226,7 +241,8 @@ RASTERCMP_SMALL_TARGET int max_lane(__m256i v, __m256i mask) {
 
 #ifdef RASTERCMP_SMALL_WINDOW
 // What the compositor evaluates each lane from: E - 1 at (grid_x0, y0), the steps, the plane.
-RASTERCMP_SMALL_TARGET inline void store_window_lanes(const Edge8 (&edges)[3], const Plane8& plane, SmallBlockOutput& out) {
+RASTERCMP_SMALL_TARGET inline void store_window_lanes(const Edge8 (&edges)[3], const Plane8& plane,
+                                                      SmallBlockOutput& out) {
   const __m256i ox = _mm256_set1_epi32(out.grid_x0), oy = _mm256_load_si256(reinterpret_cast<const __m256i*>(out.y0));
   for (int i = 0; i < 3; ++i) {
     _mm256_store_si256(reinterpret_cast<__m256i*>(out.e_window[i]), edge_at(edges[i], ox, oy));
@@ -264,8 +280,9 @@ RASTERCMP_SMALL_TARGET void RASTERCMP_SMALL_SETUP(const SmallBlockInput& in, Sma
   const __m256i x1 = _mm256_min_epi32(bx1, _mm256_set1_epi32(in.region.x1));
   const __m256i y0 = _mm256_max_epi32(ty0, _mm256_set1_epi32(in.region.y0));
   const __m256i y1 = _mm256_min_epi32(by1, _mm256_set1_epi32(in.region.y1));
-  const __m256i small = _mm256_and_si256(_mm256_cmpgt_epi32(_mm256_set1_epi32(kSmallWidth), _mm256_sub_epi32(bx1, bx0)),
-                                         _mm256_cmpgt_epi32(_mm256_set1_epi32(kSmallHeight), _mm256_sub_epi32(by1, by0)));
+  const __m256i small =
+      _mm256_and_si256(_mm256_cmpgt_epi32(_mm256_set1_epi32(kSmallWidth), _mm256_sub_epi32(bx1, bx0)),
+                       _mm256_cmpgt_epi32(_mm256_set1_epi32(kSmallHeight), _mm256_sub_epi32(by1, by0)));
   const __m256i one_tile =
       _mm256_and_si256(_mm256_cmpeq_epi32(_mm256_srai_epi32(x0, kTileOrder), _mm256_srai_epi32(x1, kTileOrder)),
                        _mm256_cmpeq_epi32(_mm256_srai_epi32(y0, kTileOrder), _mm256_srai_epi32(y1, kTileOrder)));
@@ -277,12 +294,14 @@ RASTERCMP_SMALL_TARGET void RASTERCMP_SMALL_SETUP(const SmallBlockInput& in, Sma
       _mm256_mullo_epi32(_mm256_sub_epi32(p2.x_fixed, p0.x_fixed), _mm256_sub_epi32(p0.y_fixed, p1.y_fixed)));
   const __m256i positive = _mm256_cmpgt_epi32(area, zero);
   const __m256i front = in.front_ccw ? positive : not_mask(positive);
-  const __m256i dropped = _mm256_or_si256(_mm256_or_si256(empty, _mm256_cmpeq_epi32(area, zero)), culled(in.cull, front));
+  const __m256i dropped =
+      _mm256_or_si256(_mm256_or_si256(empty, _mm256_cmpeq_epi32(area, zero)), culled(in.cull, front));
   const uint32_t used = (1u << in.count) - 1u;
   const __m256i live = _mm256_andnot_si256(dropped, simple);
   const __m256i w = _mm256_sub_epi32(x1, x0), h = _mm256_sub_epi32(y1, y0);
   const __m256i grid_side = _mm256_set1_epi32(kGridSide);
-  const __m256i grid = _mm256_and_si256(live, _mm256_and_si256(_mm256_cmpgt_epi32(grid_side, w), _mm256_cmpgt_epi32(grid_side, h)));
+  const __m256i grid =
+      _mm256_and_si256(live, _mm256_and_si256(_mm256_cmpgt_epi32(grid_side, w), _mm256_cmpgt_epi32(grid_side, h)));
   const __m256i job = _mm256_and_si256(_mm256_andnot_si256(grid, live), one_tile);  // grid lanes may span tiles
   out.grid_mask = lanes(grid) & used;
   out.job_mask = lanes(job) & used;
@@ -330,7 +349,8 @@ RASTERCMP_SMALL_TARGET void RASTERCMP_SMALL_SETUP(const SmallBlockInput& in, Sma
   if (out.job_mask) {
     // One span per row: 8 lanes from origin_x, kept inside the tile (rect.x1 <= origin_x + 7).
     const __m256i origin_x = _mm256_min_epi32(
-        x0, _mm256_add_epi32(_mm256_and_si256(x0, _mm256_set1_epi32(~(kTileSize - 1))), _mm256_set1_epi32(kTileSize - 8)));
+        x0,
+        _mm256_add_epi32(_mm256_and_si256(x0, _mm256_set1_epi32(~(kTileSize - 1))), _mm256_set1_epi32(kTileSize - 8)));
     _mm256_store_si256(reinterpret_cast<__m256i*>(out.origin_x), origin_x);
     _mm256_store_ps(out.a0, plane.a0);
     _mm256_store_ps(out.dzdx, plane.dzdx);

@@ -26,12 +26,12 @@
 
 namespace rastercmp::cpu::fast {
 
-inline constexpr int32_t kSmallWidth = 8;    // pixels: one 8-lane span per row
-inline constexpr int32_t kSmallHeight = 16;  // rows
-inline constexpr int32_t kGridSide = 8;      // candidate pixels per side of a grid lane
+inline constexpr int32_t kSmallWidth = 8;      // pixels: one 8-lane span per row
+inline constexpr int32_t kSmallHeight = 16;    // rows
+inline constexpr int32_t kGridSide = 8;        // candidate pixels per side of a grid lane
 inline constexpr int32_t kSmallGridShift = 2;  // blocks whose grid lanes all fit in 4x4 pixels
 inline constexpr int32_t kSmallGridSide = 1 << kSmallGridShift;
-inline constexpr int32_t kWindowWidth = 32;   // window blocks: two 16-pixel strips per row
+inline constexpr int32_t kWindowWidth = 32;  // window blocks: two 16-pixel strips per row
 inline constexpr int32_t kWindowHeight = 16;
 
 struct SmallBlockInput {
@@ -40,13 +40,13 @@ struct SmallBlockInput {
   // corners[k][l * stride] (an indexed list's own index buffer, or `copied`).
   const uint32_t* corners[3] = {nullptr, nullptr, nullptr};
   uint32_t stride = 1;
-  uint32_t copied[3][8];      // strips, fans, non-indexed draws and a list's last block
+  uint32_t copied[3][8];  // strips, fans, non-indexed draws and a list's last block
   uint32_t* corners_copy(int k) { return copied[k]; }
-  uint32_t count = 0;         // lanes in use (the others repeat a valid primitive)
+  uint32_t count = 0;  // lanes in use (the others repeat a valid primitive)
   PixelRect region;
   bool front_ccw = true;
   CullMode cull = CullMode::None;
-  KernelDepth depth;  // format None: no depth test
+  KernelDepth depth;       // format None: no depth test
   bool window_ok = false;  // blocks may be left to the window compositor (AVX-512 set-up only)
 };
 

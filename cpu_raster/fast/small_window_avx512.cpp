@@ -35,7 +35,8 @@ RASTERCMP_AVX512 inline __mmask16 passing(__mmask16 covered, __m512i fragment, _
   } else if constexpr (F == DepthFormat::D32Sfloat) {
     const __m512 a = _mm512_castsi512_ps(fragment), b = _mm512_castsi512_ps(stored);
     if constexpr (Op == CompareOp::Less) return _mm512_mask_cmp_ps_mask(covered, a, b, _CMP_NGE_UQ);  // !(a >= b)
-    if constexpr (Op == CompareOp::Equal) return _mm512_mask_cmp_ps_mask(covered, a, b, _CMP_EQ_UQ);  // !(a < b) && !(a > b)
+    if constexpr (Op == CompareOp::Equal)
+      return _mm512_mask_cmp_ps_mask(covered, a, b, _CMP_EQ_UQ);  // !(a < b) && !(a > b)
     if constexpr (Op == CompareOp::LessOrEqual) return _mm512_mask_cmp_ps_mask(covered, a, b, _CMP_NGT_UQ);
     if constexpr (Op == CompareOp::Greater) return _mm512_mask_cmp_ps_mask(covered, a, b, _CMP_NLE_UQ);
     if constexpr (Op == CompareOp::NotEqual) return _mm512_mask_cmp_ps_mask(covered, a, b, _CMP_NEQ_UQ);
@@ -43,9 +44,12 @@ RASTERCMP_AVX512 inline __mmask16 passing(__mmask16 covered, __m512i fragment, _
   } else {
     if constexpr (Op == CompareOp::Less) return _mm512_mask_cmp_epu32_mask(covered, fragment, stored, _MM_CMPINT_LT);
     if constexpr (Op == CompareOp::Equal) return _mm512_mask_cmp_epu32_mask(covered, fragment, stored, _MM_CMPINT_EQ);
-    if constexpr (Op == CompareOp::LessOrEqual) return _mm512_mask_cmp_epu32_mask(covered, fragment, stored, _MM_CMPINT_LE);
-    if constexpr (Op == CompareOp::Greater) return _mm512_mask_cmp_epu32_mask(covered, fragment, stored, _MM_CMPINT_NLE);
-    if constexpr (Op == CompareOp::NotEqual) return _mm512_mask_cmp_epu32_mask(covered, fragment, stored, _MM_CMPINT_NE);
+    if constexpr (Op == CompareOp::LessOrEqual)
+      return _mm512_mask_cmp_epu32_mask(covered, fragment, stored, _MM_CMPINT_LE);
+    if constexpr (Op == CompareOp::Greater)
+      return _mm512_mask_cmp_epu32_mask(covered, fragment, stored, _MM_CMPINT_NLE);
+    if constexpr (Op == CompareOp::NotEqual)
+      return _mm512_mask_cmp_epu32_mask(covered, fragment, stored, _MM_CMPINT_NE);
     return _mm512_mask_cmp_epu32_mask(covered, fragment, stored, _MM_CMPINT_NLT);  // GreaterOrEqual
   }
 }
@@ -74,7 +78,8 @@ RASTERCMP_AVX512 inline void store_units(const uint32_t* unit, __mmask16 columns
                                          size_t row_pitch) {
   const __m512i left = _mm512_load_si512(unit), right = _mm512_load_si512(unit + kUnit);
   _mm512_mask_storeu_epi32(image, columns, _mm512_shuffle_i64x2(left, right, _MM_SHUFFLE(1, 0, 1, 0)));
-  if (two_rows) _mm512_mask_storeu_epi32(image + row_pitch, columns, _mm512_shuffle_i64x2(left, right, _MM_SHUFFLE(3, 2, 3, 2)));
+  if (two_rows)
+    _mm512_mask_storeu_epi32(image + row_pitch, columns, _mm512_shuffle_i64x2(left, right, _MM_SHUFFLE(3, 2, 3, 2)));
 }
 
 // What every lane's loop starts from, for the eight lanes at once: its first and last unit row
@@ -89,14 +94,16 @@ struct LaneStarts {
   uint32_t lanes = 0;
 };
 
-RASTERCMP_AVX512 inline __m256i load(const int32_t* p) { return _mm256_load_si256(reinterpret_cast<const __m256i*>(p)); }
+RASTERCMP_AVX512 inline __m256i load(const int32_t* p) {
+  return _mm256_load_si256(reinterpret_cast<const __m256i*>(p));
+}
 RASTERCMP_AVX512 inline void store(int32_t* p, __m256i v) { _mm256_store_si256(reinterpret_cast<__m256i*>(p), v); }
 
 RASTERCMP_AVX512 inline LaneStarts lane_starts(const SmallBlockOutput& b, int32_t row_lo, int32_t row_hi) {
   LaneStarts s;
   const __m256i wx0 = _mm256_set1_epi32(b.grid_x0), wy0 = _mm256_set1_epi32(row_lo), y0 = load(b.y0);
   const __m256i y_first = _mm256_max_epi32(y0, wy0), y_last = _mm256_min_epi32(load(b.y1), _mm256_set1_epi32(row_hi));
-  const __m256i unit_row_first = _mm256_srai_epi32(_mm256_sub_epi32(y_first, wy0), 1);  // y_first >= row_lo
+  const __m256i unit_row_first = _mm256_srai_epi32(_mm256_sub_epi32(y_first, wy0), 1);   // y_first >= row_lo
   const __m256i column_first = _mm256_srai_epi32(_mm256_sub_epi32(load(b.x0), wx0), 3);  // x0 >= grid_x0
   static_assert(kUnitColumns == 1 << 3);
   const __m256i top = _mm256_add_epi32(wy0, _mm256_slli_epi32(unit_row_first, 1));  // y_first or y_first - 1
@@ -160,13 +167,13 @@ RASTERCMP_AVX512 void composite(const SmallBlockOutput& b, uint32_t owner_of_lan
     const int u_first = starts.first_unit_row[l], u_last = starts.last_unit_row[l];
     for (int c = starts.first_column[l];; ++c) {
       const __m512 px = _mm512_add_ps(px0, _mm512_set1_ps(float(kUnitColumns * c)));  // exact
-      const __m512 inner = kDepth ? mul_add16(dzdx, px, a0, depth.fma) : __m512{};  // FMA?(dzdx, px, a0)
+      const __m512 inner = kDepth ? mul_add16(dzdx, px, a0, depth.fma) : __m512{};    // FMA?(dzdx, px, a0)
       __m512 py = py0;
       __m512i e[3] = {e0[0], e0[1], e0[2]};
       for (int u = u_first; u <= u_last; ++u) {
         // covered: every E - 1 >= 0, i.e. the sign bit of e0 | e1 | e2 clear
-        const __mmask16 covered = _mm512_cmpge_epi32_mask(_mm512_ternarylogic_epi32(e[0], e[1], e[2], 0xFE),
-                                                          _mm512_setzero_si512());
+        const __mmask16 covered =
+            _mm512_cmpge_epi32_mask(_mm512_ternarylogic_epi32(e[0], e[1], e[2], 0xFE), _mm512_setzero_si512());
         __mmask16 pass = covered;
         if constexpr (kDepth) {
           const __m512 z = finish_depth16(mul_add16(dzdy, py, inner, depth.fma), depth);

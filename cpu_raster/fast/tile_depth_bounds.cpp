@@ -32,7 +32,7 @@ bool fragment_range(const FastTriangle& t, const PixelRect& r, const DepthTestSt
 }
 
 DepthVerdict classify_depth(CompareOp op, const FragmentRange& f, const TileBounds& tile) {
-  const bool below = f.hi < tile.zmin, above = f.lo > tile.zmax;  // every fragment vs every stored value
+  const bool below = f.hi<tile.zmin, above = f.lo> tile.zmax;  // every fragment vs every stored value
   switch (op) {
     case CompareOp::Never: return DepthVerdict::AllFail;
     case CompareOp::Always: return DepthVerdict::AllPass;

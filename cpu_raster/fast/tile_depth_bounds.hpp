@@ -14,8 +14,8 @@
 
 #include <cstdint>
 
-#include "cpu_raster/fast/fast_triangle.hpp"
 #include "cpu_raster/exact/rasterize.hpp"
+#include "cpu_raster/fast/fast_triangle.hpp"
 
 namespace rastercmp::cpu::fast {
 

@@ -33,8 +33,8 @@ struct KernelDepth {
 // Coverage of one edge in a tile, in "G" form (tile_edges.hpp): a pixel is covered iff G > 0, and
 // G(x, y) = g + gx*(x - origin_x) + gy*(y - origin_y). Stored as G - 1 so the test is a sign bit.
 struct KernelJob {
-  PixelRect rect;                 // pixels to visit, inside one tile and the framebuffer
-  int32_t origin_x = 0;           // rect.x0 rounded down to a multiple of 8; origin_y = rect.y0
+  PixelRect rect;        // pixels to visit, inside one tile and the framebuffer
+  int32_t origin_x = 0;  // rect.x0 rounded down to a multiple of 8; origin_y = rect.y0
   int32_t g_minus_1[3] = {0, 0, 0};
   int32_t gx[3] = {0, 0, 0}, gy[3] = {0, 0, 0};
   float a0 = 0, dzdx = 0, dzdy = 0, offset = 0;
@@ -48,7 +48,8 @@ using KernelFn = bool (*)(const KernelJob&, const KernelDepth&, const TileTarget
 
 struct SmallBlockOutput;
 // The kernel for one lane of a block of small triangles (small_triangles.hpp).
-using SmallKernelFn = bool (*)(const SmallBlockOutput&, int lane, uint32_t owner, const KernelDepth&, const TileTarget&);
+using SmallKernelFn = bool (*)(const SmallBlockOutput&, int lane, uint32_t owner, const KernelDepth&,
+                               const TileTarget&);
 SmallKernelFn select_small_kernel_avx2(DepthFormat format, CompareOp op);
 
 // The AVX2 kernel for a depth format (None: coverage only) and compare op. Call only when

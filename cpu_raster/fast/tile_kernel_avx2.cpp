@@ -130,8 +130,10 @@ RASTERCMP_AVX2 bool covered_spans(const KernelJob& j, const KernelDepth& d, cons
         }
       }
       __m256i* owner_span = reinterpret_cast<__m256i*>(owner_row + 8 * k);
-      if (all_lanes(pass)) _mm256_storeu_si256(owner_span, owner);
-      else _mm256_storeu_si256(owner_span, _mm256_blendv_epi8(_mm256_loadu_si256(owner_span), owner, pass));
+      if (all_lanes(pass))
+        _mm256_storeu_si256(owner_span, owner);
+      else
+        _mm256_storeu_si256(owner_span, _mm256_blendv_epi8(_mm256_loadu_si256(owner_span), owner, pass));
       any = true;
     }
   }
@@ -198,8 +200,10 @@ RASTERCMP_AVX2 inline __m256i small_depth(const KernelDepth& d, __m256 inner, __
   // + o with o = 0 (draws with depth bias take the scalar set-up); the add turns -0 into +0
   const __m256 z = finish_depth8(mul_add8(dzdy, py, inner, d.fma), _mm256_setzero_ps(), d);
   raw = to_raw<F>(z);
-  if constexpr (Op == CompareOp::Always) return covered;
-  else return _mm256_and_si256(covered, depth_passes<F, Op>(z, raw, stored));
+  if constexpr (Op == CompareOp::Always)
+    return covered;
+  else
+    return _mm256_and_si256(covered, depth_passes<F, Op>(z, raw, stored));
 }
 
 // A 4x2 group: row y in lanes 0-3, row y+1 in lanes 4-7 (when `two_rows`).
@@ -241,7 +245,8 @@ RASTERCMP_AVX2 bool small_4x2(const SmallBlockOutput& b, int l, int32_t ox, uint
   bool any = false;
   for (int32_t y = b.y0[l]; y <= y1; y += 2) {
     const bool two_rows = y < y1;
-    __m256i covered = _mm256_andnot_si256(_mm256_srai_epi32(_mm256_or_si256(_mm256_or_si256(e[0], e[1]), e[2]), 31), in_x);
+    __m256i covered =
+        _mm256_andnot_si256(_mm256_srai_epi32(_mm256_or_si256(_mm256_or_si256(e[0], e[1]), e[2]), 31), in_x);
     for (int i = 0; i < 3; ++i) e[i] = _mm256_add_epi32(e[i], step[i]);
     if (!two_rows) covered = _mm256_and_si256(covered, low_row);
     if (_mm256_testz_si256(covered, covered)) continue;

@@ -3,15 +3,15 @@
 #include <algorithm>
 
 #include "cpu_raster/exact/depth_sample.hpp"
-#include "model/render_result.hpp"
 #include "cpu_raster/fast/tile_edges.hpp"
+#include "model/render_result.hpp"
 
 namespace rastercmp::cpu::fast {
 namespace {
 
 // Below these areas the bounds cost more than they save (docs/performance.md).
-constexpr int64_t kBoundsMinArea = 256;        // classify a triangle against the tile's bounds
-constexpr int64_t kMeasureMinArea = 2048;      // re-measure a tile whose bounds are not exact
+constexpr int64_t kBoundsMinArea = 256;    // classify a triangle against the tile's bounds
+constexpr int64_t kMeasureMinArea = 2048;  // re-measure a tile whose bounds are not exact
 
 int64_t area(const PixelRect& r) { return int64_t(r.x1 - r.x0 + 1) * (r.y1 - r.y0 + 1); }
 
@@ -32,8 +32,13 @@ void update_bounds(TileBounds& tile, bool ranged, const FragmentRange& f, DepthV
 DrawRaster make_draw_raster(const DepthTestState& depth, bool frame_bounds, bool avx2, bool avx512) {
   DrawRaster draw;
   draw.depth = depth;
-  draw.kernel = KernelDepth{depth.active ? depth.format : DepthFormat::None, depth.op, depth.write,
-                            depth.range.clamp, depth.range.zmin, depth.range.zmax, depth.fma};
+  draw.kernel = KernelDepth{depth.active ? depth.format : DepthFormat::None,
+                            depth.op,
+                            depth.write,
+                            depth.range.clamp,
+                            depth.range.zmin,
+                            depth.range.zmax,
+                            depth.fma};
   const bool unorm = depth.format == DepthFormat::D16Unorm || depth.format == DepthFormat::X8D24Unorm;
   draw.vector_ok = !(depth.active && unorm && depth.range.clamp && !(depth.range.zmin >= 0.0f));
   draw.bounds = frame_bounds && depth.active && depth_values_ordered(depth);
@@ -55,8 +60,8 @@ TileTriangle prepare_in_tile(const FastTriangle& t, const PixelRect& r, const Dr
   return p;
 }
 
-void raster_in_tile(const FastTriangle& t, const PixelRect& r, int32_t tile_x, int32_t tile_y,
-                    const DrawRaster& draw, const FrameRaster& frame) {
+void raster_in_tile(const FastTriangle& t, const PixelRect& r, int32_t tile_x, int32_t tile_y, const DrawRaster& draw,
+                    const FrameRaster& frame) {
   raster_prepared(t, prepare_in_tile(t, r, draw, false), tile_x, tile_y, draw, frame);
 }
 
@@ -100,8 +105,8 @@ void raster_prepared(const FastTriangle& t, const TileTriangle& prepared, int32_
   const bool covers_tile = prepared.covers(whole_tile);
   if (!state.cleared) {
     // Fast clear: skipped when this triangle replaces every owner and depth value of the tile.
-    const bool overwrites = covers_tile && (frame.target.depth == nullptr ||
-                                            (draw.depth.write && verdict == DepthVerdict::AllPass));
+    const bool overwrites =
+        covers_tile && (frame.target.depth == nullptr || (draw.depth.write && verdict == DepthVerdict::AllPass));
     if (!overwrites) clear_tile(tile_x, tile_y, frame);
     state.cleared = true;
   }
@@ -113,8 +118,7 @@ void raster_prepared(const FastTriangle& t, const TileTriangle& prepared, int32_
     depth.op = job.op;  // Always when the bounds proved every sample passes (and the tile may hold no clear values yet)
     wrote = raster_scalar(t, r, depth, frame.target);
   }
-  if (wrote && draw.depth.write && frame.bounds)
-    update_bounds(tile, ranged, fragment, verdict, covers_tile);
+  if (wrote && draw.depth.write && frame.bounds) update_bounds(tile, ranged, fragment, verdict, covers_tile);
 }
 
 void clear_tile(int32_t tile_x, int32_t tile_y, const FrameRaster& frame) {

@@ -6,22 +6,22 @@
 #include <algorithm>
 #include <cstdint>
 
+#include "cpu_raster/exact/rasterize.hpp"
 #include "cpu_raster/fast/fast_triangle.hpp"
 #include "cpu_raster/fast/small_triangles.hpp"
 #include "cpu_raster/fast/small_window.hpp"
 #include "cpu_raster/fast/tile_depth_bounds.hpp"
 #include "cpu_raster/fast/tile_edges.hpp"
 #include "cpu_raster/fast/tile_kernel.hpp"
-#include "cpu_raster/exact/rasterize.hpp"
 
 namespace rastercmp::cpu::fast {
 
 // What rasterizing a draw needs.
 struct DrawRaster {
-  DepthTestState depth;    // the exact path's (cpu::make_depth_test_state)
-  KernelDepth kernel;      // the same, for the AVX2 kernels
-  bool vector_ok = true;   // the AVX2 kernels reproduce this state (UNORM depth stays below 2^24)
-  bool bounds = false;     // tile depth bounds are used and kept for this draw
+  DepthTestState depth;          // the exact path's (cpu::make_depth_test_state)
+  KernelDepth kernel;            // the same, for the AVX2 kernels
+  bool vector_ok = true;         // the AVX2 kernels reproduce this state (UNORM depth stays below 2^24)
+  bool bounds = false;           // tile depth bounds are used and kept for this draw
   KernelFn kernel_fn = nullptr;  // the AVX2 kernels of this depth state (set when the host has AVX2)
   SmallKernelFn small_fn = nullptr;
   GridScatterFn grid_fn = nullptr;
@@ -36,10 +36,10 @@ struct FrameRaster {
   int32_t tiles_x = 0, tiles_y = 0;
   TileState* tiles = nullptr;  // tiles_x * tiles_y, row-major
   bool avx2 = false;
-  SmallSetupFn small_setup = nullptr;  // the eight-wide set-up for this host (AVX2 hosts)
+  SmallSetupFn small_setup = nullptr;           // the eight-wide set-up for this host (AVX2 hosts)
   SmallPairSetupFn small_pair_setup = nullptr;  // the sixteen-wide one (AVX-512 hosts)
-  bool bounds = false;  // depth bounds usable in this frame (tile_depth_bounds.hpp)
-  uint32_t depth_clear_raw = 0;  // clear_depth_raw of the scene's clear value
+  bool bounds = false;                          // depth bounds usable in this frame (tile_depth_bounds.hpp)
+  uint32_t depth_clear_raw = 0;                 // clear_depth_raw of the scene's clear value
 
   TileState& tile(int32_t tile_x, int32_t tile_y) const {
     return tiles[size_t(tile_y) * size_t(tiles_x) + size_t(tile_x)];
@@ -64,8 +64,8 @@ struct TileTriangle {
 TileTriangle prepare_in_tile(const FastTriangle& t, const PixelRect& r, const DrawRaster& draw, bool range_small);
 
 // Rectangle r lies inside tile (tile_x, tile_y) and inside the triangle's rect.
-void raster_in_tile(const FastTriangle& t, const PixelRect& r, int32_t tile_x, int32_t tile_y,
-                    const DrawRaster& draw, const FrameRaster& frame);
+void raster_in_tile(const FastTriangle& t, const PixelRect& r, int32_t tile_x, int32_t tile_y, const DrawRaster& draw,
+                    const FrameRaster& frame);
 void raster_prepared(const FastTriangle& t, const TileTriangle& prepared, int32_t tile_x, int32_t tile_y,
                      const DrawRaster& draw, const FrameRaster& frame);
 

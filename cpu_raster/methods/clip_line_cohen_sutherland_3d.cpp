@@ -26,8 +26,10 @@ CohenSutherland3dResult clip_line_cohen_sutherland_3d(Vec4 p0, Vec4 p1, const Cl
     }
     if ((code0 & code1) != 0) return result;
     ++result.clips;
-    if (code0 != 0) p0 = intersect_plane(volume, lowest_set_plane(code0), p0, p1);
-    else p1 = intersect_plane(volume, lowest_set_plane(code1), p1, p0);
+    if (code0 != 0)
+      p0 = intersect_plane(volume, lowest_set_plane(code0), p0, p1);
+    else
+      p1 = intersect_plane(volume, lowest_set_plane(code1), p1, p0);
   }
   return result;
 }

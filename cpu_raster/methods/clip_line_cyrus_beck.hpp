@@ -32,7 +32,7 @@ struct CyrusBeckStep {
 struct CyrusBeckResult {
   bool accepted = false;
   double t_in = 0, t_out = 1;
-  Segment2 segment;                 // p(t_in), p(t_out); meaningful only when accepted
+  Segment2 segment;                  // p(t_in), p(t_out); meaningful only when accepted
   std::vector<CyrusBeckStep> trace;  // empty for a degenerate segment
 };
 

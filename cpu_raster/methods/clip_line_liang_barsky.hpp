@@ -15,9 +15,9 @@ namespace rastercmp::methods {
 
 struct LiangBarskyResult {
   bool accepted = false;
-  double t_in = 0;   // parameter of the visible part's first point along p0 -> p1
-  double t_out = 1;  // parameter of its last point
-  Segment2 segment;  // p(t_in), p(t_out); meaningful only when accepted
+  double t_in = 0;         // parameter of the visible part's first point along p0 -> p1
+  double t_out = 1;        // parameter of its last point
+  Segment2 segment;        // p(t_in), p(t_out); meaningful only when accepted
   int sides_examined = 0;  // 4 unless rejected early; there is never a second pass
 };
 

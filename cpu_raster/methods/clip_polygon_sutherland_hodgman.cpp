@@ -8,8 +8,7 @@ namespace {
 
 // One boundary pass over the subject loop; `distance(p)` >= 0 inside, `cross(s, e)` the crossing.
 template <typename Point, typename Distance, typename Crossing>
-std::vector<Point> clip_against_boundary(const std::vector<Point>& subject, Distance distance,
-                                         Crossing crossing) {
+std::vector<Point> clip_against_boundary(const std::vector<Point>& subject, Distance distance, Crossing crossing) {
   std::vector<Point> out;
   if (subject.empty()) return out;
   Point s = subject.back();
@@ -55,8 +54,7 @@ Polygon2 clip_polygon_sutherland_hodgman(const Polygon2& subject, const Rect2& w
   return clip_polygon_sutherland_hodgman(subject, rect_polygon(window));
 }
 
-std::vector<Vec4> clip_polygon_sutherland_hodgman(const std::vector<Vec4>& subject_clip,
-                                                  const ClipVolume& volume) {
+std::vector<Vec4> clip_polygon_sutherland_hodgman(const std::vector<Vec4>& subject_clip, const ClipVolume& volume) {
   std::vector<Vec4> polygon = subject_clip;
   for (ClipPlane plane : kClipPlanes) {
     if (polygon.empty()) break;

@@ -24,7 +24,6 @@ Polygon2 clip_polygon_sutherland_hodgman(const Polygon2& subject, const Polygon2
 Polygon2 clip_polygon_sutherland_hodgman(const Polygon2& subject, const Rect2& window);
 
 // Clip-space polygon (before the perspective divide) against the six planes of `volume`.
-std::vector<Vec4> clip_polygon_sutherland_hodgman(const std::vector<Vec4>& subject_clip,
-                                                  const ClipVolume& volume);
+std::vector<Vec4> clip_polygon_sutherland_hodgman(const std::vector<Vec4>& subject_clip, const ClipVolume& volume);
 
 }  // namespace rastercmp::methods

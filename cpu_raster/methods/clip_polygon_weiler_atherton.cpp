@@ -106,8 +106,8 @@ std::vector<Crossing> find_crossings(const Polygon2& subject, const Polygon2& cl
       Crossing c;
       c.subject_edge = i;
       c.clip_edge = j;
-      const Contact contact = classify(subject[i], subject[(i + 1) % subject.size()], clip[j],
-                                       clip[(j + 1) % clip.size()], c);
+      const Contact contact =
+          classify(subject[i], subject[(i + 1) % subject.size()], clip[j], clip[(j + 1) % clip.size()], c);
       if (contact == Contact::Degenerate) degenerate = true;
       if (contact == Contact::Proper) crossings.push_back(c);
     }
@@ -125,13 +125,16 @@ WeilerAthertonResult clip_polygon_weiler_atherton(const Polygon2& subject_in, co
   result.crossings = crossings.size();
   if (result.degenerate) return result;
   if (crossings.empty()) {
-    if (inside_even_odd(clip, subject[0])) result.polygons.push_back(subject);
-    else if (inside_even_odd(subject, clip[0])) result.polygons.push_back(clip);
+    if (inside_even_odd(clip, subject[0]))
+      result.polygons.push_back(subject);
+    else if (inside_even_odd(subject, clip[0]))
+      result.polygons.push_back(clip);
     return result;
   }
   std::vector<Node> nodes;
   const std::vector<size_t> subject_node = append_list(
-      nodes, subject, crossings, [](const Crossing& c) { return c.subject_edge; }, [](const Crossing& c) { return c.t; });
+      nodes, subject, crossings, [](const Crossing& c) { return c.subject_edge; },
+      [](const Crossing& c) { return c.t; });
   const std::vector<size_t> clip_node = append_list(
       nodes, clip, crossings, [](const Crossing& c) { return c.clip_edge; }, [](const Crossing& c) { return c.u; });
   for (size_t k = 0; k < crossings.size(); ++k) {

@@ -20,9 +20,7 @@ double sign(ClipPlane plane) { return (uint8_t(plane) % 2 == 0) ? 1.0 : -1.0; }
 
 }  // namespace
 
-ClipVolume box_volume(const Box3& box) {
-  return {{box.x_min, box.x_max, box.y_min, box.y_max, box.z_min, box.z_max}};
-}
+ClipVolume box_volume(const Box3& box) { return {{box.x_min, box.x_max, box.y_min, box.y_max, box.z_min, box.z_max}}; }
 
 ClipVolume homogeneous_volume(ClipDepthRange depth_range) {
   const double z_low = depth_range == ClipDepthRange::ZeroToOne ? 0.0 : -1.0;

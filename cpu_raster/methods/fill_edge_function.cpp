@@ -32,7 +32,9 @@ bool covers(const std::array<Edge, 3>& edges, Vec2f centre) {
   return true;
 }
 
-int32_t floor_to_pixel(float v) { return int32_t(std::clamp(std::floor(double(v)), -double(1 << 30), double(1 << 30))); }
+int32_t floor_to_pixel(float v) {
+  return int32_t(std::clamp(std::floor(double(v)), -double(1 << 30), double(1 << 30)));
+}
 
 }  // namespace
 

@@ -21,8 +21,7 @@ std::vector<RowCrossing> row_crossings(const Polygon2& polygon, double y_sample)
     if (!(lo.y <= y_sample && y_sample < hi.y)) continue;
     crossings.push_back({lo.x + (y_sample - lo.y) * (hi.x - lo.x) / (hi.y - lo.y), a.y < b.y ? 1 : -1});
   }
-  std::sort(crossings.begin(), crossings.end(),
-            [](const RowCrossing& l, const RowCrossing& r) { return l.x < r.x; });
+  std::sort(crossings.begin(), crossings.end(), [](const RowCrossing& l, const RowCrossing& r) { return l.x < r.x; });
   return crossings;
 }
 

@@ -48,8 +48,10 @@ int winding_number(const Polygon2& polygon, Vec2 p) {
   for (size_t i = 0; i < n; ++i) {
     const Vec2 a = polygon[i], b = polygon[(i + 1) % n];
     const double side = cross(b - a, p - a);  // > 0: p left of a->b
-    if (a.y <= p.y && p.y < b.y && side > 0) ++winding;        // upward edge, p on its left
-    else if (b.y <= p.y && p.y < a.y && side < 0) --winding;   // downward edge, p on its right
+    if (a.y <= p.y && p.y < b.y && side > 0)
+      ++winding;  // upward edge, p on its left
+    else if (b.y <= p.y && p.y < a.y && side < 0)
+      --winding;  // downward edge, p on its right
   }
   return winding;
 }

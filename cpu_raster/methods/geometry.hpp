@@ -37,21 +37,16 @@ inline Vec3 operator+(Vec3 a, Vec3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}
 inline Vec3 operator-(Vec3 a, Vec3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
 inline Vec3 operator*(Vec3 a, double s) { return {a.x * s, a.y * s, a.z * s}; }
 inline double dot(Vec3 a, Vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-inline Vec3 cross(Vec3 a, Vec3 b) {
-  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
+inline Vec3 cross(Vec3 a, Vec3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
 
 // The notes' parametric form p(t) = (1 - t) p0 + t p1 (rasterization lecture, "Liang-Barsky
 // Clipping"): exact at t = 0 and t = 1.
-inline Vec2 lerp(Vec2 p0, Vec2 p1, double t) {
-  return {(1 - t) * p0.x + t * p1.x, (1 - t) * p0.y + t * p1.y};
-}
+inline Vec2 lerp(Vec2 p0, Vec2 p1, double t) { return {(1 - t) * p0.x + t * p1.x, (1 - t) * p0.y + t * p1.y}; }
 inline Vec3 lerp(Vec3 p0, Vec3 p1, double t) {
   return {(1 - t) * p0.x + t * p1.x, (1 - t) * p0.y + t * p1.y, (1 - t) * p0.z + t * p1.z};
 }
 inline Vec4 lerp(Vec4 p0, Vec4 p1, double t) {
-  return {(1 - t) * p0.x + t * p1.x, (1 - t) * p0.y + t * p1.y, (1 - t) * p0.z + t * p1.z,
-          (1 - t) * p0.w + t * p1.w};
+  return {(1 - t) * p0.x + t * p1.x, (1 - t) * p0.y + t * p1.y, (1 - t) * p0.z + t * p1.z, (1 - t) * p0.w + t * p1.w};
 }
 
 struct Segment2 {

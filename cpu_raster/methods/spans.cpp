@@ -39,8 +39,7 @@ void add_clamped(SpanBuilder& builder, const PixelBounds& bounds, int32_t y, int
   builder.add(y, std::max(x_begin, bounds.x_min), std::min(x_end, bounds.x_max));
 }
 
-std::vector<uint32_t> coverage_counts(const std::vector<std::vector<Span>>& span_sets, int32_t width,
-                                      int32_t height) {
+std::vector<uint32_t> coverage_counts(const std::vector<std::vector<Span>>& span_sets, int32_t width, int32_t height) {
   std::vector<uint32_t> counts(size_t(std::max(width, 0)) * size_t(std::max(height, 0)), 0);
   for (const std::vector<Span>& spans : span_sets) {
     for_each_pixel(spans, [&](int32_t x, int32_t y) {

@@ -56,7 +56,6 @@ class SpanBuilder {
 void add_clamped(SpanBuilder& builder, const PixelBounds& bounds, int32_t y, int32_t x_begin, int32_t x_end);
 
 // How many of `span_sets` cover each pixel of a width x height grid at (0, 0); index y*width + x.
-std::vector<uint32_t> coverage_counts(const std::vector<std::vector<Span>>& span_sets, int32_t width,
-                                      int32_t height);
+std::vector<uint32_t> coverage_counts(const std::vector<std::vector<Span>>& span_sets, int32_t width, int32_t height);
 
 }  // namespace rastercmp::methods

@@ -22,7 +22,7 @@ namespace rastercmp::methods {
 
 struct BspNode {
   Plane3 plane;
-  std::vector<Polygon3> polygons;  // the partition polygon first, then those coplanar with it
+  std::vector<Polygon3> polygons;      // the partition polygon first, then those coplanar with it
   int32_t behind = -1, in_front = -1;  // child node indices; -1: empty subtree
 };
 

@@ -41,9 +41,8 @@ void rasterize(const Polygon3& polygon, int32_t width, int32_t height, Covered c
 OwnerImage paint_in_order(const std::vector<Polygon3>& polygons_back_to_front, int32_t width, int32_t height) {
   OwnerImage image = blank_image(width, height);
   for (const Polygon3& polygon : polygons_back_to_front) {
-    rasterize(polygon, width, height, [&](int32_t x, int32_t y, double) {
-      image.owner[size_t(y) * size_t(width) + size_t(x)] = polygon.id;
-    });
+    rasterize(polygon, width, height,
+              [&](int32_t x, int32_t y, double) { image.owner[size_t(y) * size_t(width) + size_t(x)] = polygon.id; });
   }
   return image;
 }

@@ -33,9 +33,7 @@ void CoverageMap::make_may_everywhere() {
     for (int32_t px = region_.x0; px <= region_.x1; ++px) add(px, py, Coverage::Partial, Gate::Maybe);
 }
 
-bool CoverageMap::is_must(int32_t px, int32_t py) const {
-  return pixel_class_[pixel(px, py)] == CoverageClass::Must;
-}
+bool CoverageMap::is_must(int32_t px, int32_t py) const { return pixel_class_[pixel(px, py)] == CoverageClass::Must; }
 
 std::vector<CoverageClass> CoverageMap::classes() const {
   std::vector<CoverageClass> out;

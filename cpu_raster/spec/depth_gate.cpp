@@ -28,8 +28,8 @@ double r_max(DepthFormat format) {
 Interval bias_interval(const DepthBias& bias, DepthFormat format, double slope, bool optional) {
   Interval o;
   if (bias.enable && (bias.constant_factor != 0 || bias.slope_factor != 0)) {
-    const double reach = std::fabs(double(bias.constant_factor)) * r_max(format) +
-                         std::fabs(double(bias.slope_factor)) * slope;
+    const double reach =
+        std::fabs(double(bias.constant_factor)) * r_max(format) + std::fabs(double(bias.slope_factor)) * slope;
     o = {-reach, reach};
     const double clamp = bias.clamp;
     if (clamp > 0) o = {std::min(o.lo, clamp), std::min(o.hi, clamp)};
@@ -46,7 +46,8 @@ bool fit_plane(const DepthPrimitive& p, DepthJudge& j) {
   j.x0 = a.x;
   j.y0 = a.y;
   j.z0 = a.z;
-  const bool constant = std::all_of(p.vertices.begin(), p.vertices.end(), [&](const glm::dvec3& v) { return v.z == a.z; });
+  const bool constant =
+      std::all_of(p.vertices.begin(), p.vertices.end(), [&](const glm::dvec3& v) { return v.z == a.z; });
   if (p.vertices.size() == 2) {
     const glm::dvec3 d = p.vertices[1] - a;
     const double length2 = d.x * d.x + d.y * d.y;
@@ -67,7 +68,9 @@ enum class Outcome { Pass, Fail, Unknown };
 
 // The test "fragment op clear" for every fragment depth in z (Vulkan "Depth Comparison").
 Outcome compare_with_clear(CompareOp op, const Interval& z, double clear) {
-  const auto decide = [](bool pass, bool fail) { return pass ? Outcome::Pass : fail ? Outcome::Fail : Outcome::Unknown; };
+  const auto decide = [](bool pass, bool fail) {
+    return pass ? Outcome::Pass : fail ? Outcome::Fail : Outcome::Unknown;
+  };
   switch (op) {
     case CompareOp::Always: return Outcome::Pass;
     case CompareOp::Never: return Outcome::Fail;
@@ -131,7 +134,7 @@ Gate depth_gate_at(const DepthJudge& j, glm::dvec2 pos) {
   const double z = j.z0 + j.dzdx * (pos.x - j.x0) + j.dzdy * (pos.y - j.y0);
   const double spread = (std::fabs(j.dzdx) + std::fabs(j.dzdy)) * j.reach_px;
   Interval fragment{std::max(z - spread + j.offset_lo, j.range_lo), std::min(z + spread + j.offset_hi, j.range_hi)};
-  if (fragment.lo > fragment.hi) return Gate::Maybe;  // no device fragment can be here; stay neutral
+  if (fragment.lo > fragment.hi) return Gate::Maybe;          // no device fragment can be here; stay neutral
   fragment = {fragment.lo - j.slack, fragment.hi + j.slack};  // interpolation error, then the clamp
   if (j.clamp) fragment = {std::clamp(fragment.lo, j.zmin, j.zmax), std::clamp(fragment.hi, j.zmin, j.zmax)};
   if (j.unorm_step > 0) {

@@ -61,11 +61,11 @@ struct DepthJudge {
   double offset_lo = 0, offset_hi = 0;  // depth bias range
   bool clamp = false;
   double zmin = 0, zmax = 1;
-  double slack = 0;       // interpolation error, before the clamp
-  double unorm_step = 0;  // one step of a UNORM format, 0 for D32
+  double slack = 0;                                   // interpolation error, before the clamp
+  double unorm_step = 0;                              // one step of a UNORM format, 0 for D32
   double x0 = 0, y0 = 0, z0 = 0, dzdx = 0, dzdy = 0;  // z(p) = z0 + dzdx (x - x0) + dzdy (y - y0)
-  double reach_px = 0;  // widening of the plane value, in pixels of slope (see above)
-  double range_lo = 0, range_hi = 0;  // what the exact fragment depths can be (plus bias)
+  double reach_px = 0;                                // widening of the plane value, in pixels of slope (see above)
+  double range_lo = 0, range_hi = 0;                  // what the exact fragment depths can be (plus bias)
 };
 
 DepthJudge make_depth_judge(const Scene& scene, const RasterState& state, const DepthPrimitive& primitive);

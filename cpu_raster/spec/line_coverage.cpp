@@ -124,8 +124,7 @@ Coverage classify_line_box(const LineShape& shape, const PixelSquare& box) {
 }
 
 PixelBounds may_bounds(const LineShape& shape) {
-  PixelBounds b{shape.may[0].corner[0].x, shape.may[0].corner[0].x, shape.may[0].corner[0].y,
-                shape.may[0].corner[0].y};
+  PixelBounds b{shape.may[0].corner[0].x, shape.may[0].corner[0].x, shape.may[0].corner[0].y, shape.may[0].corner[0].y};
   for (const Quad& q : shape.may)
     for (const dvec2& c : q.corner) {
       b.x_min = std::min(b.x_min, c.x);

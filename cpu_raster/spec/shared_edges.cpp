@@ -30,7 +30,8 @@ bool same_clip_vertex(const glm::vec4& a, const glm::vec4& b) {
 bool sources_share_edge(const SpecTriangle& a, const SpecTriangle& b) {
   int common = 0;
   for (const glm::vec4& p : a.source_clip)
-    if (std::any_of(b.source_clip.begin(), b.source_clip.end(), [&](const glm::vec4& q) { return same_clip_vertex(p, q); }))
+    if (std::any_of(b.source_clip.begin(), b.source_clip.end(),
+                    [&](const glm::vec4& q) { return same_clip_vertex(p, q); }))
       ++common;
   return common >= 2;
 }

@@ -22,7 +22,7 @@
 namespace rastercmp::cpu::spec {
 
 struct SharedEdge {
-  size_t first = 0, second = 0;  // indices into the triangle list
+  size_t first = 0, second = 0;         // indices into the triangle list
   int first_edge = 0, second_edge = 0;  // edge i runs from vertex i to vertex (i+1)%3
 };
 

@@ -155,8 +155,10 @@ SpecPrimitives build_spec_primitives(const Scene& scene, bool fma, uint32_t sub_
     const uint32_t count = primitive_count(draw);
     for (uint32_t i = 0; i < count; ++i) {
       const cpu::AssembledPrimitive prim = assemble_primitive(draw, i);
-      if (is_line_topology(draw.topology)) add_line(ctx, prim, out);
-      else add_triangle(ctx, prim, out);
+      if (is_line_topology(draw.topology))
+        add_line(ctx, prim, out);
+      else
+        add_triangle(ctx, prim, out);
     }
   }
   return out;

@@ -14,18 +14,18 @@
 
 #include <glm/vec4.hpp>
 
+#include "cpu_raster/exact/viewport.hpp"
 #include "cpu_raster/spec/depth_gate.hpp"
 #include "cpu_raster/spec/line_coverage.hpp"
 #include "cpu_raster/spec/triangle_coverage.hpp"
-#include "cpu_raster/exact/viewport.hpp"
 #include "model/scene.hpp"
 
 namespace rastercmp::cpu::spec {
 
 struct SpecTriangle {
   uint32_t draw_index = 0, primitive_index = 0;
-  std::array<WindowVertex, 3> window{};      // the piece, in emit order (window pixels, float)
-  std::array<glm::vec4, 3> source_clip{};    // the primitive before clipping
+  std::array<WindowVertex, 3> window{};    // the piece, in emit order (window pixels, float)
+  std::array<glm::vec4, 3> source_clip{};  // the primitive before clipping
   SnappedTriangle snapped;
   Gate facing = Gate::Certain;  // culling: certainly kept, possibly culled
   DepthJudge depth;

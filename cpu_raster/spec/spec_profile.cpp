@@ -21,11 +21,13 @@ cpu::PixelRect pixels_near(int64_t x_lo, int64_t x_hi, int64_t y_lo, int64_t y_h
                            const cpu::PixelRect& region) {
   const PixelSpan xs = pixels_touching(x_lo, x_hi, bits, multisample);
   const PixelSpan ys = pixels_touching(y_lo, y_hi, bits, multisample);
-  return cpu::PixelRect{int32_t(std::max<int64_t>(xs.first, region.x0)), int32_t(std::max<int64_t>(ys.first, region.y0)),
-                        int32_t(std::min<int64_t>(xs.last, region.x1)), int32_t(std::min<int64_t>(ys.last, region.y1))};
+  return cpu::PixelRect{int32_t(std::max<int64_t>(xs.first, region.x0)),
+                        int32_t(std::max<int64_t>(ys.first, region.y0)), int32_t(std::min<int64_t>(xs.last, region.x1)),
+                        int32_t(std::min<int64_t>(ys.last, region.y1))};
 }
 
-cpu::PixelRect triangle_pixels(const SnappedTriangle& t, uint32_t bits, bool multisample, const cpu::PixelRect& region) {
+cpu::PixelRect triangle_pixels(const SnappedTriangle& t, uint32_t bits, bool multisample,
+                               const cpu::PixelRect& region) {
   return pixels_near(t.x_min, t.x_max, t.y_min, t.y_max, bits, multisample, region);
 }
 
@@ -47,8 +49,9 @@ void add_triangle(CoverageMap& map, const SpecTriangle& t, uint32_t bits, bool m
 
 void add_shared_edge(CoverageMap& map, const std::vector<SpecTriangle>& triangles, const SharedEdge& shared,
                      uint32_t bits, bool multisample) {
-  const cpu::PixelRect r = cpu::intersect(triangle_pixels(triangles[shared.first].snapped, bits, multisample, map.region()),
-                                          triangle_pixels(triangles[shared.second].snapped, bits, multisample, map.region()));
+  const cpu::PixelRect r =
+      cpu::intersect(triangle_pixels(triangles[shared.first].snapped, bits, multisample, map.region()),
+                     triangle_pixels(triangles[shared.second].snapped, bits, multisample, map.region()));
   for (int32_t py = r.y0; py <= r.y1; ++py)
     for (int32_t px = r.x0; px <= r.x1; ++px)
       if (!map.is_must(px, py) && promoted(triangles, shared, pixel_box(px, py, bits, multisample)) &&
@@ -93,7 +96,8 @@ void check_spec_profile_support(const Scene& scene) {
       throw NotSupportedError(draw_path(d) + ": polygon_mode \"" + to_string(draw.state.polygon_mode) +
                               "\" is not classified by the CPU spec profile");
     if (is_line_topology(draw.topology) && draw.state.line_mode == LineMode::RectangularSmooth)
-      throw NotSupportedError(draw_path(d) + ": line_mode \"rectangular_smooth\" is not classified by the CPU spec "
+      throw NotSupportedError(draw_path(d) +
+                              ": line_mode \"rectangular_smooth\" is not classified by the CPU spec "
                               "profile (smooth-line coverage is an implementation's alpha)");
   }
 }

@@ -28,9 +28,9 @@ int certain_cross_sign(const std::array<SnapCell, 3>& cells) {
 std::vector<GridPoint> convex_hull(std::vector<GridPoint> points) {
   std::sort(points.begin(), points.end(),
             [](GridPoint p, GridPoint q) { return p.x < q.x || (p.x == q.x && p.y < q.y); });
-  points.erase(std::unique(points.begin(), points.end(),
-                           [](GridPoint p, GridPoint q) { return p.x == q.x && p.y == q.y; }),
-               points.end());
+  points.erase(
+      std::unique(points.begin(), points.end(), [](GridPoint p, GridPoint q) { return p.x == q.x && p.y == q.y; }),
+      points.end());
   if (points.size() < 3) return points;
   std::vector<GridPoint> hull(2 * points.size());
   size_t k = 0;

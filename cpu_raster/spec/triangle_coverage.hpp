@@ -32,7 +32,7 @@ struct SnappedTriangle {
   // Edge i runs from vertex i to vertex (i+1)%3; its 16 variants are oriented so that the
   // triangle's side is positive. Valid when area_sign != 0.
   std::array<std::array<LineEquation, 16>, 3> edge{};
-  std::vector<GridPoint> hull;  // convex hull of the 12 cell corners, counter-clockwise (y up)
+  std::vector<GridPoint> hull;                         // convex hull of the 12 cell corners, counter-clockwise (y up)
   int64_t x_min = 0, x_max = 0, y_min = 0, y_max = 0;  // bounds of the hull
 };
 
