@@ -162,6 +162,9 @@ INSTANTIATE_TEST_SUITE_P(MsaaLines, Differential,
                                  Range(1u, 7u)),
                          case_name);
 INSTANTIATE_TEST_SUITE_P(Less, Differential, Combine(Values(Family{"less", less_triangles}), Range(1u, 6u)), case_name);
+INSTANTIATE_TEST_SUITE_P(MsaaBresenhamDepth, Differential,
+                         Combine(Values(Family{"msaa_bresenham_depth", msaa_bresenham_depth}), Range(1u, 7u)),
+                         case_name);
 INSTANTIATE_TEST_SUITE_P(MsaaLess, Differential,
                          Combine(Values(Family{"msaa_less", msaa_less_triangles}), Range(1u, 7u)), case_name);
 INSTANTIATE_TEST_SUITE_P(Viewport, Differential, Combine(Values(Family{"viewport", viewport_triangles}), Range(1u, 9u)),
