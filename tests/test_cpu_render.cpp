@@ -67,6 +67,44 @@ TEST(CpuRender, LaterPrimitivesOverwriteAndTheDepthTestDecides) {
   }
 }
 
+// docs/lavapipe-rules.md §6: a Bresenham line in a 4x framebuffer is one fragment per pixel, tested
+// against sample 0's depth; it writes its depth to sample 0 only and its owner to all four samples.
+// 4x4 px: strips at z 0.2 cover samples 0 and 2 of pixel (1, 1) (x < 1.5) and sample 2 alone of
+// pixel (2, 1) (2 <= x < 2.25); a horizontal line at z 0.5 crosses row 1; then a full screen at 0.7.
+TEST(CpuRender, BresenhamLineIn4xIsOneFragmentTestedAtSampleZero) {
+  Scene scene = small_scene();
+  scene.width = scene.height = 4;
+  scene.samples = 4;
+  Draw left, narrow, line;
+  left.positions_clip = {{-1, -1, 0.2f, 1}, {-0.25f, -1, 0.2f, 1}, {-0.25f, 1, 0.2f, 1},
+                         {-1, -1, 0.2f, 1}, {-0.25f, 1, 0.2f, 1},  {-1, 1, 0.2f, 1}};
+  narrow.positions_clip = {{0, -1, 0.2f, 1}, {0.125f, -1, 0.2f, 1}, {0.125f, 1, 0.2f, 1},
+                           {0, -1, 0.2f, 1}, {0.125f, 1, 0.2f, 1},  {0, 1, 0.2f, 1}};
+  line.topology = Topology::LineList;
+  line.state.line_mode = LineMode::Bresenham;
+  line.positions_clip = {{-1.5f, -0.2f, 0.5f, 1}, {1.5f, -0.2f, 0.5f, 1}};
+  scene.draws = {left, narrow, line, full_screen(0.7f)};
+  for (const uint32_t threads : {0u, 2u}) {
+    CpuOptions options;
+    options.threads = threads;
+    const RenderResult r = render_cpu(scene, options);
+    // (1, 1): sample 0 holds 0.2, so the line fails there although samples 1 and 3 hold 1.0.
+    EXPECT_EQ(owner_draw(r.owner[r.index(1, 1, 0)]), 0u);
+    EXPECT_EQ(owner_draw(r.owner[r.index(1, 1, 2)]), 0u);
+    EXPECT_EQ(owner_draw(r.owner[r.index(1, 1, 1)]), 3u);
+    EXPECT_EQ(owner_draw(r.owner[r.index(1, 1, 3)]), 3u);
+    // (2, 1): sample 0 holds 1.0, so the line passes and owns all four samples, sample 2 (0.2)
+    // included; its depth 0.5 goes to sample 0 only, so the full screen at 0.7 wins 1 and 3.
+    EXPECT_EQ(r.owner[r.index(2, 1, 0)], encode_owner(2, 0));
+    EXPECT_EQ(r.owner[r.index(2, 1, 2)], encode_owner(2, 0));
+    EXPECT_EQ(owner_draw(r.owner[r.index(2, 1, 1)]), 3u);
+    EXPECT_EQ(owner_draw(r.owner[r.index(2, 1, 3)]), 3u);
+    EXPECT_EQ(r.depth_raw[r.index(2, 1, 0)], 0x3F000000u);  // 0.5
+    EXPECT_EQ(r.depth_raw[r.index(2, 1, 2)], 0x3E4CCCCDu);  // 0.2, kept
+    EXPECT_EQ(r.depth_raw[r.index(2, 1, 1)], 0x3F333333u);  // 0.7
+  }
+}
+
 TEST(CpuRender, DepthTestOffWritesOwnersButNoDepth) {
   Scene scene = small_scene();
   scene.depth_clear = 0.125f;

@@ -68,8 +68,10 @@ class DifferentialRegion : public ::testing::Test {
     if (!reason.empty()) GTEST_SKIP() << "no Vulkan device: " << reason;
   }
 
-  static void expect_match(const char* name, std::optional<Rect2D> scissor, std::optional<Viewport> viewport) {
+  static void expect_match(const char* name, std::optional<Rect2D> scissor, std::optional<Viewport> viewport,
+                           uint32_t samples = 1) {
     Scene scene = make_scene(fmt::format("rastercmp.differential.region.{}", name), 32, 16, DepthFormat::X8D24Unorm);
+    scene.samples = samples;
     scene.scissor = scissor;
     scene.viewport = viewport;
     Draw draw;
@@ -97,6 +99,18 @@ TEST_F(DifferentialRegion, ViewportOutsideTheFramebuffer) {
 
 TEST_F(DifferentialRegion, ViewportLargerThanTheFramebuffer) {
   expect_match("viewport_larger", Rect2D{3, 1, 20, 30}, Viewport{-7.25f, -3.5f, 50.5f, 30.75f, 0.25f, 0.75f});
+}
+
+// The same with 4x multisampling, where lavapipe draws nothing into an empty region although its
+// multisample left/top scissor planes would pass samples of the column and row before it (§2.5).
+TEST_F(DifferentialRegion, EmptyScissorsMultisampled) {
+  expect_match("empty_scissor_width_4x", Rect2D{5, 3, 0, 4}, std::nullopt, 4);
+  expect_match("empty_scissor_height_4x", Rect2D{5, 3, 9, 0}, std::nullopt, 4);
+}
+
+TEST_F(DifferentialRegion, ViewportRoundingToNoPixelMultisampled) {
+  expect_match("viewport_rounds_to_empty_4x", std::nullopt, Viewport{5.6f, 4.6f, 0.8f, 0.8f, 0, 1}, 4);
+  expect_match("viewport_rounds_to_empty_wide_4x", std::nullopt, Viewport{2.5f, 4.7f, 20.25f, 0.75f, 0, 1}, 4);
 }
 
 std::string case_name(const ::testing::TestParamInfo<Differential::ParamType>& info) {
@@ -148,6 +162,9 @@ INSTANTIATE_TEST_SUITE_P(MsaaLines, Differential,
                                  Range(1u, 7u)),
                          case_name);
 INSTANTIATE_TEST_SUITE_P(Less, Differential, Combine(Values(Family{"less", less_triangles}), Range(1u, 6u)), case_name);
+INSTANTIATE_TEST_SUITE_P(MsaaBresenhamDepth, Differential,
+                         Combine(Values(Family{"msaa_bresenham_depth", msaa_bresenham_depth}), Range(1u, 7u)),
+                         case_name);
 INSTANTIATE_TEST_SUITE_P(MsaaLess, Differential,
                          Combine(Values(Family{"msaa_less", msaa_less_triangles}), Range(1u, 7u)), case_name);
 INSTANTIATE_TEST_SUITE_P(Viewport, Differential, Combine(Values(Family{"viewport", viewport_triangles}), Range(1u, 9u)),

@@ -408,6 +408,27 @@ inline Scene msaa_less_triangles(uint32_t seed) {
   return scene;
 }
 
+// 4x multisampling with depth-tested Bresenham lines between depth-tested triangles (docs/lavapipe-rules.md
+// §6): a line fragment is tested against sample 0 and owns all four samples, its depth goes to
+// sample 0 only, so the triangles and lines after it see samples 1-3 unchanged.
+inline Scene msaa_bresenham_depth(uint32_t seed) {
+  Random rng(seed);
+  Scene scene = clip_space_triangles("msaa_bresenham_depth", seed, 0.8f, 0, 1, 0.6f, 2);
+  scene.samples = 4;
+  for (Draw& draw : scene.draws) {
+    draw.state.depth.compare_op = rng.pick(
+        std::vector<CompareOp>{CompareOp::Less, CompareOp::Less, CompareOp::GreaterOrEqual, CompareOp::NotEqual});
+    draw.state.depth.write_enable = rng.chance(0.85f);
+    if (rng.chance(0.5f)) {
+      draw.topology = Topology::LineList;
+      draw.positions_clip.resize(2);
+      draw.state.line_mode = LineMode::Bresenham;
+      draw.state.line_width = float(rng.integer(1, 4));
+    }
+  }
+  return scene;
+}
+
 // Viewports with fractional offsets, partly off-screen, flipped (negative height), with a narrowed
 // or inverted depth range; every compare op, a random clear value, some draws without writes.
 inline Scene viewport_triangles(uint32_t seed) {

@@ -1,5 +1,6 @@
 #include "cpu_raster/exact/explain.hpp"
 
+#include <array>
 #include <cmath>
 #include <optional>
 #include <string>
@@ -19,8 +20,8 @@ using cpu::SetupFate;
 
 struct Probe {
   int32_t x, y;
-  uint32_t sample;
-  uint32_t stored;  // the sample's depth as the render holds it at this point
+  uint32_t sample, samples;
+  std::array<uint32_t, 4> stored;  // the pixel's sample depths as the render holds them at this point
 };
 
 CullReason cull_reason(const PrimitiveOutcome& o) {
@@ -96,10 +97,11 @@ void record_depth(FragmentRecord& r, const cpu::RasterPrimitive& raster, const c
   r.depth_clamped = verdict.depth.depth_clamped;
   r.depth_raw = verdict.depth.raw;
   r.compare_op = depth.op;
-  r.stored_before = probe.stored;
+  uint32_t& stored = probe.stored[r.depth_sample];
+  r.stored_before = stored;
   r.depth_passed = verdict.depth_passed;
-  if (verdict.depth_passed && depth.write) probe.stored = verdict.depth.raw;
-  r.stored_after = probe.stored;
+  if (verdict.depth_passed && depth.write) stored = verdict.depth.raw;
+  r.stored_after = stored;
 }
 
 std::optional<FragmentRecord> trace(const PrimitiveOutcome& o, const cpu::DepthTestState& depth, const Draw& draw,
@@ -109,10 +111,15 @@ std::optional<FragmentRecord> trace(const PrimitiveOutcome& o, const cpu::DepthT
     return base_record(o);
   }
   const cpu::RasterPrimitive& raster = o.raster;
-  const cpu::SampleVerdict verdict = cpu::evaluate_sample(raster, depth, probe.x, probe.y, probe.sample, probe.stored);
+  // Without multisample rasterization the fragment is tested at sample 0 and owns every sample (§6).
+  const uint32_t tested = raster.per_sample ? probe.sample : 0;
+  const cpu::SampleVerdict verdict =
+      cpu::evaluate_sample(raster, depth, probe.x, probe.y, tested, probe.stored[tested]);
   const bool visited = raster.visit.contains(probe.x, probe.y);
   if (!visited && !raster.bbox.contains(probe.x, probe.y) && !verdict.covered()) return std::nullopt;
   FragmentRecord r = base_record(o);
+  r.depth_sample = tested;
+  r.one_fragment_per_pixel = !raster.per_sample && probe.samples > 1;
   record_planes(r, raster, verdict);
   r.covered = visited && verdict.covered();
   r.failing_plane = verdict.failing_plane;
@@ -137,8 +144,8 @@ std::vector<FragmentRecord> explain_pixel(const Scene& scene, const CpuOptions& 
                      " sample(s)");
   const cpu::FrameContext frame =
       cpu::make_frame_context(scene, options.fma, cpu::parse_setup_methods(options.methods));
-  Probe probe{int32_t(x), int32_t(y), sample,
-              scene.has_depth() ? cpu::clear_depth_raw(scene.depth_format, scene.depth_clear) : 0};
+  Probe probe{int32_t(x), int32_t(y), sample, scene.samples, {}};
+  probe.stored.fill(scene.has_depth() ? cpu::clear_depth_raw(scene.depth_format, scene.depth_clear) : 0);
   std::vector<FragmentRecord> records;
   for (uint32_t d = 0; d < scene.draws.size(); ++d) {
     const cpu::DepthTestState depth = cpu::make_depth_test_state(scene, scene.draws[d], frame.viewport, options.fma);

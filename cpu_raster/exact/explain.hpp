@@ -75,6 +75,8 @@ struct FragmentRecord {
   float depth_clamped = 0;  // after the depth clamp (equal when it is off)
   uint32_t depth_raw = 0;   // what the attachment would store
   CompareOp compare_op = CompareOp::Always;
+  uint32_t depth_sample = 0;            // whose stored depth is tested and written
+  bool one_fragment_per_pixel = false;  // not multisampled in a 4x framebuffer: sample 0 tested, owner to all (§6)
   uint32_t stored_before = 0;
   bool depth_passed = false;
   uint32_t stored_after = 0;

@@ -58,6 +58,8 @@ std::string detail_lines(const FragmentRecord& r) {
     text += fmt::format("      bias: m {:.9g}, r {:.9g}, constant {:.9g}, slope {:.9g}, clamp {:.9g}{} -> o {:.9g}\n",
                         r.bias_m, r.bias_r, r.bias_constant_factor, r.bias_slope_factor, r.bias_clamp,
                         r.bias_clamp_applied ? " (applied)" : "", r.bias_offset);
+  if (r.one_fragment_per_pixel)
+    text += "      one fragment for the pixel: depth tested and written at sample 0, owner written to every sample\n";
   if (r.depth_tested)
     text += fmt::format("      z {:.9g} + o = {:.9g}, [0,1] {:.9g}, depth clamp {} {:.9g}\n", r.depth_interpolated,
                         r.depth_with_offset, r.depth_clamped_01, r.depth_clamp_enabled ? "on" : "off", r.depth_clamped);

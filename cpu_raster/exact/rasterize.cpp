@@ -48,15 +48,23 @@ void rasterize_primitive(const RasterPrimitive& p, const DepthTestState& depth, 
       skips.edges32_when_box_fits ? make_edge_frame32(p.planes, p.visit) : std::nullopt;
   const EdgeFrame32* edges32 = frame32 ? &*frame32 : nullptr;
   const bool read_stored = (depth.active || depth.compute_when_inactive) && !targets.depth_raw.empty();
+  // A primitive rasterized without multisampling in a multisampled framebuffer (a Bresenham line)
+  // makes one fragment per pixel: tested against sample 0's depth, its depth written to sample 0
+  // only, its owner to every sample (docs/lavapipe-rules.md §6).
+  const uint32_t tested_samples = p.per_sample ? targets.samples : 1;
   for (int32_t py = p.visit.y0; py <= p.visit.y1; ++py) {
     for (int32_t px = p.visit.x0; px <= p.visit.x1; ++px) {
-      for (uint32_t s = 0; s < targets.samples; ++s) {
+      for (uint32_t s = 0; s < tested_samples; ++s) {
         const size_t i = targets.index(px, py, s);
         const SampleVerdict verdict =
             evaluate_sample(p, depth, px, py, s, read_stored ? targets.depth_raw[i] : 0, edges32);
         if (!verdict.passes()) continue;
         if (depth.write) targets.depth_raw[i] = verdict.depth.raw;
-        targets.owner[i] = p.owner;
+        if (p.per_sample) {
+          targets.owner[i] = p.owner;
+        } else {
+          for (uint32_t t = 0; t < targets.samples; ++t) targets.owner[targets.index(px, py, t)] = p.owner;
+        }
       }
     }
   }
