@@ -3,6 +3,7 @@
 #include <array>
 #include <bit>
 #include <utility>
+
 #include "cpu_raster/fast/format_dispatch.hpp"
 
 namespace rastercmp::cpu::fast {
