@@ -1,6 +1,7 @@
 #include "compare/case_record.hpp"
 
 #include "compare/depth_units.hpp"
+#include "model/depth_format.hpp"
 #include "model/errors.hpp"
 
 namespace rastercmp {
@@ -83,7 +84,7 @@ struct Reader {
 
 DepthFormat parse_depth_format(const Reader& r, const Json& obj, const std::string& path) {
   const std::string name = r.get<std::string>(obj, path, "depth_format");
-  for (DepthFormat f : {DepthFormat::None, DepthFormat::D16Unorm, DepthFormat::X8D24Unorm, DepthFormat::D32Sfloat})
+  for (DepthFormat f : kAllDepthFormats)
     if (name == to_string(f)) return f;
   throw InputError(r.file, path + ".depth_format", "expected a depth format name, found " + name);
 }

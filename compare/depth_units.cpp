@@ -5,12 +5,11 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "model/depth_format.hpp"
 #include "model/render_result.hpp"
 
 namespace rastercmp {
 namespace {
-
-uint32_t unorm_mask(DepthFormat format) { return format == DepthFormat::D16Unorm ? 0xFFFFu : 0xFFFFFFu; }
 
 // Maps float bits to integers that are ordered like the floats (+0 and -0 both map to 0),
 // so the integer distance counts the representable floats in between.
@@ -22,43 +21,38 @@ int64_t float_order_key(uint32_t bits) {
 }  // namespace
 
 const char* depth_unit_name(DepthFormat format) {
-  switch (format) {
-    case DepthFormat::D16Unorm:
-    case DepthFormat::X8D24Unorm: return "LSB";
-    case DepthFormat::D32Sfloat: return "ULP";
-    case DepthFormat::None: break;
+  switch (depth_format_info(format).encoding) {
+    case DepthEncoding::Unorm: return "LSB";
+    case DepthEncoding::Float: return "ULP";
+    case DepthEncoding::None: break;
   }
   return "";
 }
 
 uint64_t depth_diff_raw_units(DepthFormat format, uint32_t expected_raw, uint32_t actual_raw) {
-  switch (format) {
-    case DepthFormat::D16Unorm:
-    case DepthFormat::X8D24Unorm: {
-      const int64_t e = expected_raw & unorm_mask(format), a = actual_raw & unorm_mask(format);
+  const DepthFormatInfo info = depth_format_info(format);
+  switch (info.encoding) {
+    case DepthEncoding::Unorm: {
+      const int64_t e = expected_raw & info.raw_mask, a = actual_raw & info.raw_mask;
       return uint64_t(std::llabs(e - a));
     }
-    case DepthFormat::D32Sfloat:
-      return uint64_t(std::llabs(float_order_key(expected_raw) - float_order_key(actual_raw)));
-    case DepthFormat::None: break;
+    case DepthEncoding::Float: return uint64_t(std::llabs(float_order_key(expected_raw) - float_order_key(actual_raw)));
+    case DepthEncoding::None: break;
   }
   return 0;
 }
 
 double depth_bias_r(DepthFormat format, uint32_t expected_raw, uint32_t actual_raw) {
-  switch (format) {
-    case DepthFormat::D16Unorm: return 2.0 / 65535.0;       // docs/lavapipe-rules.md §4.3: r = 2 * mrd
-    case DepthFormat::X8D24Unorm: return 2.0 / 16777215.0;  // docs/lavapipe-rules.md §4.3: r = 2 * mrd
-    case DepthFormat::D32Sfloat: {
-      // Spec "Depth Bias": r = 2^(e - n) for floating-point formats, n = 23 mantissa bits.
+  const DepthFormatInfo info = depth_format_info(format);
+  switch (info.encoding) {
+    case DepthEncoding::Unorm: return 2.0 * info.mrd;  // docs/lavapipe-rules.md §4.3: r = 2 * mrd
+    case DepthEncoding::Float: {
+      // Spec "Depth Bias": r = 2^(e - n) for floating-point formats (docs/lavapipe-rules.md §4.1).
       const double larger = std::fmax(std::fabs(double(std::bit_cast<float>(expected_raw))),
                                       std::fabs(double(std::bit_cast<float>(actual_raw))));
-      int exponent_frexp = 0;
-      std::frexp(larger, &exponent_frexp);  // larger = m * 2^E, m in [0.5, 1): e = E - 1
-      const int e = (larger == 0.0 || !std::isfinite(larger)) ? -126 : std::max(exponent_frexp - 1, -126);
-      return std::ldexp(1.0, e - 23);
+      return float_depth_r(info, larger);
     }
-    case DepthFormat::None: break;
+    case DepthEncoding::None: break;
   }
   return 0.0;
 }
@@ -66,7 +60,7 @@ double depth_bias_r(DepthFormat format, uint32_t expected_raw, uint32_t actual_r
 double depth_diff_r_units(DepthFormat format, uint32_t expected_raw, uint32_t actual_raw) {
   if (format == DepthFormat::None) return 0.0;
   // UNORM: one LSB is 1/(2^n - 1) and r is two of them, exactly.
-  if (format != DepthFormat::D32Sfloat) return double(depth_diff_raw_units(format, expected_raw, actual_raw)) / 2.0;
+  if (is_unorm(format)) return double(depth_diff_raw_units(format, expected_raw, actual_raw)) / 2.0;
   const double diff = std::fabs(depth_raw_to_value(format, expected_raw) - depth_raw_to_value(format, actual_raw));
   if (!std::isfinite(diff)) return double(depth_diff_raw_units(format, expected_raw, actual_raw));
   return diff / depth_bias_r(format, expected_raw, actual_raw);

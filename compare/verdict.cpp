@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "compare/depth_units.hpp"
+#include "model/depth_format.hpp"
 
 namespace rastercmp {
 namespace {
@@ -74,7 +75,7 @@ double spec_depth_tolerance_r(const Scene& scene) {
     if (draw.state.depth_bias.enable)
       largest_constant = std::max(largest_constant, std::fabs(double(draw.state.depth_bias.constant_factor)));
   // UNORM r ranges over [2^-n, 2 * 2^-n]; in units of lavapipe's r = 2/(2^n - 1) that span is 1/2.
-  const bool unorm = scene.depth_format == DepthFormat::D16Unorm || scene.depth_format == DepthFormat::X8D24Unorm;
+  const bool unorm = is_unorm(scene.depth_format);
   return kSpecDepthBaseToleranceR + (unorm ? 0.5 * largest_constant : 0.0);
 }
 

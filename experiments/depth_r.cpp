@@ -5,6 +5,7 @@
 #include "cpu_raster/cpu_raster.hpp"
 #include "experiments/scene_make.hpp"
 #include "experiments/sweep_common.hpp"
+#include "model/depth_format.hpp"
 
 namespace rastercmp::experiments {
 namespace {
@@ -40,15 +41,14 @@ std::vector<DepthRMeasure> measure_depth_r(VulkanRenderer& vk) {
     m.r_vk = gpu.value;
     m.raw_step_cpu = cpu.raw;
     m.raw_step_vk = gpu.raw;
-    if (format == DepthFormat::D32Sfloat) {
-      int exponent = 0;
-      std::frexp(double(kFlatPlaneDepth), &exponent);     // 0.375 = 0.75 * 2^-1: unbiased exponent e = -2
-      m.spec_bound = std::ldexp(1.0, exponent - 1 - 23);  // r = 2^(e-n), n = 23 (docs/lavapipe-rules.md §4.1)
-      m.lavapipe_formula = m.spec_bound;                  // docs/lavapipe-rules.md §4.3, float branch
+    const DepthFormatInfo info = depth_format_info(format);
+    if (info.encoding == DepthEncoding::Float) {
+      // 0.375 = 0.75 * 2^-1: unbiased exponent e = -2; r = 2^(e-n) (docs/lavapipe-rules.md §4.1)
+      m.spec_bound = float_depth_r(info, double(kFlatPlaneDepth));
+      m.lavapipe_formula = m.spec_bound;  // docs/lavapipe-rules.md §4.3, float branch
     } else {
-      const int n = int(depth_bits(format));
-      m.spec_bound = 2.0 * std::ldexp(1.0, -n);               // spec: r <= 2 x 2^-n (§4.1)
-      m.lavapipe_formula = 2.0 / (std::ldexp(1.0, n) - 1.0);  // lavapipe: 2 * mrd (§4.3)
+      m.spec_bound = 2.0 * std::ldexp(1.0, -int(info.bits));  // spec: r <= 2 x 2^-n (§4.1)
+      m.lavapipe_formula = 2.0 * info.mrd;                    // lavapipe: 2 * mrd (§4.3)
     }
     out.push_back(m);
   }

@@ -5,6 +5,7 @@
 
 #include <fmt/core.h>
 
+#include "model/depth_format.hpp"
 #include "model/host.hpp"
 #include "model/image_io.hpp"
 
@@ -31,9 +32,7 @@ BackendPair render_both(VulkanRenderer& vk, const Scene& scene) {
   return pair;
 }
 
-std::vector<DepthFormat> sweep_depth_formats() {
-  return {DepthFormat::D16Unorm, DepthFormat::X8D24Unorm, DepthFormat::D32Sfloat};
-}
+std::vector<DepthFormat> sweep_depth_formats() { return {kDepthFormats.begin(), kDepthFormats.end()}; }
 
 void prepare_out_dir(const std::string& dir) { ensure_output_dir(dir); }
 

@@ -13,6 +13,7 @@
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
 
+#include "model/depth_format.hpp"
 #include "model/errors.hpp"
 
 namespace rastercmp {
@@ -156,7 +157,7 @@ RenderResult read_render_outputs(const std::string& dir) {
   r.device = meta.value("device", "");
   r.fma = meta.value("fma", false);
   const std::string fmt_name = meta.value("depth_format", "none");
-  for (DepthFormat f : {DepthFormat::None, DepthFormat::D16Unorm, DepthFormat::X8D24Unorm, DepthFormat::D32Sfloat})
+  for (DepthFormat f : kAllDepthFormats)
     if (fmt_name == to_string(f)) r.depth_format = f;
   uint32_t c = 0;
   r.owner = read_uint_image((fs::path(dir) / "owner.tif").string(), r.width, r.height, c);

@@ -2,17 +2,11 @@
 // (docs/scene-format.md), so the loader parses by comparing with these.
 #include "model/scene.hpp"
 
+#include "model/depth_format.hpp"
+
 namespace rastercmp {
 
-const char* to_string(DepthFormat format) {
-  switch (format) {
-    case DepthFormat::None: return "none";
-    case DepthFormat::D16Unorm: return "d16_unorm";
-    case DepthFormat::X8D24Unorm: return "x8_d24_unorm";
-    case DepthFormat::D32Sfloat: return "d32_sfloat";
-  }
-  return "?";
-}
+const char* to_string(DepthFormat format) { return depth_format_info(format).name; }
 
 const char* to_string(Topology topology) {
   switch (topology) {
@@ -83,14 +77,6 @@ bool is_triangle_topology(Topology topology) {
 
 bool is_line_topology(Topology topology) { return topology == Topology::LineList || topology == Topology::LineStrip; }
 
-uint32_t depth_bits(DepthFormat format) {
-  switch (format) {
-    case DepthFormat::None: return 0;
-    case DepthFormat::D16Unorm: return 16;
-    case DepthFormat::X8D24Unorm: return 24;
-    case DepthFormat::D32Sfloat: return 32;
-  }
-  return 0;
-}
+uint32_t depth_bits(DepthFormat format) { return depth_format_info(format).bits; }
 
 }  // namespace rastercmp

@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 
 #include "model/camera.hpp"
+#include "model/depth_format.hpp"
 #include "model/errors.hpp"
 #include "model/scene_io_draw.hpp"
 #include "model/scene_json.hpp"
@@ -77,8 +78,14 @@ void read_framebuffer(const Node& root, Scene& scene) {
     if (scene.samples != 1 && scene.samples != 4) samples->fail("a sample count of 1 or 4");
   }
   if (const auto format = root.find("depth_format")) {
-    scene.depth_format =
-        format->as_enum({DepthFormat::D16Unorm, DepthFormat::X8D24Unorm, DepthFormat::D32Sfloat, DepthFormat::None});
+    // The names come from the depth-format table (model/depth_format.hpp), "none" last.
+    static constexpr auto kNames = [] {
+      std::array<DepthFormat, kAllDepthFormats.size()> names{};
+      for (size_t i = 0; i < kDepthFormats.size(); ++i) names[i] = kDepthFormats[i];
+      names.back() = DepthFormat::None;
+      return names;
+    }();
+    scene.depth_format = format->as_enum(kNames);
   }
   if (const auto clear = root.find("depth_clear")) {
     scene.depth_clear = float(clear->as_number(0, 1, "a depth clear value in 0..1"));

@@ -3,6 +3,7 @@
 // the style `$.draws[2].indices[5]`.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <initializer_list>
@@ -64,6 +65,10 @@ class Node {
   Enum as_enum(std::initializer_list<Enum> values) const {
     const size_t index = enum_index(values.size(), [&](size_t i) { return to_string(values.begin()[i]); });
     return values.begin()[index];
+  }
+  template <class Enum, size_t N>
+  Enum as_enum(const std::array<Enum, N>& values) const {
+    return values[enum_index(N, [&](size_t i) { return to_string(values[i]); })];
   }
 
  private:

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "model/depth_format.hpp"
 #include "model/errors.hpp"
 #include "model/render_result.hpp"
 #include "model/scene.hpp"
@@ -66,6 +67,79 @@ TEST(SceneModel, TopologyClassesAndDepthBits) {
   EXPECT_EQ(depth_bits(DepthFormat::D16Unorm), 16u);
   EXPECT_EQ(depth_bits(DepthFormat::X8D24Unorm), 24u);
   EXPECT_EQ(depth_bits(DepthFormat::D32Sfloat), 32u);
+}
+
+// --- model/depth_format.hpp: the depth-format table ----------------------------------------
+
+TEST(DepthFormatTable, EveryEnumValueHasItsEntryInEnumOrder) {
+  ASSERT_EQ(kAllDepthFormats.size(), 4u);
+  std::set<std::string> names;
+  for (size_t i = 0; i < kAllDepthFormats.size(); ++i) {
+    const DepthFormatInfo info = depth_format_info(kAllDepthFormats[i]);
+    EXPECT_EQ(size_t(kAllDepthFormats[i]), i);
+    EXPECT_EQ(info.format, kAllDepthFormats[i]) << i;
+    EXPECT_STREQ(to_string(kAllDepthFormats[i]), info.name);
+    names.insert(info.name);
+  }
+  EXPECT_EQ(names.size(), kAllDepthFormats.size());
+  EXPECT_EQ(std::vector<DepthFormat>(kDepthFormats.begin(), kDepthFormats.end()),
+            (std::vector<DepthFormat>{DepthFormat::D16Unorm, DepthFormat::X8D24Unorm, DepthFormat::D32Sfloat}));
+}
+
+TEST(DepthFormatTable, FactsOfEachFormat) {
+  struct Expected {
+    DepthFormat format;
+    const char* name;
+    uint32_t bits, raw_mask, bytes;
+    DepthEncoding encoding;
+    DepthConversion conversion;
+    double mrd;  // as the code used it before the table: 1.0 / (2^n - 1) in double
+  };
+  for (const Expected& e : {
+           Expected{DepthFormat::None, "none", 0, 0, 0, DepthEncoding::None, DepthConversion::None, 0.0},
+           Expected{DepthFormat::D16Unorm, "d16_unorm", 16, 0xFFFFu, 2, DepthEncoding::Unorm,
+                    DepthConversion::MagicNumber, 1.0 / 65535.0},
+           Expected{DepthFormat::X8D24Unorm, "x8_d24_unorm", 24, 0xFFFFFFu, 4, DepthEncoding::Unorm,
+                    DepthConversion::ScaleRound, 1.0 / 16777215.0},
+           Expected{DepthFormat::D32Sfloat, "d32_sfloat", 32, 0xFFFFFFFFu, 4, DepthEncoding::Float,
+                    DepthConversion::FloatBits, 0.0},
+       }) {
+    const DepthFormatInfo info = depth_format_info(e.format);
+    SCOPED_TRACE(e.name);
+    EXPECT_STREQ(info.name, e.name);
+    EXPECT_EQ(info.bits, e.bits);
+    EXPECT_EQ(depth_bits(e.format), e.bits);
+    EXPECT_EQ(info.raw_mask, e.raw_mask);
+    EXPECT_EQ(info.bytes_per_texel, e.bytes);
+    EXPECT_EQ(info.encoding, e.encoding);
+    EXPECT_EQ(info.conversion, e.conversion);
+    EXPECT_EQ(info.mrd, e.mrd);  // bit for bit
+    EXPECT_EQ(is_unorm(e.format), e.encoding == DepthEncoding::Unorm);
+    EXPECT_EQ(is_float(e.format), e.encoding == DepthEncoding::Float);
+    if (e.encoding == DepthEncoding::Unorm) {
+      EXPECT_EQ(info.mrd, 1.0 / (std::ldexp(1.0, int(e.bits)) - 1.0));
+      EXPECT_EQ(2.0 * info.mrd, 2.0 / (std::ldexp(1.0, int(e.bits)) - 1.0));  // r = 2 * mrd (§4.3)
+      EXPECT_EQ(unorm_max(info), (uint64_t(1) << e.bits) - 1);
+    }
+  }
+  // The constants of the conversions (docs/lavapipe-rules.md §3.5).
+  const DepthFormatInfo d16 = depth_format_info(DepthFormat::D16Unorm);
+  EXPECT_EQ(magic_scale(d16), 0.9999847412109375f);
+  EXPECT_EQ(magic_bias(d16), 128.0f);
+  EXPECT_EQ(float(unorm_max(depth_format_info(DepthFormat::X8D24Unorm))), 16777215.0f);
+  EXPECT_EQ(depth_format_info(DepthFormat::D32Sfloat).mantissa_bits, 23u);
+}
+
+TEST(DepthFormatTable, FloatRIsTwoToTheExponentMinusTheMantissaBits) {
+  const DepthFormatInfo d32 = depth_format_info(DepthFormat::D32Sfloat);
+  EXPECT_EQ(float_depth_r(d32, 0.375), std::ldexp(1.0, -25));  // 0.375 = 1.5 * 2^-2
+  EXPECT_EQ(float_depth_r(d32, 0.5), std::ldexp(1.0, -24));
+  EXPECT_EQ(float_depth_r(d32, std::nextafter(0.5, 0.0)), std::ldexp(1.0, -25));
+  EXPECT_EQ(float_depth_r(d32, 1.0), std::ldexp(1.0, -23));
+  EXPECT_EQ(float_depth_r(d32, 0.0), std::ldexp(1.0, -149));  // e = -126 at least
+  EXPECT_EQ(float_depth_r(d32, 1e-45), std::ldexp(1.0, -149));
+  EXPECT_EQ(float_depth_r(d32, INFINITY), std::ldexp(1.0, -149));
+  EXPECT_EQ(float_depth_r(d32, NAN), std::ldexp(1.0, -149));
 }
 
 TEST(RenderResult, DepthRawToValueDecodesEachFormat) {
@@ -289,8 +363,7 @@ TEST(SceneLoader, EveryTopology) {
 }
 
 TEST(SceneLoader, EveryDepthFormatAndCompareOpName) {
-  for (const DepthFormat format :
-       {DepthFormat::None, DepthFormat::D16Unorm, DepthFormat::X8D24Unorm, DepthFormat::D32Sfloat}) {
+  for (const DepthFormat format : kAllDepthFormats) {
     const std::string text = std::string(R"({"depth_format": ")") + to_string(format) +
                              R"(", "draws": [{"topology": "point_list", "positions": [[0, 0, 0]]}]})";
     EXPECT_EQ(parse_scene(text, "formats.json").depth_format, format) << to_string(format);

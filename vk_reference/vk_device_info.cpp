@@ -6,6 +6,7 @@
 
 #include <fmt/core.h>
 
+#include "model/depth_format.hpp"
 #include "model/errors.hpp"
 #include "model/host.hpp"
 #include "vk_reference/vk_check.hpp"
@@ -35,7 +36,7 @@ bool driver_properties_available(VkPhysicalDevice device, uint32_t api_version) 
 
 std::vector<DepthFormat> renderable_depth_formats(VkPhysicalDevice device) {
   std::vector<DepthFormat> formats;
-  for (DepthFormat format : {DepthFormat::D16Unorm, DepthFormat::X8D24Unorm, DepthFormat::D32Sfloat}) {
+  for (DepthFormat format : kDepthFormats) {
     VkFormatProperties properties{};
     vkGetPhysicalDeviceFormatProperties(device, to_vk_format(format), &properties);
     if (properties.optimalTilingFeatures & VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT) {

@@ -1,15 +1,19 @@
 #include "vk_reference/vk_translate.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cstring>
 #include <limits>
 #include <string>
 #include <utility>
 
+#include "model/depth_format.hpp"
 #include "model/errors.hpp"
 
 namespace rastercmp::vk {
 
+// The Vulkan half of the depth-format table (model/depth_format.hpp): no default, so a format
+// without a VkFormat does not compile.
 VkFormat to_vk_format(DepthFormat format) {
   switch (format) {
     case DepthFormat::D16Unorm: return VK_FORMAT_D16_UNORM;
@@ -93,20 +97,16 @@ VkSampleCountFlagBits to_vk_samples(uint32_t samples) {
   throw NotSupportedError("sample count " + std::to_string(samples) + " is not a Vulkan sample count");
 }
 
-uint32_t depth_copy_texel_bytes(DepthFormat format) {
-  return format == DepthFormat::D16Unorm ? 2u : format == DepthFormat::None ? 0u : 4u;
-}
+uint32_t depth_copy_texel_bytes(DepthFormat format) { return depth_format_info(format).bytes_per_texel; }
 
 uint32_t depth_raw_from_copy(DepthFormat format, const unsigned char* texel) {
-  if (format == DepthFormat::D16Unorm) {
-    uint16_t d16 = 0;
-    std::memcpy(&d16, texel, sizeof d16);
-    return d16;
-  }
+  // A texel of bytes_per_texel little-endian bytes; the bits outside raw_mask (the X8 of
+  // VK_FORMAT_X8_D24_UNORM_PACK32) are undefined and dropped.
+  static_assert(std::endian::native == std::endian::little, "a short texel fills the low bytes");
+  const DepthFormatInfo info = depth_format_info(format);
   uint32_t bits = 0;
-  std::memcpy(&bits, texel, sizeof bits);
-  // VK_FORMAT_X8_D24_UNORM_PACK32: depth in bits 0..23, the top 8 bits are undefined.
-  return format == DepthFormat::X8D24Unorm ? (bits & 0x00FFFFFFu) : bits;
+  std::memcpy(&bits, texel, std::min<size_t>(info.bytes_per_texel, sizeof bits));
+  return bits & info.raw_mask;
 }
 
 namespace {

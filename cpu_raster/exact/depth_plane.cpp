@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "cpu_raster/exact/float_ops.hpp"
+#include "model/depth_format.hpp"
 
 namespace rastercmp::cpu {
 namespace {
@@ -19,16 +20,17 @@ float one_over_area(const std::array<WindowVertex, 3>& v) {
 // The UNORM r, lp_make_setup_variant_key: (float)(constant * mrd * 2) in double,
 // util_get_depth_format_mrd: mrd = 1 / (2^n - 1).
 float unorm_constant_term(float constant, DepthFormat format) {
-  const double mrd = format == DepthFormat::D16Unorm ? 1.0 / ((1 << 16) - 1) : 1.0 / ((1 << 24) - 1);
+  const double mrd = depth_format_info(format).mrd;  // docs/lavapipe-rules.md §4.3
   return static_cast<float>(double(constant) * mrd * 2);
 }
 
-// D32_SFLOAT r = 2^(e - 23) from the largest |z| of the vertices, by the exponent-bit trick.
-float float_format_r(const std::array<WindowVertex, 3>& v) {
+// D32_SFLOAT r = 2^(e - n) from the largest |z| of the vertices, by the exponent-bit trick
+// (docs/lavapipe-rules.md §4.3; n = mantissa_bits of the table, 23).
+float float_format_r(const std::array<WindowVertex, 3>& v, uint32_t mantissa_bits) {
   float max_z = std::fabs(v[0].z);
   if (std::fabs(v[1].z) > max_z) max_z = std::fabs(v[1].z);
   if (std::fabs(v[2].z) > max_z) max_z = std::fabs(v[2].z);
-  int32_t exponent = int32_t(float_bits(max_z) & 0x7f800000u) - (23 << 23);
+  int32_t exponent = int32_t(float_bits(max_z) & 0x7f800000u) - int32_t(mantissa_bits << 23);
   if (exponent < 0) exponent = 0;
   return float_from_bits(uint32_t(exponent));
 }
@@ -55,7 +57,8 @@ DepthPlane triangle_depth_plane(const std::array<WindowVertex, 3>& v, float pixe
 DepthOffset triangle_depth_offset(const std::array<WindowVertex, 3>& v, const DepthBias& bias_in, DepthFormat format,
                                   bool skip_when_off) {
   DepthOffset o;
-  const bool float_depth = format == DepthFormat::D32Sfloat;
+  const DepthFormatInfo info = depth_format_info(format);
+  const bool float_depth = info.encoding == DepthEncoding::Float;
   const float units_in = float_depth ? bias_in.constant_factor : unorm_constant_term(bias_in.constant_factor, format);
   const bool applied = bias_in.enable && !(units_in == 0.0f && bias_in.slope_factor == 0.0f);
   if (!applied && skip_when_off) return o;  // o = 0.0f exactly
@@ -73,7 +76,7 @@ DepthOffset triangle_depth_offset(const std::array<WindowVertex, 3>& v, const De
   o.m = unordered_greater(dzdx, dzdy) ? dzdx : dzdy;  // NaN picks dz/dx
   const float mult = o.m * bias.slope_factor;
   if (float_depth) {
-    o.r = float_format_r(v);
+    o.r = float_format_r(v, info.mantissa_bits);
     o.constant_term = o.r * units;
   } else {
     o.r = unorm_constant_term(1.0f, format);

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "cpu_raster/exact/float_ops.hpp"
+#include "model/depth_format.hpp"
 
 namespace rastercmp::cpu {
 namespace {
@@ -46,38 +47,38 @@ SampleDepth sample_depth(const DepthPlane& plane, float offset, float px, float 
   return d;
 }
 
+// docs/lavapipe-rules.md §3.5, by the conversion the depth-format table names.
 uint32_t depth_to_raw(DepthFormat format, float z) {
-  switch (format) {
-    case DepthFormat::D16Unorm: {
-      const float scaled = z * 0.9999847412109375f;  // 65535/65536, exact in float
-      return float_bits(scaled + 128.0f) & 0xFFFFu;  // the magic-number trick
+  const DepthFormatInfo info = depth_format_info(format);
+  switch (info.conversion) {
+    case DepthConversion::MagicNumber: {
+      const float scaled = z * magic_scale(info);                    // D16: 65535/65536, exact in float
+      return float_bits(scaled + magic_bias(info)) & info.raw_mask;  // the magic-number trick (D16: + 128)
     }
-    case DepthFormat::X8D24Unorm: return static_cast<uint32_t>(std::nearbyint(z * 16777215.0f));  // cvtps2dq
-    case DepthFormat::D32Sfloat: return float_bits(z);
-    case DepthFormat::None: break;
+    case DepthConversion::ScaleRound:
+      return static_cast<uint32_t>(std::nearbyint(z * float(unorm_max(info))));  // cvtps2dq
+    case DepthConversion::FloatBits: return float_bits(z);
+    case DepthConversion::None: break;
   }
   return 0;
 }
 
 uint32_t clear_depth_raw(DepthFormat format, float clear_value) {
   const double z = clear_value;
-  switch (format) {
-    case DepthFormat::D16Unorm:
+  const DepthFormatInfo info = depth_format_info(format);
+  switch (info.encoding) {
+    case DepthEncoding::Unorm:
       if (z <= 0.0) return 0;
-      if (z >= 1.0) return 0xFFFFu;
-      return static_cast<uint32_t>(std::lrint(z * 0xFFFF));
-    case DepthFormat::X8D24Unorm:
-      if (z <= 0.0) return 0;
-      if (z >= 1.0) return 0xFFFFFFu;
-      return static_cast<uint32_t>(std::lrint(z * 0xFFFFFF));
-    case DepthFormat::D32Sfloat: return float_bits(clear_value);
-    case DepthFormat::None: break;
+      if (z >= 1.0) return unorm_max(info);
+      return static_cast<uint32_t>(std::lrint(z * unorm_max(info)));
+    case DepthEncoding::Float: return float_bits(clear_value);
+    case DepthEncoding::None: break;
   }
   return 0;
 }
 
 bool depth_test_passes(CompareOp op, DepthFormat format, uint32_t fragment_raw, uint32_t stored_raw) {
-  if (format == DepthFormat::D32Sfloat)
+  if (is_float(format))  // docs/lavapipe-rules.md §3.6
     return unordered_compare(op, float_from_bits(fragment_raw), float_from_bits(stored_raw));
   return ordered_compare(op, fragment_raw, stored_raw);
 }

@@ -8,6 +8,7 @@
 
 #include "cpu_raster/fast/cpu_features.hpp"
 #include "cpu_raster/fast/tile_kernel.hpp"
+#include "model/depth_format.hpp"
 
 namespace rastercmp::cpu::fast {
 
@@ -24,16 +25,20 @@ RASTERCMP_AVX2 inline __m256 finish_depth8(__m256 z, __m256 offset, const Kernel
   return z;
 }
 
-// depth_to_raw (§3.5).
+// depth_to_raw (§3.5), by the conversion the depth-format table names for F.
 template <DepthFormat F>
 RASTERCMP_AVX2 inline __m256i to_raw(__m256 z) {
-  if constexpr (F == DepthFormat::D32Sfloat) {
+  constexpr DepthFormatInfo kInfo = depth_format_info(F);
+  if constexpr (kInfo.conversion == DepthConversion::FloatBits) {
     return _mm256_castps_si256(z);
-  } else if constexpr (F == DepthFormat::X8D24Unorm) {
-    return _mm256_cvtps_epi32(_mm256_mul_ps(z, _mm256_set1_ps(16777215.0f)));  // cvtps2dq: nearest even
+  } else if constexpr (kInfo.conversion == DepthConversion::ScaleRound) {  // D24: z * 16777215, cvtps2dq
+    return _mm256_cvtps_epi32(_mm256_mul_ps(z, _mm256_set1_ps(float(unorm_max(kInfo)))));  // nearest even
   } else {
-    const __m256 magic = _mm256_add_ps(_mm256_mul_ps(z, _mm256_set1_ps(0.9999847412109375f)), _mm256_set1_ps(128.0f));
-    return _mm256_and_si256(_mm256_castps_si256(magic), _mm256_set1_epi32(0xFFFF));
+    static_assert(kInfo.conversion == DepthConversion::MagicNumber, "no depth, nothing to convert");
+    // D16: z * 65535/65536 + 128, & 0xFFFF
+    const __m256 magic =
+        _mm256_add_ps(_mm256_mul_ps(z, _mm256_set1_ps(magic_scale(kInfo))), _mm256_set1_ps(magic_bias(kInfo)));
+    return _mm256_and_si256(_mm256_castps_si256(magic), _mm256_set1_epi32(int(kInfo.raw_mask)));
   }
 }
 

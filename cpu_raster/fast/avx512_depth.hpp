@@ -7,6 +7,7 @@
 
 #include "cpu_raster/fast/cpu_features.hpp"
 #include "cpu_raster/fast/tile_kernel.hpp"
+#include "model/depth_format.hpp"
 
 namespace rastercmp::cpu::fast {
 
@@ -38,15 +39,19 @@ RASTERCMP_AVX512 inline __m512 finish_depth16(__m512 z, const Depth16& d) {
 }
 
 // to_raw (§3.5): D24 by cvtps2dq (nearest even), D16 by the magic add.
+// The conversion is the one the depth-format table names for F (to_raw in avx2_depth.hpp).
 template <DepthFormat F>
 RASTERCMP_AVX512 inline __m512i to_raw16(__m512 z) {
-  if constexpr (F == DepthFormat::D32Sfloat) {
+  constexpr DepthFormatInfo kInfo = depth_format_info(F);
+  if constexpr (kInfo.conversion == DepthConversion::FloatBits) {
     return _mm512_castps_si512(z);
-  } else if constexpr (F == DepthFormat::X8D24Unorm) {
-    return _mm512_cvtps_epi32(_mm512_mul_ps(z, _mm512_set1_ps(16777215.0f)));
+  } else if constexpr (kInfo.conversion == DepthConversion::ScaleRound) {
+    return _mm512_cvtps_epi32(_mm512_mul_ps(z, _mm512_set1_ps(float(unorm_max(kInfo)))));
   } else {
-    const __m512 magic = _mm512_add_ps(_mm512_mul_ps(z, _mm512_set1_ps(0.9999847412109375f)), _mm512_set1_ps(128.0f));
-    return _mm512_and_si512(_mm512_castps_si512(magic), _mm512_set1_epi32(0xFFFF));
+    static_assert(kInfo.conversion == DepthConversion::MagicNumber, "no depth, nothing to convert");
+    const __m512 magic =
+        _mm512_add_ps(_mm512_mul_ps(z, _mm512_set1_ps(magic_scale(kInfo))), _mm512_set1_ps(magic_bias(kInfo)));
+    return _mm512_and_si512(_mm512_castps_si512(magic), _mm512_set1_epi32(int(kInfo.raw_mask)));
   }
 }
 

@@ -21,6 +21,7 @@
 #include "cpu_raster/fast/cpu_features.hpp"
 #include "cpu_raster/fast/frame_memory.hpp"
 #include "cpu_raster/fast/worker_pool.hpp"
+#include "model/depth_format.hpp"
 #include "model/render_result.hpp"
 
 namespace rastercmp {
@@ -32,8 +33,7 @@ constexpr size_t kVertexBlock = 16384;  // positions per task of the vertex phas
 // Stored depth values keep the order the bounds rely on (tile_depth_bounds.hpp) in every draw.
 bool frame_bounds_usable(const Scene& scene, const std::vector<FastDraw>& draws) {
   if (!scene.has_depth() || scene.samples != 1) return false;
-  if (scene.depth_format == DepthFormat::D32Sfloat && !(scene.depth_clear >= 0.0f && !std::signbit(scene.depth_clear)))
-    return false;
+  if (is_float(scene.depth_format) && !(scene.depth_clear >= 0.0f && !std::signbit(scene.depth_clear))) return false;
   return std::all_of(draws.begin(), draws.end(),
                      [](const FastDraw& d) { return !d.raster.depth.write || depth_values_ordered(d.raster.depth); });
 }

@@ -17,6 +17,7 @@
 
 #include "cpu_raster/fast/avx512_depth.hpp"
 #include "cpu_raster/fast/cpu_features.hpp"
+#include "cpu_raster/fast/format_dispatch.hpp"
 #include "cpu_raster/fast/small_triangles.hpp"
 
 namespace rastercmp::cpu::fast {
@@ -345,12 +346,8 @@ RASTERCMP_AVX512 void setup_small_pair_avx512(const SmallBlockInput& in0, const 
       if (evaluated & kHalf[b]) pair.out[b]->grid_shift = shift;
     const GridLanes16 g{evaluated, x0, y0, w, h, columns, rows, shift};
     const Depth16 depth = depth16(in0.depth);
-    switch (in0.depth.format) {
-      case DepthFormat::None: evaluate_grid16<DepthFormat::None>(g, edges, plane, depth, pair); break;
-      case DepthFormat::D16Unorm: evaluate_grid16<DepthFormat::D16Unorm>(g, edges, plane, depth, pair); break;
-      case DepthFormat::X8D24Unorm: evaluate_grid16<DepthFormat::X8D24Unorm>(g, edges, plane, depth, pair); break;
-      case DepthFormat::D32Sfloat: evaluate_grid16<DepthFormat::D32Sfloat>(g, edges, plane, depth, pair); break;
-    }
+    with_depth_format(in0.depth.format,
+                      [&]<DepthFormat F>() RASTERCMP_AVX512 { evaluate_grid16<F>(g, edges, plane, depth, pair); });
   }
   if ((job | window) == 0) return;
   // What the kernel jobs and the window compositor evaluate each lane from: the steps, the plane,

@@ -12,6 +12,7 @@
 
 #include "cpu_raster/fast/avx2_depth.hpp"
 #include "cpu_raster/fast/cpu_features.hpp"
+#include "cpu_raster/fast/format_dispatch.hpp"
 #include "cpu_raster/fast/small_triangles.hpp"
 
 namespace rastercmp::cpu::fast {
@@ -339,12 +340,9 @@ RASTERCMP_SMALL_TARGET void RASTERCMP_SMALL_SETUP(const SmallBlockInput& in, Sma
       return;
     }
 #endif
-    switch (in.depth.format) {
-      case DepthFormat::None: evaluate_grid<DepthFormat::None>(g, edges, plane, in.depth, out); break;
-      case DepthFormat::D16Unorm: evaluate_grid<DepthFormat::D16Unorm>(g, edges, plane, in.depth, out); break;
-      case DepthFormat::X8D24Unorm: evaluate_grid<DepthFormat::X8D24Unorm>(g, edges, plane, in.depth, out); break;
-      case DepthFormat::D32Sfloat: evaluate_grid<DepthFormat::D32Sfloat>(g, edges, plane, in.depth, out); break;
-    }
+    with_depth_format(in.depth.format, [&]<DepthFormat F>() RASTERCMP_SMALL_TARGET {
+      evaluate_grid<F>(g, edges, plane, in.depth, out);
+    });
   }
   if (out.job_mask) {
     // One span per row: 8 lanes from origin_x, kept inside the tile (rect.x1 <= origin_x + 7).

@@ -4,6 +4,8 @@
 #include <bit>
 #include <utility>
 
+#include "cpu_raster/fast/format_dispatch.hpp"
+
 namespace rastercmp::cpu::fast {
 namespace {
 
@@ -22,7 +24,7 @@ bool ordered(T a, T b) {
 
 template <DepthFormat F, CompareOp Op>
 bool passes(uint32_t fragment, uint32_t stored) {
-  if constexpr (F == DepthFormat::D32Sfloat) {  // unordered predicates: true whenever NaN is involved
+  if constexpr (is_float(F)) {  // unordered predicates: true whenever NaN is involved
     const float a = std::bit_cast<float>(fragment), b = std::bit_cast<float>(stored);
     if constexpr (Op == CompareOp::Never) return false;
     if constexpr (Op == CompareOp::Less) return !(a >= b);
@@ -110,29 +112,21 @@ bool scatter_block(const SmallBlockOutput& b, uint32_t owner_of_lane_0, bool dep
   return wrote;
 }
 
-template <DepthFormat F, size_t... I>
-constexpr std::array<GridBlockFn, 8> blocks_for(std::index_sequence<I...>) {
-  return {&scatter_block<F, CompareOp(I)>...};
-}
-
-constexpr std::array<std::array<GridBlockFn, 8>, 4> kBlocks = {
-    blocks_for<DepthFormat::None>(std::make_index_sequence<8>{}),
-    blocks_for<DepthFormat::D16Unorm>(std::make_index_sequence<8>{}),
-    blocks_for<DepthFormat::X8D24Unorm>(std::make_index_sequence<8>{}),
-    blocks_for<DepthFormat::D32Sfloat>(std::make_index_sequence<8>{}),
+struct Blocks {
+  template <DepthFormat F, CompareOp Op>
+  static constexpr GridBlockFn get() {
+    return &scatter_block<F, Op>;
+  }
 };
+constexpr auto kBlocks = kernel_table<Blocks>();  // [format][op] (format_dispatch.hpp)
 
-template <DepthFormat F, size_t... I>
-constexpr std::array<GridScatterFn, 8> scatters_for(std::index_sequence<I...>) {
-  return {&scatter<F, CompareOp(I)>...};
-}
-
-constexpr std::array<std::array<GridScatterFn, 8>, 4> kScatters = {
-    scatters_for<DepthFormat::None>(std::make_index_sequence<8>{}),
-    scatters_for<DepthFormat::D16Unorm>(std::make_index_sequence<8>{}),
-    scatters_for<DepthFormat::X8D24Unorm>(std::make_index_sequence<8>{}),
-    scatters_for<DepthFormat::D32Sfloat>(std::make_index_sequence<8>{}),
+struct Scatters {
+  template <DepthFormat F, CompareOp Op>
+  static constexpr GridScatterFn get() {
+    return &scatter<F, Op>;
+  }
 };
+constexpr auto kScatters = kernel_table<Scatters>();
 
 }  // namespace
 
@@ -154,12 +148,8 @@ KernelJob SmallBlockOutput::job(int lane, uint32_t owner, CompareOp op) const {
   return j;
 }
 
-GridBlockFn select_grid_block(DepthFormat format, CompareOp op) {
-  return kBlocks[size_t(format)][format == DepthFormat::None ? size_t(CompareOp::Always) : size_t(op)];
-}
+GridBlockFn select_grid_block(DepthFormat format, CompareOp op) { return select_kernel(kBlocks, format, op); }
 
-GridScatterFn select_grid_scatter(DepthFormat format, CompareOp op) {
-  return kScatters[size_t(format)][format == DepthFormat::None ? size_t(CompareOp::Always) : size_t(op)];
-}
+GridScatterFn select_grid_scatter(DepthFormat format, CompareOp op) { return select_kernel(kScatters, format, op); }
 
 }  // namespace rastercmp::cpu::fast

@@ -16,6 +16,7 @@
 
 #include "cpu_raster/fast/avx512_depth.hpp"
 #include "cpu_raster/fast/cpu_features.hpp"
+#include "cpu_raster/fast/format_dispatch.hpp"
 #include "cpu_raster/fast/small_window.hpp"
 
 namespace rastercmp::cpu::fast {
@@ -32,7 +33,7 @@ RASTERCMP_AVX512 inline __mmask16 passing(__mmask16 covered, __m512i fragment, _
     return covered;
   } else if constexpr (Op == CompareOp::Never) {
     return 0;
-  } else if constexpr (F == DepthFormat::D32Sfloat) {
+  } else if constexpr (is_float(F)) {
     const __m512 a = _mm512_castsi512_ps(fragment), b = _mm512_castsi512_ps(stored);
     if constexpr (Op == CompareOp::Less) return _mm512_mask_cmp_ps_mask(covered, a, b, _CMP_NGE_UQ);  // !(a >= b)
     if constexpr (Op == CompareOp::Equal)
@@ -202,22 +203,18 @@ RASTERCMP_AVX512 void composite(const SmallBlockOutput& b, uint32_t owner_of_lan
   }
 }
 
-template <DepthFormat F, size_t... I>
-constexpr std::array<WindowBlockFn, 8> windows_for(std::index_sequence<I...>) {
-  return {&composite<F, CompareOp(I)>...};
-}
-
-constexpr std::array<std::array<WindowBlockFn, 8>, 4> kWindows = {
-    windows_for<DepthFormat::None>(std::make_index_sequence<8>{}),
-    windows_for<DepthFormat::D16Unorm>(std::make_index_sequence<8>{}),
-    windows_for<DepthFormat::X8D24Unorm>(std::make_index_sequence<8>{}),
-    windows_for<DepthFormat::D32Sfloat>(std::make_index_sequence<8>{}),
+struct Windows {
+  template <DepthFormat F, CompareOp Op>
+  static constexpr WindowBlockFn get() {
+    return &composite<F, Op>;
+  }
 };
+constexpr auto kWindows = kernel_table<Windows>();  // [format][op] (format_dispatch.hpp)
 
 }  // namespace
 
 WindowBlockFn select_window_block_avx512(DepthFormat format, CompareOp op) {
-  return kWindows[size_t(format)][format == DepthFormat::None ? size_t(CompareOp::Always) : size_t(op)];
+  return select_kernel(kWindows, format, op);
 }
 
 }  // namespace rastercmp::cpu::fast

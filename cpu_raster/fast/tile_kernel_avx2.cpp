@@ -12,6 +12,7 @@
 
 #include "cpu_raster/fast/avx2_depth.hpp"
 #include "cpu_raster/fast/cpu_features.hpp"
+#include "cpu_raster/fast/format_dispatch.hpp"
 #include "cpu_raster/fast/small_triangles.hpp"
 #include "cpu_raster/fast/tile_depth_bounds.hpp"
 #include "cpu_raster/fast/tile_kernel.hpp"
@@ -35,7 +36,7 @@ constexpr int unordered_predicate() {  // depth_test_passes for D32: true whenev
 // depth_test_passes(op, format, fragment, stored) per lane (Never and Always never get here).
 template <DepthFormat F, CompareOp Op>
 RASTERCMP_AVX2 inline __m256i depth_passes(__m256 z, __m256i raw, __m256i stored) {
-  if constexpr (F == DepthFormat::D32Sfloat) {
+  if constexpr (is_float(F)) {
     return _mm256_castps_si256(_mm256_cmp_ps(z, _mm256_castsi256_ps(stored), unordered_predicate<Op>()));
   } else {
     const __m256i ones = _mm256_set1_epi32(-1);
@@ -277,38 +278,28 @@ RASTERCMP_AVX2 bool small_kernel(const SmallBlockOutput& b, int l, uint32_t owne
   return kernel<F, Op>(b.job(l, owner, Op), d, t);
 }
 
-template <DepthFormat F, size_t... I>
-constexpr std::array<SmallKernelFn, 8> small_kernels_for(std::index_sequence<I...>) {
-  return {&small_kernel<F, CompareOp(I)>...};
-}
-
-constexpr std::array<std::array<SmallKernelFn, 8>, 4> kSmallKernels = {
-    small_kernels_for<DepthFormat::None>(std::make_index_sequence<8>{}),
-    small_kernels_for<DepthFormat::D16Unorm>(std::make_index_sequence<8>{}),
-    small_kernels_for<DepthFormat::X8D24Unorm>(std::make_index_sequence<8>{}),
-    small_kernels_for<DepthFormat::D32Sfloat>(std::make_index_sequence<8>{}),
+struct SmallKernels {
+  template <DepthFormat F, CompareOp Op>
+  static constexpr SmallKernelFn get() {
+    return &small_kernel<F, Op>;
+  }
 };
+constexpr auto kSmallKernels = kernel_table<SmallKernels>();  // [format][op] (format_dispatch.hpp)
 
-template <DepthFormat F, size_t... I>
-constexpr std::array<KernelFn, 8> kernels_for(std::index_sequence<I...>) {
-  return {&kernel<F, CompareOp(I)>...};
-}
-
-constexpr std::array<std::array<KernelFn, 8>, 4> kKernels = {
-    kernels_for<DepthFormat::None>(std::make_index_sequence<8>{}),
-    kernels_for<DepthFormat::D16Unorm>(std::make_index_sequence<8>{}),
-    kernels_for<DepthFormat::X8D24Unorm>(std::make_index_sequence<8>{}),
-    kernels_for<DepthFormat::D32Sfloat>(std::make_index_sequence<8>{}),
+struct Kernels {
+  template <DepthFormat F, CompareOp Op>
+  static constexpr KernelFn get() {
+    return &kernel<F, Op>;
+  }
 };
+constexpr auto kKernels = kernel_table<Kernels>();
 
 }  // namespace
 
-KernelFn select_kernel_avx2(DepthFormat format, CompareOp op) {
-  return kKernels[size_t(format)][format == DepthFormat::None ? size_t(CompareOp::Always) : size_t(op)];
-}
+KernelFn select_kernel_avx2(DepthFormat format, CompareOp op) { return select_kernel(kKernels, format, op); }
 
 SmallKernelFn select_small_kernel_avx2(DepthFormat format, CompareOp op) {
-  return kSmallKernels[size_t(format)][format == DepthFormat::None ? size_t(CompareOp::Always) : size_t(op)];
+  return select_kernel(kSmallKernels, format, op);
 }
 
 RASTERCMP_AVX2 void measure_bounds_avx2(const uint32_t* depth, int32_t width, const PixelRect& r, uint32_t& lo,

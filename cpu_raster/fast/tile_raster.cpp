@@ -4,6 +4,7 @@
 
 #include "cpu_raster/exact/depth_sample.hpp"
 #include "cpu_raster/fast/tile_edges.hpp"
+#include "model/depth_format.hpp"
 #include "model/render_result.hpp"
 
 namespace rastercmp::cpu::fast {
@@ -39,7 +40,7 @@ DrawRaster make_draw_raster(const DepthTestState& depth, bool frame_bounds, bool
                             depth.range.zmin,
                             depth.range.zmax,
                             depth.fma};
-  const bool unorm = depth.format == DepthFormat::D16Unorm || depth.format == DepthFormat::X8D24Unorm;
+  const bool unorm = is_unorm(depth.format);
   draw.vector_ok = !(depth.active && unorm && depth.range.clamp && !(depth.range.zmin >= 0.0f));
   draw.bounds = frame_bounds && depth.active && depth_values_ordered(depth);
   if (avx2) {

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "model/depth_format.hpp"
+
 namespace rastercmp::cpu::spec {
 namespace {
 
@@ -14,14 +16,13 @@ struct Interval {
 };
 
 // One step of a UNORM format; 0 for float depth.
-double unorm_step(DepthFormat format) {
-  return format == DepthFormat::D32Sfloat ? 0.0 : 1.0 / (std::ldexp(1.0, int(depth_bits(format))) - 1.0);
-}
+double unorm_step(DepthFormat format) { return depth_format_info(format).mrd; }
 
 // Largest r: UNORM 2/(2^n - 1) (lavapipe, docs/lavapipe-rules.md §4.3); D32 2^(e-23) with e <= 0 for
 // depths up to 1, doubled for slack.
 double r_max(DepthFormat format) {
-  return format == DepthFormat::D32Sfloat ? std::ldexp(1.0, -22) : 2.0 * unorm_step(format);
+  const DepthFormatInfo info = depth_format_info(format);
+  return info.encoding == DepthEncoding::Float ? 2.0 * float_depth_r(info, 1.0) : 2.0 * unorm_step(format);
 }
 
 // dbclamp of the offset interval (Vulkan "Depth Bias Computation").
