@@ -60,8 +60,8 @@ TEST(CpuDepth, DenormalPlaneGradientFlushesUnderLavapipesMode) {
 TEST(CpuDepth, ViewportConstantsKeepDenormals) {
   const DenormalsFlushed ftz_daz;
   const ViewportTransform t = make_viewport_transform(Viewport{0, 0, 4, 4, 0, 2e-39f});
-  EXPECT_EQ(t.scale[2], 2e-39f);
-  EXPECT_EQ(t.zmax, 2e-39f);
+  EXPECT_EQ(float_bits(t.scale[2]), float_bits(2e-39f));  // bits: a float compare would read 0 (DAZ)
+  EXPECT_EQ(float_bits(t.zmax), float_bits(2e-39f));
   EXPECT_EQ(float_bits(window_from_clip_jit({0, 0, 0.5f, 1}, t, true).z), 0u);
 }
 
