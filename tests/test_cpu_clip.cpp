@@ -8,6 +8,7 @@
 #include "cpu_raster/exact/clip_line.hpp"
 #include "cpu_raster/exact/clip_test.hpp"
 #include "cpu_raster/exact/clip_triangle.hpp"
+#include "cpu_raster/exact/float_ops.hpp"
 
 namespace rastercmp::cpu {
 namespace {
@@ -67,6 +68,26 @@ TEST(CpuClip, TriangleCrossingTwoPlanesKeepsTheClippersDegenerateFan) {
   EXPECT_TRUE(c.triangles[1][1].made_by_clipper);  // made by the first pass, kept by the second
   EXPECT_TRUE(c.triangles[1][2].made_by_clipper);  // made by the second pass at t = 0
   expect_position(c.triangles[2][2], 0, 1);
+}
+
+// docs/lavapipe-rules.md §7.10: do_clip_tri runs under FTZ/DAZ. (0.5,-0.5) (5e37,0) (0.5,0.5)
+// against x <= w: going out from v0, dp = 0.5, denom = 0.5 - (1 - 5e37) = 5e37, t = 0.5/5e37 =
+// 1e-38 is denormal and flushes to 0, so the new vertex is v0 itself (x 0.5, not 1); likewise on
+// the way back in. Without the flush x = 0.5 + 1e-38*(5e37 - 0.5) = 1.
+TEST(CpuClip, DenormalInterpolationParameterFlushesToZero) {
+  const std::array<ClipVertex, 3> t = {vertex(0.5f, -0.5f), vertex(5e37f, 0), vertex(0.5f, 0.5f)};
+  {
+    const DenormalsFlushed ftz_daz;
+    const ClippedTriangles flushed = clip_triangle(t, kViewport);
+    ASSERT_EQ(flushed.fate, ClipFate::Clipped);
+    ASSERT_EQ(flushed.triangles.size(), 2u);
+    for (const auto& tri : flushed.triangles)
+      for (const ClipVertex& v : tri) EXPECT_EQ(v.pos_clip.x, 0.5f);  // a zero-area fan
+  }
+  const DenormalsKept kept;
+  const ClippedTriangles exact = clip_triangle(t, kViewport);
+  ASSERT_EQ(exact.triangles.size(), 2u);
+  EXPECT_EQ(exact.triangles[0][1].pos_clip.x, 1.0f);
 }
 
 TEST(CpuClip, TrivialAcceptAndReject) {

@@ -8,6 +8,7 @@
 #include "cpu_raster/exact/depth_plane.hpp"
 #include "cpu_raster/exact/depth_sample.hpp"
 #include "cpu_raster/exact/float_ops.hpp"
+#include "cpu_raster/exact/viewport.hpp"
 
 namespace rastercmp::cpu {
 namespace {
@@ -32,6 +33,36 @@ TEST(CpuDepth, D24ConversionRoundsToNearestEvenAfterAFloatMultiply) {
   EXPECT_EQ(depth_to_raw(DepthFormat::X8D24Unorm, 0.5f), 8388608u);
   EXPECT_EQ(depth_to_raw(DepthFormat::X8D24Unorm, std::nextafter(0.5f, 0.0f)), 8388607u);
   EXPECT_EQ(depth_to_raw(DepthFormat::X8D24Unorm, std::nextafter(0.5f, 1.0f)), 8388608u);
+}
+
+// docs/lavapipe-rules.md §7.10: the set-up runs under FTZ/DAZ, so a gradient below 2^-126
+// becomes 0. z = 1e-37, 3e-37, 5e-37 over 64 px: dz/dx = 2e-37/64 ~ 3e-39 (denormal).
+TEST(CpuDepth, DenormalPlaneGradientFlushesUnderLavapipesMode) {
+  const std::array<WindowVertex, 3> v = {WindowVertex{0, 0, 1e-37f}, WindowVertex{64, 0, 3e-37f},
+                                         WindowVertex{0, 64, 5e-37f}};
+  {
+    const DenormalsFlushed ftz_daz;
+    const DepthPlane plane = triangle_depth_plane(v, 0.5f);
+    EXPECT_EQ(float_bits(plane.dzdx), 0u);
+    EXPECT_EQ(float_bits(plane.dzdy), 0u);
+    EXPECT_EQ(plane.a0, 1e-37f);
+    // DAZ: a denormal depth offset reads as 0 in the per-sample add.
+    EXPECT_EQ(sample_depth(plane, 1e-39f, 3, 3, DepthRange{}, DepthFormat::D32Sfloat, true).with_offset, 1e-37f);
+  }
+  const DenormalsKept kept;
+  const DepthPlane plane = triangle_depth_plane(v, 0.5f);
+  EXPECT_GT(plane.dzdx, 0.0f);
+  EXPECT_LT(plane.dzdx, std::numeric_limits<float>::min());  // denormal without the mode
+}
+
+// The viewport constants are state, computed by lvp outside draw_vbo: a denormal depth range
+// survives even when the caller flushes (the JIT then reads it as 0, under DAZ).
+TEST(CpuDepth, ViewportConstantsKeepDenormals) {
+  const DenormalsFlushed ftz_daz;
+  const ViewportTransform t = make_viewport_transform(Viewport{0, 0, 4, 4, 0, 2e-39f});
+  EXPECT_EQ(float_bits(t.scale[2]), float_bits(2e-39f));  // bits: a float compare would read 0 (DAZ)
+  EXPECT_EQ(float_bits(t.zmax), float_bits(2e-39f));
+  EXPECT_EQ(float_bits(window_from_clip_jit({0, 0, 0.5f, 1}, t, true).z), 0u);
 }
 
 TEST(CpuDepth, D32StoresTheFloatBits) {

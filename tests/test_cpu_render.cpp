@@ -3,6 +3,7 @@
 #include <string>
 
 #include <gtest/gtest.h>
+#include <xmmintrin.h>
 
 #include "cpu_raster/cpu_raster.hpp"
 #include "model/errors.hpp"
@@ -43,6 +44,32 @@ TEST(CpuRender, ResultNamesTheProfileAndTheArithmetic) {
     ASSERT_EQ(r.owner.size(), 15u);
     ASSERT_EQ(r.depth_raw.size(), 15u);
     EXPECT_EQ(r.depth_raw[0], 0x8000u);
+  }
+}
+
+// docs/lavapipe-rules.md §7.10 (scenes/depth/denormal/clip_z.json): lavapipe reads a denormal
+// clip z as 0 (DAZ) even where z/w would be normal, and stores +0; both paths must, whatever the
+// caller's own MXCSR, which they leave as they found it.
+TEST(CpuRender, DenormalClipZReadsAsZeroAndTheCallersModeIsRestored) {
+  Scene scene = small_scene();
+  Draw draw = full_screen(1e-39f);
+  for (glm::vec4& p : draw.positions_clip) p *= 1e-5f;  // w = 1e-5: z/w = 1e-34 without DAZ
+  for (glm::vec4& p : draw.positions_clip) p.z = 1e-39f;
+  scene.draws.push_back(draw);
+  const unsigned saved = _mm_getcsr();
+  for (const unsigned caller : {saved & ~0x8040u, saved | 0x8040u}) {
+    for (const uint32_t threads : {0u, 2u}) {
+      _mm_setcsr(caller);
+      CpuOptions options;
+      options.threads = threads;
+      const RenderResult r = render_cpu(scene, options);
+      EXPECT_EQ(_mm_getcsr(), caller) << "threads " << threads;
+      _mm_setcsr(saved);
+      for (size_t i = 0; i < r.depth_raw.size(); ++i) {
+        EXPECT_EQ(owner_draw(r.owner[i]), 0u);
+        EXPECT_EQ(r.depth_raw[i], 0u) << "threads " << threads << " sample " << i;
+      }
+    }
   }
 }
 

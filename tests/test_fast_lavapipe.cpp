@@ -9,6 +9,7 @@
 #include "bench/bench_scenes.hpp"
 #include "model/errors.hpp"
 #include "model/host.hpp"
+#include "model/scene_io.hpp"
 #include "tests/test_fast_support.hpp"
 #include "vk_reference/vk_reference.hpp"
 
@@ -37,9 +38,13 @@ class FastAgainstLavapipe : public ::testing::Test {
 
   // The driver's result (the CPU profile's fma follows the host, as lavapipe does) against the
   // fast path at 1 and 2 threads.
-  void expect_same(const Scene& scene) {
+  void expect_same(const Scene& scene, bool with_exact = false) {
     const RenderResult vulkan = renderer().render(scene);
     EXPECT_TRUE(renderer().validation_messages().empty()) << renderer().validation_messages().front();
+    if (with_exact) {
+      SCOPED_TRACE(scene.name + " exact path");
+      EXPECT_TRUE(fast_test::same_bytes(vulkan, fast_test::render_exact(scene, renderer().device().fma)));
+    }
     for (const uint32_t threads : {1u, 2u}) {
       SCOPED_TRACE(scene.name + " threads=" + std::to_string(threads));
       EXPECT_TRUE(fast_test::same_bytes(
@@ -64,6 +69,18 @@ TEST_F(FastAgainstLavapipe, BenchScenesAtSmallSize) {
   expect_same(bench::fill_layers_scene(true, 128, 6));
   expect_same(bench::fill_layers_scene(false, 128, 6));
   expect_same(bench::perspective_scene(16, 128));
+}
+
+// One built-in scene per denormal trigger (docs/lavapipe-rules.md §7.10), exact and fast paths
+// against the driver: denormal clip z, viewport depth, slope-bias offset, depth-plane gradient
+// and clipper t. Each fails without the FTZ/DAZ mode (each differs from lavapipe in coverage or
+// depth then). The fast path's pool jobs must set the mode in their own threads (threads=2).
+TEST_F(FastAgainstLavapipe, DenormalsFlushLikeLavapipe) {
+  const std::string root = std::string(RASTERCMP_SOURCE_DIR) + "/scenes/";
+  for (const char* path :
+       {"depth/denormal/clip_z.json", "depth/denormal/viewport_depth.json", "depth/denormal/bias_slope.json",
+        "depth/denormal/plane_gradient.json", "clip/denormal_t.json"})
+    expect_same(load_scene_file(root + path), true);
 }
 
 }  // namespace

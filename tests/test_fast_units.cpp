@@ -14,6 +14,7 @@
 #include "cpu_raster/exact/depth_sample.hpp"
 #include "cpu_raster/exact/edge_plane.hpp"
 #include "cpu_raster/exact/fixed_point.hpp"
+#include "cpu_raster/exact/float_ops.hpp"
 #include "cpu_raster/fast/block_rows.hpp"
 #include "cpu_raster/fast/cpu_features.hpp"
 #include "cpu_raster/fast/fast_vertices.hpp"
@@ -21,6 +22,7 @@
 #include "cpu_raster/fast/small_window.hpp"
 #include "cpu_raster/fast/tile_depth_bounds.hpp"
 #include "cpu_raster/fast/tile_edges.hpp"
+#include "cpu_raster/fast/worker_pool.hpp"
 #include "tests/test_fast_support.hpp"
 
 namespace rastercmp::cpu::fast {
@@ -44,6 +46,17 @@ void expect_same_vertex(const FastVertex& a, const FastVertex& b, size_t k) {
   EXPECT_EQ(std::bit_cast<uint32_t>(a.x), std::bit_cast<uint32_t>(b.x)) << "position " << k;
   EXPECT_EQ(std::bit_cast<uint32_t>(a.y), std::bit_cast<uint32_t>(b.y)) << "position " << k;
   EXPECT_EQ(std::bit_cast<uint32_t>(a.z), std::bit_cast<uint32_t>(b.z)) << "position " << k;
+}
+
+// docs/lavapipe-rules.md §7.10: every pool job runs with FTZ/DAZ, whatever mode the pool's threads
+// were started in (this pool is new and started outside any render, so its threads inherit the
+// caller's default mode), and the calling thread gets its own mode back.
+TEST(FastWorkerPool, EveryJobFlushesDenormals) {
+  ASSERT_FALSE(cpu::denormals_flushed());
+  std::vector<int> flushed(7, -1);
+  cpu::fast::worker_pool(7).run([&](uint32_t w) { flushed[w] = cpu::denormals_flushed() ? 1 : 0; });
+  for (uint32_t w = 0; w < flushed.size(); ++w) EXPECT_EQ(flushed[w], 1) << "job " << w;
+  EXPECT_FALSE(cpu::denormals_flushed());
 }
 
 TEST(FastVertices, ScalarPassIsTheExactPathsPerVertexWork) {

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "cpu_raster/exact/depth_sample.hpp"
+#include "cpu_raster/exact/float_ops.hpp"
 #include "cpu_raster/exact/front_end.hpp"
 #include "cpu_raster/exact/profile_support.hpp"
 #include "cpu_raster/exact/rasterize.hpp"
@@ -142,6 +143,7 @@ std::vector<FragmentRecord> explain_pixel(const Scene& scene, const CpuOptions& 
                      std::to_string(sample) + " is outside the " + std::to_string(scene.width) + "x" +
                      std::to_string(scene.height) + " framebuffer with " + std::to_string(scene.samples) +
                      " sample(s)");
+  const cpu::DenormalsFlushed ftz_daz;  // as render_exact (rules §7.10)
   const cpu::FrameContext frame =
       cpu::make_frame_context(scene, options.fma, cpu::parse_setup_methods(options.methods));
   Probe probe{int32_t(x), int32_t(y), sample, scene.samples, {}};

@@ -5,6 +5,10 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#if defined(__x86_64__) || defined(__SSE__)
+#include <xmmintrin.h>
+#define RASTERCMP_HAS_MXCSR 1
+#endif
 
 namespace rastercmp::cpu {
 
@@ -24,5 +28,58 @@ inline float float_from_bits(uint32_t bits) { return std::bit_cast<float>(bits);
 
 // Mesa's util_is_inf_or_nan.
 inline bool is_inf_or_nan(float value) { return !std::isfinite(value); }
+
+// Denormals (docs/lavapipe-rules.md §7.10). llvmpipe runs draw_vbo (vertex fetch and shader, clip
+// test, viewport, do_clip_tri, the set-up and its depth plane and offset) and its rasterizer
+// threads with MXCSR FTZ (a result that would be denormal becomes a signed zero) and DAZ (a
+// denormal operand of any arithmetic, comparison, min/max or conversion reads as a signed zero).
+// The state-time constants (the viewport transform) are computed outside that mode.
+//
+// The model sets the same two hardware bits rather than flushing each operation by hand: every
+// float operation of the render is affected in lavapipe, and a missed explicit flush would be a
+// silent bug. Set it in every thread that does render arithmetic (render_exact, explain, the fast
+// path's caller and pool jobs); the guard restores the caller's mode. Bit moves (float_bits, copies)
+// are unaffected, as in lavapipe.
+inline constexpr uint32_t kMxcsrFtzDaz = 0x8040u;  // FTZ (bit 15) | DAZ (bit 6)
+
+class ScopedDenormalMode {
+ public:
+  explicit ScopedDenormalMode(bool flush) {
+#ifdef RASTERCMP_HAS_MXCSR
+    saved_ = _mm_getcsr();
+    _mm_setcsr(flush ? (saved_ | kMxcsrFtzDaz) : (saved_ & ~kMxcsrFtzDaz));
+#else
+    (void)flush;
+#endif
+  }
+  ~ScopedDenormalMode() {
+#ifdef RASTERCMP_HAS_MXCSR
+    _mm_setcsr(saved_);
+#endif
+  }
+  ScopedDenormalMode(const ScopedDenormalMode&) = delete;
+  ScopedDenormalMode& operator=(const ScopedDenormalMode&) = delete;
+
+ private:
+  uint32_t saved_ = 0;
+};
+
+// lavapipe's draw/set-up/rasterizer mode: FTZ and DAZ on.
+struct DenormalsFlushed : ScopedDenormalMode {
+  DenormalsFlushed() : ScopedDenormalMode(true) {}
+};
+// lavapipe's state-time mode (lvp's queue thread outside draw_vbo): denormals kept.
+struct DenormalsKept : ScopedDenormalMode {
+  DenormalsKept() : ScopedDenormalMode(false) {}
+};
+
+// Whether the calling thread flushes denormals (both bits set).
+inline bool denormals_flushed() {
+#ifdef RASTERCMP_HAS_MXCSR
+  return (_mm_getcsr() & kMxcsrFtzDaz) == kMxcsrFtzDaz;
+#else
+  return false;
+#endif
+}
 
 }  // namespace rastercmp::cpu

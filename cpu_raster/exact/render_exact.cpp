@@ -1,6 +1,7 @@
 // render_exact: the exact path, in the order of the specification's chapters.
 #include "cpu_raster/exact/render_exact.hpp"
 
+#include "cpu_raster/exact/float_ops.hpp"
 #include "cpu_raster/exact/front_end.hpp"
 #include "cpu_raster/exact/profile_support.hpp"
 #include "cpu_raster/exact/rasterize.hpp"
@@ -13,6 +14,7 @@ namespace rastercmp {
 // (cpu::rasterize_primitive). options.skips: cpu_raster/exact/work_skips.hpp.
 RenderResult render_exact(const Scene& scene, const CpuOptions& options) {
   cpu::check_lavapipe_profile_support(scene);
+  const cpu::DenormalsFlushed ftz_daz;  // draw_vbo and the rasterizer threads (rules §7.10)
   const cpu::FrameContext frame =
       cpu::make_frame_context(scene, options.fma, cpu::parse_setup_methods(options.methods), options.skips);
   cpu::RenderTargets targets = cpu::make_render_targets(scene);

@@ -5,6 +5,7 @@
 namespace rastercmp::cpu {
 
 ViewportTransform make_viewport_transform(const Viewport& viewport) {
+  const DenormalsKept state_time;  // lvp computes these outside draw_vbo: no FTZ/DAZ (rules §7.10)
   ViewportTransform t;
   const float half_width = 0.5f * viewport.width;  // docs/lavapipe-rules.md §1.2
   const float half_height = 0.5f * viewport.height;

@@ -14,6 +14,7 @@
 #include "cpu_raster/exact/assemble.hpp"
 #include "cpu_raster/exact/depth_sample.hpp"
 #include "cpu_raster/exact/draw_chunks.hpp"
+#include "cpu_raster/exact/float_ops.hpp"
 #include "cpu_raster/exact/profile_support.hpp"
 #include "cpu_raster/exact/render_exact.hpp"
 #include "cpu_raster/exact/setup_methods.hpp"
@@ -246,6 +247,7 @@ void render_fast_into(const Scene& scene, const CpuOptions& options, const FastC
   const bool several = sizes_ok && worker_count(scene, options.threads, config) > 1;
   if (!several) check_lavapipe_profile_support(scene);
   const bool check_pending = several;
+  const DenormalsFlushed ftz_daz;  // as the exact path; the pool sets it in its jobs (rules §7.10)
   FastFrame frame;
   init_frame(frame, scene, options, config, result);
   transform_all_vertices(frame, check_pending);

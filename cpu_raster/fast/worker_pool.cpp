@@ -8,6 +8,8 @@
 #include <map>
 #include <memory>
 
+#include "cpu_raster/exact/float_ops.hpp"
+
 namespace rastercmp::cpu::fast {
 namespace {
 
@@ -38,6 +40,7 @@ WorkerPool::~WorkerPool() {
 }
 
 void WorkerPool::call(const std::function<void(uint32_t)>& job, uint32_t index) {
+  const DenormalsFlushed ftz_daz;  // every job renders: lavapipe's FTZ/DAZ in every thread (rules §7.10)
   try {
     job(index);
   } catch (...) {
