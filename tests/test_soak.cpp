@@ -29,10 +29,10 @@ namespace {
 namespace fs = std::filesystem;
 
 #ifdef RASTERCMP_SANITIZER_BUILD
-constexpr uint64_t kSlicePrimitives = 600;  // ASan + UBSan run 3-5x slower
+constexpr uint64_t kSlicePrimitives = 1200;  // ASan + UBSan run 3-5x slower
 constexpr uint64_t kBrokenPrimitives = 150;
 #else
-constexpr uint64_t kSlicePrimitives = 3000;
+constexpr uint64_t kSlicePrimitives = 6000;
 constexpr uint64_t kBrokenPrimitives = 400;
 #endif
 
@@ -63,10 +63,10 @@ TEST(SoakGenerator, SameSeedSameBytesAndEveryFamilyLoads) {
         EXPECT_TRUE(same_bits(a, back)) << text;
         EXPECT_EQ(scene_to_json_text(back), text);
         EXPECT_GE(primitive_count(a), 1u);
-        distinct.insert(text);
+        if (!o.skip_known) distinct.insert(text);
       }
     }
-    EXPECT_GT(distinct.size(), 40u) << family << ": the seeds do not vary the scenes";
+    EXPECT_EQ(distinct.size(), 40u) << family << ": the indices do not vary the scenes";
   }
   EXPECT_NE(scene_to_json_text(generate_scene("tie", 7, 0, all)), scene_to_json_text(generate_scene("tie", 8, 0, all)));
   EXPECT_THROW(generate_scene("no_such_family", 1, 0, all), UsageError);
