@@ -16,6 +16,8 @@ std::string failure_kind(const CaseResult& result) {
     if (result.diff && result.diff->summary.coverage_mismatches() > 0) return "coverage";
     return "depth";
   }
+  // Validation messages: their count varies as the scene shrinks, so the kind leaves it out.
+  if (!result.validation_messages.empty()) return std::string(to_string(result.verdict)) + ": validation";
   const auto colon = result.message.find(':');
   return std::string(to_string(result.verdict)) + ": " + result.message.substr(0, colon);
 }

@@ -12,7 +12,8 @@ namespace rastercmp::soak {
 
 // "" when the scene does not fail (Pass, QualityWarning, NotSupported); else "coverage" (a Fail
 // with coverage differences), "depth" (a Fail with depth differences only), or the verdict name
-// and the message up to its first ':' for the error verdicts ("InternalError: device").
+// and the message up to its first ':' for the error verdicts ("InternalError: device"), or
+// "InternalError: validation" when the validation layer spoke.
 std::string failure_kind(const CaseResult& result);
 
 // TEST-ONLY broken model. When the environment variable RASTERCMP_TEST_BREAK_MODEL is
