@@ -13,7 +13,7 @@ SAN_ENV := ASAN_OPTIONS=detect_leaks=1:halt_on_error=1:abort_on_error=0:exitcode
   UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1:exitcode=$(SAN_EXITCODE) \
   LSAN_OPTIONS=suppressions=$(CURDIR)/tests/sanitizer/lsan.supp:print_suppressions=0:exitcode=$(SAN_EXITCODE)
 
-.PHONY: setup build conformance test test-unit build-san test-sanitize fuzz bench clean
+.PHONY: setup build conformance test test-unit build-san test-sanitize fuzz bench soak clean
 
 setup:
 	@bash scripts/setup.sh
@@ -71,6 +71,13 @@ fuzz: build-san
 
 bench: build
 	@$(BUILD)/app/rastercmp bench
+
+# The random differential soak (docs/soak.md): 10^6 primitives of generated scenes against lavapipe,
+# every failure reduced and written to $(OUT)/soak. Exit 1 when anything failed.
+SOAK_SEED  ?= 1
+SOAK_COUNT ?= 1000000
+soak: build
+	@$(BUILD)/app/rastercmp soak --seed $(SOAK_SEED) --count $(SOAK_COUNT) --out $(OUT)/soak
 
 clean:
 	rm -rf $(BUILD) $(BUILD_SAN) $(OUT)

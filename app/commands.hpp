@@ -17,5 +17,7 @@ void add_merge_command(CLI::App& app, int& exit_code);
 void add_bench_command(CLI::App& app, int& exit_code);
 void add_sweep_command(CLI::App& app, int& exit_code);
 void add_chart_command(CLI::App& app, int& exit_code);
+void add_soak_command(CLI::App& app, int& exit_code);
+void add_reduce_command(CLI::App& app, int& exit_code);
 
 }  // namespace rastercmp::app

@@ -151,3 +151,25 @@ TEST(CliErrors, WithoutAVulkanDriverTheCpuRendererStillWorks) {
 
 }  // namespace
 }  // namespace rastercmp::cli_test
+
+// soak and reduce (docs/soak.md): an unknown family, a zero or missing budget and a missing scene
+// are bad input (exit 2) with a message that names the problem, before any device work.
+TEST(CliErrors, SoakAndReduceRejectBadInput) {
+  using namespace rastercmp::cli_test;
+  struct Case {
+    std::vector<std::string> args;
+    std::string message;
+  };
+  const std::vector<Case> cases{
+      {{"soak", "--count", "10", "--family", "no_such_family"}, "unknown family"},
+      {{"soak", "--count", "0"}, "--count"},
+      {{"soak", "--count", "ten"}, "--count"},
+      {{"soak"}, "--count"},
+      {{"reduce", "/nonexistent/rastercmp_no_scene.json"}, "rastercmp_no_scene.json"},
+  };
+  for (const Case& c : cases) {
+    const RunResult r = run_cli(c.args);
+    EXPECT_EQ(r.exit_code, 2) << describe(c.args, r);
+    EXPECT_NE(r.err.find(c.message), std::string::npos) << describe(c.args, r);
+  }
+}

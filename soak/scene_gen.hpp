@@ -1,0 +1,30 @@
+// Random scenes built from the scene format's corner cases (docs/soak.md). Each family stresses one
+// part of the specification; every scene goes through the JSON writer and the loader before it is
+// used, so what runs is exactly what a written file reproduces.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "model/scene.hpp"
+
+namespace rastercmp::soak {
+
+// The families, in the order the soak cycles through them.
+const std::vector<std::string>& family_names();
+bool is_family(const std::string& name);
+
+struct GenOptions {
+  // Leave out the mismatch classes known on lavapipe 22.3.6 at the time of writing (docs/soak.md
+  // "Known classes"): denormal coordinates, 4x MSAA with a Bresenham line, 4x MSAA with a
+  // zero-size scissor or a viewport under 4 pixels, and huge (>= 1e11) coordinates with w = 1.
+  bool skip_known = false;
+};
+
+// Scene `index` of family `family` for `seed`: a pure function of its arguments. The scene is
+// named soak.<family>.s<seed>.n<index>. Throws std::logic_error if the generator produced a scene
+// the loader rejects (a generator bug).
+Scene generate_scene(const std::string& family, uint64_t seed, uint64_t index, const GenOptions& options);
+
+}  // namespace rastercmp::soak
