@@ -59,7 +59,7 @@ void add_soak_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--family", args->soak.families, "only this family (repeatable); default: all");
   cmd->add_option("--out", args->soak.out_dir, "write every failing scene (original and reduced) into this folder");
   cmd->add_flag("--skip-known", args->soak.gen.skip_known,
-                "leave out the mismatch classes known on lavapipe 22.3.6 (docs/soak.md)");
+                "leave out the one class the model does not reproduce: huge w = 1 coordinates (docs/soak.md)");
   cmd->add_flag("--no-reduce", args->no_reduce, "write failing scenes without reducing them");
   add_render_options(*cmd, args->options);
   cmd->callback([args, &exit_code] { exit_code = run_soak_command(*args); });

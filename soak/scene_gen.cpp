@@ -331,8 +331,8 @@ void gen_magnitude(Gen& g) {
   for (int k = 0; k < draws; ++k) {
     std::vector<glm::vec4> p = g.triangle(0.5);
     const int kind = int(g.r.range(0, 3));
-    if (kind == 0) {  // tiny: denormal (or, skipping the known class, small normal) components
-      const double tiny = g.o.skip_known ? g.log_uniform(1e-15, 1e-6) : g.r.pick({1e-40, 1e-44, 1e-39, 1e-38, 1e-30});
+    if (kind == 0) {  // tiny: denormal components
+      const double tiny = g.r.pick({1e-40, 1e-44, 1e-39, 1e-38, 1e-30});
       for (glm::vec4& v : p) {
         if (g.r.chance(0.4)) v.x = float(tiny * (g.r.chance(0.5) ? 1 : -1));
         if (g.r.chance(0.4)) v.y = float(tiny * (g.r.chance(0.5) ? 1 : -1));
@@ -395,7 +395,7 @@ void gen_msaa(Gen& g) {
   g.s.samples = 4;
   if (g.r.chance(0.3)) {
     Viewport v;
-    const double minimum = g.o.skip_known ? 4 : 0.5;
+    const double minimum = 0.5;
     v.x = float(Gen::grid(g.r.uniform(0, g.s.width / 2.0), 4));
     v.y = float(Gen::grid(g.r.uniform(0, g.s.height / 2.0), 4));
     v.width = float(std::max(minimum, Gen::grid(g.r.uniform(0.5, g.s.width), 4)));
@@ -406,8 +406,8 @@ void gen_msaa(Gen& g) {
     Rect2D sc;
     sc.x = int32_t(g.r.range(0, g.s.width / 2));
     sc.y = int32_t(g.r.range(0, g.s.height / 2));
-    sc.width = uint32_t(g.r.range(g.o.skip_known ? 1 : 0, g.s.width));
-    sc.height = uint32_t(g.r.range(g.o.skip_known ? 1 : 0, g.s.height));
+    sc.width = uint32_t(g.r.range(0, g.s.width));
+    sc.height = uint32_t(g.r.range(0, g.s.height));
     g.s.scissor = sc;
   }
   const int draws = int(g.r.range(1, 4));
@@ -427,7 +427,6 @@ void gen_msaa(Gen& g) {
       p.pop_back();
       Draw& d = g.add(Topology::LineList, p);
       g.line_state(d.state);
-      if (g.o.skip_known && d.state.line_mode == LineMode::Bresenham) d.state.line_mode = LineMode::Rectangular;
       g.depth_state(d.state);
     }
   }
