@@ -48,6 +48,22 @@ void rasterize_primitive(const RasterPrimitive& p, const DepthTestState& depth, 
       skips.edges32_when_box_fits ? make_edge_frame32(p.planes, p.visit) : std::nullopt;
   const EdgeFrame32* edges32 = frame32 ? &*frame32 : nullptr;
   const bool read_stored = (depth.active || depth.compute_when_inactive) && !targets.depth_raw.empty();
+  // Without multisample rasterization in a multisampled framebuffer (Bresenham lines at 4x),
+  // lavapipe tests and writes depth in sample 0 alone and writes the owner to every sample where
+  // sample 0 passes: the other samples' depth is left as it was (docs/lavapipe-rules.md §6).
+  if (!p.per_sample && targets.samples > 1) {
+    for (int32_t py = p.visit.y0; py <= p.visit.y1; ++py) {
+      for (int32_t px = p.visit.x0; px <= p.visit.x1; ++px) {
+        const size_t first = targets.index(px, py, 0);
+        const SampleVerdict verdict =
+            evaluate_sample(p, depth, px, py, 0, read_stored ? targets.depth_raw[first] : 0, edges32);
+        if (!verdict.passes()) continue;
+        if (depth.write) targets.depth_raw[first] = verdict.depth.raw;
+        for (uint32_t s = 0; s < targets.samples; ++s) targets.owner[first + s] = p.owner;
+      }
+    }
+    return;
+  }
   for (int32_t py = p.visit.y0; py <= p.visit.y1; ++py) {
     for (int32_t px = p.visit.x0; px <= p.visit.x1; ++px) {
       for (uint32_t s = 0; s < targets.samples; ++s) {
