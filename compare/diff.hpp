@@ -12,7 +12,8 @@
 // coverage_class is read as Must where the expected render covers and MustNot elsewhere.
 // Depth: compared only on samples whose coverage agrees (same owner, or both background), so a
 // coverage difference is never counted twice, and only when both renders carry depth (the
-// Vulkan reference reads back no multisampled depth). Units: compare/depth_units.hpp.
+// Vulkan reference carries none for a multisampled format its device cannot sample).
+// Units: compare/depth_units.hpp.
 #pragma once
 
 #include <cstddef>

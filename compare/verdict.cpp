@@ -83,7 +83,8 @@ VerdictDecision decide_verdict(const DiffSummary& diff, double depth_tolerance_r
   VerdictDecision decision =
       diff.profile == CompareProfile::Lavapipe ? decide_lavapipe(diff) : decide_spec(diff, depth_tolerance_r);
   if (diff.depth_format != DepthFormat::None && !diff.depth_compared)
-    decision.message += "; depth not compared (one render carries none, e.g. multisampled depth on Vulkan)";
+    decision.message +=
+        "; depth not compared (one render carries none, e.g. multisampled depth on a device that cannot sample it)";
   return decision;
 }
 

@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include "compare/diff.hpp"
+#include "compare/verdict.hpp"
 #include "tests/test_differential_scenes.hpp"
 
 namespace rastercmp::differential {
@@ -111,6 +113,81 @@ TEST_F(DifferentialRegion, EmptyScissorsMultisampled) {
 TEST_F(DifferentialRegion, ViewportRoundingToNoPixelMultisampled) {
   expect_match("viewport_rounds_to_empty_4x", std::nullopt, Viewport{5.6f, 4.6f, 0.8f, 0.8f, 0, 1}, 4);
   expect_match("viewport_rounds_to_empty_wide_4x", std::nullopt, Viewport{2.5f, 4.7f, 20.25f, 0.75f, 0, 1}, 4);
+}
+
+// 4x depth compared per sample (issue #19): a steep plane (depth from 0.02 at the left edge to
+// 0.98 at the right, plus a tilt in y) so the four samples of nearly every pixel hold different
+// depths, crossed by a second plane under LESS so per-sample depth also decides ownership. The
+// Vulkan side must read back every sample's raw depth, and it must equal the CPU's, in each format.
+TEST_F(DifferentialRegion, Msaa4xSteepPlaneDepthMatchesPerSample) {
+  for (const DepthFormat format : {DepthFormat::D16Unorm, DepthFormat::X8D24Unorm, DepthFormat::D32Sfloat}) {
+    SCOPED_TRACE(to_string(format));
+    Scene scene =
+        make_scene(fmt::format("rastercmp.differential.msaa_steep_depth.{}", to_string(format)), 64, 32, format);
+    scene.samples = 4;
+    Draw steep;
+    steep.positions_clip = {{-1, -1, 0.02f, 1}, {1, -1, 0.9f, 1}, {-1, 1, 0.1f, 1},
+                            {1, -1, 0.9f, 1},   {1, 1, 0.98f, 1}, {-1, 1, 0.1f, 1}};
+    Draw crossing;  // tilted the other way, perspective (w != 1): crosses the steep plane
+    crossing.positions_clip = {{-1.5f, -1.5f, 1.35f, 1.5f}, {2, -2, 0.2f, 2}, {-1.25f, 1.25f, 1.1f, 1.25f}};
+    scene.draws = {steep, crossing};
+    std::string report;
+    const DiffFigures f = run_differential(scene, CpuVariant{}, report);
+    totals().add(f);
+    const RenderResult vk = shared_renderer().render(scene);
+    ASSERT_TRUE(vk.has_depth()) << "4x depth not read back";
+    uint32_t pixels_with_distinct_depths = 0, pixels_of_both_draws = 0;
+    for (uint32_t y = 0; y < scene.height; ++y) {
+      for (uint32_t x = 0; x < scene.width; ++x) {
+        const size_t first = vk.index(x, y, 0);
+        bool distinct = false, mixed = false;
+        for (uint32_t s = 1; s < 4; ++s) {
+          distinct |= vk.depth_raw[first + s] != vk.depth_raw[first];
+          mixed |= owner_draw(vk.owner[first + s]) != owner_draw(vk.owner[first]);
+        }
+        pixels_with_distinct_depths += distinct;
+        pixels_of_both_draws += mixed;
+      }
+    }
+    EXPECT_GT(pixels_with_distinct_depths, scene.width * scene.height * 9 / 10) << "the plane is not steep enough";
+    EXPECT_GT(pixels_of_both_draws, 0u) << "the planes do not cross within a pixel";
+    EXPECT_EQ(f.coverage_mismatches, 0u) << scene.name << ": first differences\n" << report;
+    EXPECT_EQ(f.depth_mismatches, 0u) << scene.name << ": first differences\n" << report;
+  }
+}
+
+// The same 4x scene through compare/ (what `rastercmp conformance` runs): the driver's per-sample
+// depth is compared, the unchanged renders pass without "depth not compared", and one Vulkan
+// sample's depth nudged by one unit is reported as exactly one depth mismatch at that sample.
+TEST_F(DifferentialRegion, Msaa4xDepthPerturbationIsADepthMismatchInTheDiff) {
+  Scene scene = make_scene("rastercmp.differential.msaa_depth_perturbed", 32, 16, DepthFormat::X8D24Unorm);
+  scene.samples = 4;
+  Draw steep;
+  steep.positions_clip = {{-1, -1, 0.1f, 1}, {1, -1, 0.9f, 1}, {-1, 1, 0.2f, 1}};
+  scene.draws.push_back(steep);
+  CpuOptions options;
+  options.fma = shared_renderer().device().fma;
+  const RenderResult cpu = render_cpu(scene, options);
+  RenderResult vk = shared_renderer().render(scene);
+  for (const std::string& m : shared_renderer().validation_messages()) ADD_FAILURE() << "validation: " << m;
+  ASSERT_TRUE(vk.has_depth());
+  const SceneDiff same = rastercmp::diff_results(cpu, vk, CompareProfile::Lavapipe);
+  EXPECT_TRUE(same.summary.depth_compared);
+  EXPECT_EQ(same.summary.depth.mismatches, 0u);
+  const VerdictDecision pass = decide_verdict(same.summary, 0);
+  EXPECT_EQ(pass.verdict, Verdict::Pass) << pass.message;
+  EXPECT_EQ(pass.message.find("depth not compared"), std::string::npos) << pass.message;
+
+  const SampleLocation at{5, 3, 2};  // inside the triangle
+  const size_t i = vk.index(at.x, at.y, at.sample);
+  ASSERT_EQ(owner_draw(vk.owner[i]), 0u);
+  vk.depth_raw[i] += 1;
+  const SceneDiff perturbed = rastercmp::diff_results(cpu, vk, CompareProfile::Lavapipe);
+  EXPECT_EQ(perturbed.summary.coverage_mismatches(), 0u);
+  EXPECT_EQ(perturbed.summary.depth.mismatches, 1u);
+  EXPECT_EQ(perturbed.summary.depth.max_at, at);
+  EXPECT_EQ(perturbed.summary.depth.max_raw, 1u);
+  EXPECT_EQ(decide_verdict(perturbed.summary, 0).verdict, Verdict::Fail);
 }
 
 std::string case_name(const ::testing::TestParamInfo<Differential::ParamType>& info) {

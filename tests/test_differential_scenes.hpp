@@ -367,7 +367,7 @@ inline Scene strips_and_fans(uint32_t seed) {
   return scene;
 }
 
-// 4x multisampling with an inner scissor (coverage only: the driver's MSAA depth is not read back).
+// 4x multisampling with an inner scissor (coverage and per-sample depth).
 inline Scene msaa_triangles(uint32_t seed) {
   Random rng(seed);
   Scene scene = clip_space_triangles("msaa", seed, 1.1f, 0, 1, 0.5f, 2);
@@ -391,7 +391,7 @@ inline Scene less_triangles(uint32_t seed) {
 }
 
 // 4x multisampling under LESS with interpenetrating triangles: the owner of each sample follows
-// from per-sample depth, which the driver does not read back directly.
+// from per-sample depth, which is also read back and compared.
 inline Scene msaa_less_triangles(uint32_t seed) {
   Random rng(seed);
   Scene scene = clip_space_triangles("msaa_less", seed, 0.6f, 0, 1, 0.5f, 2);

@@ -55,7 +55,7 @@ class FastAgainstLavapipe : public ::testing::Test {
 
 TEST_F(FastAgainstLavapipe, RandomScenes) {
   fast_test::RandomSceneSpec spec;
-  spec.allow_multisample = false;  // multisampled depth is not read back (vk_reference.hpp)
+  spec.allow_multisample = false;  // 4x scenes against lavapipe: test_differential
   spec.max_primitives = 24;        // one vsplit chunk per draw (docs/lavapipe-rules.md §1.5)
   for (uint64_t seed = 1; seed <= 12; ++seed) expect_same(fast_test::random_scene(1000 + seed, spec));
 }

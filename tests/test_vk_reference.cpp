@@ -262,16 +262,49 @@ TEST_F(VkReferenceTest, Msaa4xHalfCoveredPixelHasExpectedSampleOwners) {
   scene.draws.push_back(window_triangles(scene, {{-4, -4}, {20, -4}, {-4, 20}}, 0.5f));
   scene.draws.push_back(window_triangles(scene, {{1.5f, -4}, {1.5f, 8}, {-6, 2}}, 0.25f));
   const RenderResult result = render(scene);
-  EXPECT_FALSE(result.has_depth());  // multisampled depth is not read back
+  ASSERT_TRUE(result.has_depth());  // every sample's depth, read back by the depth gather
+  ASSERT_EQ(result.depth_raw.size(), result.owner.size());
   const uint32_t back = encode_owner(0, 0), front = encode_owner(1, 0);
+  const uint32_t back_depth = 0x3F000000u, front_depth = 0x3E800000u;  // 0.5f and 0.25f
   for (uint32_t y = 0; y < 4; ++y) {
     for (uint32_t x = 0; x < 4; ++x) {
       const uint32_t expected[4] = {x <= 1 ? front : back, x == 0 ? front : back, x <= 1 ? front : back,
                                     x == 0 ? front : back};
       for (uint32_t s = 0; s < 4; ++s) {
-        EXPECT_EQ(result.owner[result.index(x, y, s)], expected[s]) << x << "," << y << " sample " << s;
+        const size_t i = result.index(x, y, s);
+        EXPECT_EQ(result.owner[i], expected[s]) << x << "," << y << " sample " << s;
+        EXPECT_EQ(result.depth_raw[i], expected[s] == front ? front_depth : back_depth)
+            << x << "," << y << " sample " << s;
       }
     }
+  }
+}
+
+// Multisampled depth is read back per sample: the sampled float turns back into the stored raw
+// bits. A depth clear of 0.75 and a draw at 0.5 over columns 1..3 (its left edge x = 1 passes no
+// sample position, so whole pixels are in or out; column 0 keeps the clear): every sample of the 4x
+// render must read back the raw bits the single-sample copy path reads for its pixel, per format.
+TEST_F(VkReferenceTest, Msaa4xDepthReadsBackTheRawBitsOfEachSample) {
+  for (const DepthFormat format : {DepthFormat::D16Unorm, DepthFormat::X8D24Unorm, DepthFormat::D32Sfloat}) {
+    SCOPED_TRACE(to_string(format));
+    Scene single = make_scene(4, 4, format);
+    single.depth_clear = 0.75f;
+    single.draws.push_back(window_triangles(single, {{1, 0}, {4, 0}, {1, 4}, {4, 0}, {4, 4}, {1, 4}}, 0.5f));
+    const RenderResult one = render(single);
+    Scene multi = single;
+    multi.samples = 4;
+    const RenderResult four = render(multi);
+    ASSERT_TRUE(one.has_depth());
+    ASSERT_TRUE(four.has_depth());
+    for (uint32_t y = 0; y < 4; ++y) {
+      for (uint32_t x = 0; x < 4; ++x) {
+        for (uint32_t s = 0; s < 4; ++s) {
+          EXPECT_EQ(four.depth_raw[four.index(x, y, s)], one.depth_raw[one.index(x, y)])
+              << x << "," << y << " sample " << s;
+        }
+      }
+    }
+    EXPECT_NE(one.depth_raw[one.index(0, 0)], one.depth_raw[one.index(1, 0)]);
   }
 }
 

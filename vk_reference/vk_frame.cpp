@@ -50,7 +50,7 @@ Geometry upload_geometry(const Context& context, PipelineCache& pipelines, const
   return geometry;
 }
 
-ReadBack create_read_back(const Context& context, const OwnerGather* gather, const Attachments& attachments,
+ReadBack create_read_back(const Context& context, const Gathers& gathers, const Attachments& attachments,
                           const AttachmentConfig& config, uint32_t width, uint32_t height) {
   ReadBack read_back;
   const VkDeviceSize texels = VkDeviceSize(width) * height;
@@ -62,10 +62,16 @@ ReadBack create_read_back(const Context& context, const OwnerGather* gather, con
     }
     return read_back;
   }
-  if (gather == nullptr) throw std::logic_error("Frame: a multisampled scene needs the owner gather pipeline");
-  read_back.owner =
-      create_host_buffer(context, texels * config.samples * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-  read_back.gather = gather->bind(attachments.owner.view.get(), read_back.owner, width, height, config.samples);
+  if (gathers.owner == nullptr) throw std::logic_error("Frame: a multisampled scene needs the owner gather pipeline");
+  const VkDeviceSize sample_bytes = texels * config.samples * sizeof(uint32_t);
+  read_back.owner = create_host_buffer(context, sample_bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  read_back.gather = gathers.owner->bind(attachments.owner.view.get(), read_back.owner, width, height, config.samples);
+  if (attachments.depth_sampled) {
+    if (gathers.depth == nullptr) throw std::logic_error("Frame: multisampled depth needs the depth gather pipeline");
+    read_back.depth = create_host_buffer(context, sample_bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    read_back.depth_gather =
+        gathers.depth->bind(attachments.depth->view.get(), *read_back.depth, width, height, config.samples);
+  }
   return read_back;
 }
 
@@ -138,7 +144,7 @@ void check_scene(const Scene& scene) {
   }
 }
 
-Frame::Frame(const Context& context, PipelineCache& pipelines, const OwnerGather* gather, const Scene& scene)
+Frame::Frame(const Context& context, PipelineCache& pipelines, const Gathers& gathers, const Scene& scene)
     : context_(context),
       width_(scene.width),
       height_(scene.height),
@@ -150,8 +156,9 @@ Frame::Frame(const Context& context, PipelineCache& pipelines, const OwnerGather
   require_attachment_support(context, config, width_, height_);
   const VkRenderPass render_pass = pipelines.render_pass(config);
   geometry_ = upload_geometry(context, pipelines, config, scene);  // NotSupportedError before big allocations
-  attachments_ = create_attachments(context, render_pass, config, width_, height_);
-  read_back_ = create_read_back(context, gather, attachments_, config, width_, height_);
+  const bool sampled_depth = multisampled_depth_readable(context, config, width_, height_);
+  attachments_ = create_attachments(context, render_pass, config, width_, height_, sampled_depth);
+  read_back_ = create_read_back(context, gathers, attachments_, config, width_, height_);
   commands_ = allocate_commands(context);
   fence_ = create_fence(context);
 
@@ -159,7 +166,7 @@ Frame::Frame(const Context& context, PipelineCache& pipelines, const OwnerGather
   begin.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
   check(vkBeginCommandBuffer(commands_.get(), &begin), "vkBeginCommandBuffer");
   record_frame(commands_.get(), scene, render_pass, pipelines.graphics_layout(), attachments_, geometry_, read_back_,
-               gather);
+               gathers);
   check(vkEndCommandBuffer(commands_.get()), "vkEndCommandBuffer");
 }
 
@@ -194,7 +201,11 @@ RenderResult Frame::read_back() const {
   const size_t count = size_t(width_) * height_ * samples_;
   result.owner.resize(count);
   std::memcpy(result.owner.data(), read_back_.owner.mapped, count * sizeof(uint32_t));
-  if (read_back_.depth) {  // single-sample only: multisampled depth values are out of scope
+  if (read_back_.depth_gather) {  // multisampled: the sampled floats' bits, one per sample
+    const auto* sampled = static_cast<const uint32_t*>(read_back_.depth->mapped);
+    result.depth_raw.resize(count);
+    for (size_t i = 0; i < count; ++i) result.depth_raw[i] = depth_raw_from_sampled(depth_format_, sampled[i]);
+  } else if (read_back_.depth) {  // single sample: the depth-aspect copy
     const auto* texels = static_cast<const unsigned char*>(read_back_.depth->mapped);
     const uint32_t texel_bytes = depth_copy_texel_bytes(depth_format_);
     result.depth_raw.resize(count);

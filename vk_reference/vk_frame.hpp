@@ -34,17 +34,27 @@ struct Geometry {
   std::vector<DrawCall> calls;    // one per Scene::draws entry
 };
 
-// Where the recorded copies put the results. Multisampled depth is not read back.
+// The gather pipelines a multisampled scene needs; the renderer makes them once.
+struct Gathers {
+  const SampleGather* owner = nullptr;  // every multisampled scene
+  const SampleGather* depth = nullptr;  // multisampled scenes with depth
+};
+
+// Where the recorded copies put the results.
 struct ReadBack {
-  Buffer owner;                                // width*height*samples uint32
-  std::optional<Buffer> depth;                 // single-sample scenes with depth: the depth-aspect copy
-  std::optional<OwnerGather::Binding> gather;  // multisampled scenes
+  Buffer owner;  // width*height*samples uint32
+  // Single-sample scenes with depth: the depth-aspect copy. Multisampled scenes whose depth the
+  // device can sample: width*height*samples sampled floats' bits (depth_raw_from_sampled).
+  std::optional<Buffer> depth;
+  std::optional<SampleGather::Binding> gather;        // multisampled scenes: the owner
+  std::optional<SampleGather::Binding> depth_gather;  // multisampled scenes with readable depth
 };
 
 class Frame final : public VulkanRenderer::Prepared {
  public:
-  // `gather` is needed (non-null) only when scene.samples > 1.
-  Frame(const Context& context, PipelineCache& pipelines, const OwnerGather* gather, const Scene& scene);
+  // `gathers.owner` is needed (non-null) only when scene.samples > 1, `gathers.depth` when the
+  // multisampled scene also has depth.
+  Frame(const Context& context, PipelineCache& pipelines, const Gathers& gathers, const Scene& scene);
 
   // Submits the recorded commands and waits; returns the seconds from vkQueueSubmit to the
   // fence signalling (the fence is reset before the clock starts).
@@ -72,6 +82,6 @@ void check_scene(const Scene& scene);
 // Records the whole frame into `commands` (between begin and end).
 void record_frame(VkCommandBuffer commands, const Scene& scene, VkRenderPass render_pass, VkPipelineLayout layout,
                   const Attachments& attachments, const Geometry& geometry, const ReadBack& read_back,
-                  const OwnerGather* gather);
+                  const Gathers& gathers);
 
 }  // namespace rastercmp::vk

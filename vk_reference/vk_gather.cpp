@@ -8,6 +8,7 @@
 #include <fmt/core.h>
 
 #include "model/errors.hpp"
+#include "shaders/gather_depth_ms_comp.h"
 #include "shaders/gather_owner_ms_comp.h"
 #include "vk_reference/vk_check.hpp"
 #include "vk_reference/vk_pipeline.hpp"
@@ -15,7 +16,7 @@
 namespace rastercmp::vk {
 namespace {
 
-constexpr uint32_t kLocalSize = 8;  // gather_owner_ms.comp local_size_x/y
+constexpr uint32_t kLocalSize = 8;  // gather_{owner,depth}_ms.comp local_size_x/y
 
 struct GatherConstants {
   uint32_t width, samples, first_row, rows;
@@ -23,14 +24,15 @@ struct GatherConstants {
 
 // Rows per band: as many as fit maxStorageBufferRange, a multiple of the rows that keep each
 // band's byte offset aligned to minStorageBufferOffsetAlignment.
-uint32_t rows_per_band(const VkPhysicalDeviceLimits& limits, uint64_t row_bytes, const std::string& device) {
+uint32_t rows_per_band(const VkPhysicalDeviceLimits& limits, uint64_t row_bytes, const std::string& device,
+                       const char* what) {
   const uint64_t align = std::max<uint64_t>(limits.minStorageBufferOffsetAlignment, 1);
   const uint64_t row_step = align / std::gcd(align, row_bytes);
   const uint64_t fit = limits.maxStorageBufferRange / row_bytes;
   const uint64_t rows = fit - fit % row_step;
   if (rows == 0) {
-    throw NotSupportedError(fmt::format("{}: a row of {} owner bytes exceeds maxStorageBufferRange {}", device,
-                                        row_bytes, limits.maxStorageBufferRange));
+    throw NotSupportedError(fmt::format("{}: a row of {} {} bytes exceeds maxStorageBufferRange {}", device, row_bytes,
+                                        what, limits.maxStorageBufferRange));
   }
   return static_cast<uint32_t>(std::min<uint64_t>(rows, UINT32_MAX));
 }
@@ -117,21 +119,28 @@ void write_set(VkDevice device, VkDescriptorSet set, const VkDescriptorImageInfo
   vkUpdateDescriptorSets(device, 2, writes, 0, nullptr);
 }
 
+Owned<VkShaderModule> create_gather_shader(VkDevice device, GatherKind kind) {
+  return kind == GatherKind::Owner ? create_shader_module(device, gather_owner_ms_comp, sizeof(gather_owner_ms_comp))
+                                   : create_shader_module(device, gather_depth_ms_comp, sizeof(gather_depth_ms_comp));
+}
+
 }  // namespace
 
-OwnerGather::OwnerGather(const Context& context)
+SampleGather::SampleGather(const Context& context, GatherKind kind)
     : context_(context),
+      kind_(kind),
       sampler_(create_sampler(context.device())),
       set_layout_(create_set_layout(context.device())),
       layout_(create_layout(context.device(), set_layout_.get())),
-      shader_(create_shader_module(context.device(), gather_owner_ms_comp, sizeof(gather_owner_ms_comp))),
+      shader_(create_gather_shader(context.device(), kind)),
       pipeline_(create_pipeline(context.device(), layout_.get(), shader_.get())) {}
 
-OwnerGather::Binding OwnerGather::bind(VkImageView owner_ms, const Buffer& owner_samples, uint32_t width,
-                                       uint32_t height, uint32_t samples) const {
+SampleGather::Binding SampleGather::bind(VkImageView image_ms, const Buffer& samples_out, uint32_t width,
+                                         uint32_t height, uint32_t samples) const {
   const VkDevice device = context_.device();
   const uint64_t row_bytes = uint64_t(width) * samples * sizeof(uint32_t);
-  const uint32_t band_rows = rows_per_band(context_.enabled().limits, row_bytes, context_.info().name);
+  const uint32_t band_rows = rows_per_band(context_.enabled().limits, row_bytes, context_.info().name,
+                                           kind_ == GatherKind::Owner ? "owner" : "depth");
   const uint32_t band_count = (height + band_rows - 1) / band_rows;
   const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, band_count},
                                         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, band_count}};
@@ -149,14 +158,14 @@ OwnerGather::Binding OwnerGather::bind(VkImageView owner_ms, const Buffer& owner
   for (uint32_t first_row = 0; first_row < height; first_row += band_rows) {
     const uint32_t rows = std::min(band_rows, height - first_row);
     binding.bands.push_back({allocate_set(device, pool, set_layout_.get()), first_row, rows});
-    const VkDescriptorImageInfo image{sampler_.get(), owner_ms, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-    const VkDescriptorBufferInfo buffer{owner_samples.buffer.get(), first_row * row_bytes, rows * row_bytes};
+    const VkDescriptorImageInfo image{sampler_.get(), image_ms, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    const VkDescriptorBufferInfo buffer{samples_out.buffer.get(), first_row * row_bytes, rows * row_bytes};
     write_set(device, binding.bands.back().set, image, buffer);
   }
   return binding;
 }
 
-void OwnerGather::record(VkCommandBuffer commands, const Binding& binding) const {
+void SampleGather::record(VkCommandBuffer commands, const Binding& binding) const {
   vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.get());
   for (const Band& band : binding.bands) {
     const GatherConstants constants{binding.width, binding.samples, band.first_row, band.rows};

@@ -1,7 +1,9 @@
-// Reads a multisampled owner attachment sample by sample: a compute shader
-// (shaders/gather_owner_ms.comp) texelFetches each sample of a usampler2DMS into a storage
-// buffer laid out as (y * width + x) * samples + sample, the RenderResult layout. The buffer is
-// bound in bands of whole rows, each within maxStorageBufferRange and offset-aligned.
+// Reads a multisampled attachment sample by sample: a compute shader texelFetches each sample
+// into a storage buffer laid out as (y * width + x) * samples + sample, the RenderResult layout.
+// Owner: shaders/gather_owner_ms.comp reads a usampler2DMS (the owner ids themselves). Depth:
+// shaders/gather_depth_ms.comp reads a sampler2DMS and stores the sampled float's bits (the host
+// recovers the raw stored bits, vk_translate.hpp depth_raw_from_sampled). The buffer is bound in
+// bands of whole rows, each within maxStorageBufferRange and offset-aligned.
 #pragma once
 
 #include <vector>
@@ -14,23 +16,25 @@
 
 namespace rastercmp::vk {
 
-class OwnerGather {
+enum class GatherKind { Owner, Depth };
+
+class SampleGather {
  public:
-  explicit OwnerGather(const Context& context);
+  SampleGather(const Context& context, GatherKind kind);
 
   struct Band {
     VkDescriptorSet set = VK_NULL_HANDLE;
     uint32_t first_row = 0, rows = 0;
   };
-  // The descriptors of one scene: its owner image (in SHADER_READ_ONLY_OPTIMAL) and output buffer
-  // of width * height * samples uint32.
+  // The descriptors of one scene: its image (a view of the colour or depth aspect, in
+  // SHADER_READ_ONLY_OPTIMAL) and output buffer of width * height * samples uint32.
   struct Binding {
     Owned<VkDescriptorPool> pool;  // owns the sets
     std::vector<Band> bands;
     uint32_t width = 0, samples = 0;
   };
   // Throws NotSupportedError if a single row exceeds the device's storage-buffer range.
-  Binding bind(VkImageView owner_ms, const Buffer& owner_samples, uint32_t width, uint32_t height,
+  Binding bind(VkImageView image_ms, const Buffer& samples_out, uint32_t width, uint32_t height,
                uint32_t samples) const;
 
   // Records the dispatches; the caller places the barriers around them.
@@ -38,6 +42,7 @@ class OwnerGather {
 
  private:
   const Context& context_;
+  GatherKind kind_;
   Owned<VkSampler> sampler_;
   Owned<VkDescriptorSetLayout> set_layout_;
   Owned<VkPipelineLayout> layout_;

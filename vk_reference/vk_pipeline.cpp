@@ -36,8 +36,7 @@ VkAttachmentDescription owner_attachment(VkSampleCountFlagBits samples) {
 VkAttachmentDescription depth_attachment(DepthFormat format, VkSampleCountFlagBits samples) {
   VkAttachmentDescription a = owner_attachment(samples);
   a.format = to_vk_format(format);  // cleared to scene.depth_clear
-  // Multisampled depth is never read back, so it need not be stored.
-  if (samples != VK_SAMPLE_COUNT_1_BIT) a.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+  // Stored: single-sample depth is copied out, multisampled depth read by the depth gather.
   a.finalLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
   return a;
 }

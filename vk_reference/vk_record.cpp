@@ -110,15 +110,25 @@ void record_copies(VkCommandBuffer commands, const Scene& scene, const Attachmen
   host_read_barrier(commands, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
 }
 
-// Multisampled: the owner samples gathered by a compute shader; depth is not read back.
+// Multisampled: the owner samples, and the depth samples where the device can sample the depth
+// attachment, gathered by compute shaders.
 void record_gather(VkCommandBuffer commands, const Attachments& attachments, const ReadBack& read_back,
-                   const OwnerGather& gather) {
-  const VkImageMemoryBarrier to_sampled = layout_barrier(
+                   const Gathers& gathers) {
+  std::vector<VkImageMemoryBarrier> barriers = {layout_barrier(
       attachments.owner.image.get(), VK_IMAGE_ASPECT_COLOR_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
-      VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_ACCESS_SHADER_READ_BIT, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-  vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0,
-                       0, nullptr, 0, nullptr, 1, &to_sampled);
-  gather.record(commands, *read_back.gather);
+      VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_ACCESS_SHADER_READ_BIT, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)};
+  VkPipelineStageFlags src_stages = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
+  if (read_back.depth_gather) {
+    barriers.push_back(layout_barrier(attachments.depth->image.get(), VK_IMAGE_ASPECT_DEPTH_BIT,
+                                      VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+                                      VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL, VK_ACCESS_SHADER_READ_BIT,
+                                      VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL));
+    src_stages |= VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
+  }
+  vkCmdPipelineBarrier(commands, src_stages, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, nullptr, 0, nullptr,
+                       static_cast<uint32_t>(barriers.size()), barriers.data());
+  gathers.owner->record(commands, *read_back.gather);
+  if (read_back.depth_gather) gathers.depth->record(commands, *read_back.depth_gather);
   host_read_barrier(commands, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT);
 }
 
@@ -126,12 +136,12 @@ void record_gather(VkCommandBuffer commands, const Attachments& attachments, con
 
 void record_frame(VkCommandBuffer commands, const Scene& scene, VkRenderPass render_pass, VkPipelineLayout layout,
                   const Attachments& attachments, const Geometry& geometry, const ReadBack& read_back,
-                  const OwnerGather* gather) {
+                  const Gathers& gathers) {
   begin_render_pass(commands, scene, render_pass, attachments);
   record_draws(commands, layout, geometry);
   vkCmdEndRenderPass(commands);
   if (read_back.gather) {
-    record_gather(commands, attachments, read_back, *gather);
+    record_gather(commands, attachments, read_back, gathers);
   } else {
     record_copies(commands, scene, attachments, read_back);
   }

@@ -47,9 +47,10 @@ class VulkanRenderer {
   // Renders and reads back. Throws NotSupportedError (state the device lacks),
   // DeviceError (device lost / out of memory), InputError (a scene Vulkan cannot take: an
   // index past the positions, a viewport outside the device's limits, more than kMaxDraws draws).
-  // Single-sample scenes return owner and raw depth. Multisampled scenes return the owner of
-  // every sample (read by a compute shader) and NO depth: depth_raw stays empty, because
-  // multisampled depth values are out of scope (docs/lavapipe-rules.md §6, unverified there).
+  // Single-sample scenes return owner and raw depth (copied out). Multisampled scenes return the
+  // owner and raw depth of every sample, read by compute shaders (texelFetch of each sample; the
+  // sampled depth float turned back into raw bits, vk_translate.hpp depth_raw_from_sampled).
+  // Where the device cannot sample the multisampled depth format, depth_raw stays empty.
   RenderResult render(const Scene& scene);
 
   // For benchmarks: resources and command buffer built once, then submitted many times.

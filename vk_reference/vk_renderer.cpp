@@ -26,7 +26,8 @@ struct VulkanRenderer::Impl {
 
   vk::Context context;
   vk::PipelineCache pipelines;
-  std::unique_ptr<vk::OwnerGather> gather;  // made on the first multisampled scene
+  std::unique_ptr<vk::SampleGather> owner_gather;  // made on the first multisampled scene
+  std::unique_ptr<vk::SampleGather> depth_gather;  // made on the first multisampled scene with depth
 };
 
 namespace {
@@ -52,8 +53,14 @@ RenderResult VulkanRenderer::render(const Scene& scene) {
 }
 
 std::unique_ptr<VulkanRenderer::Prepared> VulkanRenderer::prepare(const Scene& scene) {
-  if (scene.samples > 1 && !impl_->gather) impl_->gather = std::make_unique<vk::OwnerGather>(impl_->context);
-  return std::make_unique<vk::Frame>(impl_->context, impl_->pipelines, impl_->gather.get(), scene);
+  if (scene.samples > 1 && !impl_->owner_gather) {
+    impl_->owner_gather = std::make_unique<vk::SampleGather>(impl_->context, vk::GatherKind::Owner);
+  }
+  if (scene.samples > 1 && scene.depth_format != DepthFormat::None && !impl_->depth_gather) {
+    impl_->depth_gather = std::make_unique<vk::SampleGather>(impl_->context, vk::GatherKind::Depth);
+  }
+  const vk::Gathers gathers{impl_->owner_gather.get(), impl_->depth_gather.get()};
+  return std::make_unique<vk::Frame>(impl_->context, impl_->pipelines, gathers, scene);
 }
 
 double VulkanRenderer::submit_and_wait_seconds(Prepared& prepared) { return as_frame(prepared).submit_and_wait(); }

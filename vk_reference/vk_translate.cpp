@@ -2,10 +2,15 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <limits>
+#include <stdexcept>
 #include <string>
 #include <utility>
+
+#include <fmt/core.h>
 
 #include "model/depth_format.hpp"
 #include "model/errors.hpp"
@@ -107,6 +112,26 @@ uint32_t depth_raw_from_copy(DepthFormat format, const unsigned char* texel) {
   uint32_t bits = 0;
   std::memcpy(&bits, texel, std::min<size_t>(info.bytes_per_texel, sizeof bits));
   return bits & info.raw_mask;
+}
+
+uint32_t depth_raw_from_sampled(DepthFormat format, uint32_t float_bits) {
+  const DepthFormatInfo info = depth_format_info(format);
+  if (info.encoding == DepthEncoding::Float) return float_bits;
+  if (info.encoding != DepthEncoding::Unorm) throw std::invalid_argument("depth_raw_from_sampled: no depth format");
+  const uint32_t max = info.raw_mask;  // UNORM: 2^bits - 1
+  const float scale = static_cast<float>(1.0 / double(max));
+  const float sampled = std::bit_cast<float>(float_bits);
+  if (sampled >= 0.0f && sampled <= 1.0f) {
+    // float(r) * scale is within one unit (1 / max) of r / max, so every r that converts to
+    // `sampled` lies in round(sampled * max) - 1 .. + 1; the largest one wins.
+    const int64_t nearest = std::llround(double(sampled) * double(max));
+    for (int64_t r = std::min<int64_t>(nearest + 1, max); r >= std::max<int64_t>(nearest - 1, 0); --r) {
+      const float converted = static_cast<float>(r) * scale;
+      if (converted == sampled) return static_cast<uint32_t>(r);
+    }
+  }
+  throw std::runtime_error(fmt::format("sampled {} depth {:#010x} ({}) is no stored value's conversion",
+                                       to_string(format), float_bits, double(sampled)));
 }
 
 namespace {

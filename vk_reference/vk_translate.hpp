@@ -27,6 +27,14 @@ uint32_t depth_copy_texel_bytes(DepthFormat format);
 // D16 zero-extended, X8_D24 the low 24 bits (the top 8 are undefined), D32 the float bits.
 uint32_t depth_raw_from_copy(DepthFormat format, const unsigned char* texel);
 
+// The float that sampling a depth texel returns → the raw stored bits. D32: the float's bits.
+// UNORM n bits: the raw r whose conversion, as lavapipe does it (llvmpipe
+// lp_build_unsigned_norm_to_float: float(r) * float(1 / (2^n - 1)), one float multiply), gives
+// that float. The conversion is one-to-one for D16; for X8_D24 it is one-to-one except that
+// 0xFFFFFE and 0xFFFFFF both give 1.0, read back as 0xFFFFFF (the clear value 1.0's bits).
+// Throws std::runtime_error for a float that no raw value converts to.
+uint32_t depth_raw_from_sampled(DepthFormat format, uint32_t float_bits);
+
 VkViewport to_vk(const Viewport& viewport);
 
 // Vulkan forbids negative scissor offsets (VUID-vkCmdSetScissor-x-00595). The part of the
