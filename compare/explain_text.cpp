@@ -71,7 +71,8 @@ std::vector<ExplainLink> write_case_explanations(const std::string& report_dir, 
     try {
       text = explain_sample_text(scene, cpu_options, *result.expected, *result.actual, profile, at.x, at.y, at.sample);
     } catch (const std::exception& e) {  // the history is missing, the values still explain something
-      text = header_text(scene, profile, at.x, at.y, at.sample) + fmt::format("  (not available: {})\n", e.what()) +
+      text = header_text(scene, profile, at.x, at.y, at.sample) +
+             fmt::format("  (no CPU history for this sample: {})\n", e.what()) +
              tail_text(*result.expected, *result.actual, cpu_method_label(cpu_options), profile, at.x, at.y, at.sample);
     }
     const std::string file = fmt::format("{}/explain_{}_{}_s{}.txt", case_folder(case_name), at.x, at.y, at.sample);
