@@ -7,7 +7,7 @@
 #       an optional backtick, then " §N" or " §N.M" (and any further "§N.M" chained to it by ", ",
 #       "," or a dash, as in "§2.2-§2.5" or "§1.2, §1.3"), where docs/lavapipe-rules.md has no
 #       heading "## N." or "### N.M ".
-# Text files: *.cpp *.hpp *.inl *.in *.md *.txt *.cmake *.json *.sh *.mustache *.py, Makefile and
+# Text files: *.cpp *.hpp *.inl *.in *.md *.txt *.cmake *.json *.sh *.mustache *.css *.py, Makefile and
 # .ci/run, outside .git, build*/ and out/. This script is checked like every other file.
 cmake_minimum_required(VERSION 3.25)  # as the project; IN_LIST, continue()
 if(NOT SOURCE_DIR)
@@ -20,7 +20,7 @@ if(NOT EXISTS "${_rules_doc}")
 endif()
 
 # --- the files ------------------------------------------------------------------------------------
-set(_patterns *.cpp *.hpp *.inl *.in *.md *.txt *.cmake *.json *.sh *.mustache *.py Makefile)
+set(_patterns *.cpp *.hpp *.inl *.in *.md *.txt *.cmake *.json *.sh *.mustache *.css *.py Makefile)
 # A path (relative to SOURCE_DIR) is skipped when one of its folders is .git, build* or out.
 set(_skip_dir "(^|/)(\\.git|build[^/]*|out)/")
 

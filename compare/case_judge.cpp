@@ -13,6 +13,7 @@ CaseRecord make_case_record(const SuiteCase& suite_case, const CaseResult& resul
   record.message = result.message;
   if (result.diff) record.diff = result.diff->summary;
   record.expectation = expectations.expected(suite_case.name);
+  record.expectation_reason = expectations.reason(suite_case.name);
   const Outcome outcome = judge_outcome(suite_case.name, result.verdict, expectations);
   record.status = outcome.status;
   record.fails_run = outcome.fails_run;

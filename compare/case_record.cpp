@@ -155,6 +155,7 @@ nlohmann::ordered_json case_to_json(const CaseRecord& c, bool with_outcome) {
   add_diff_fields(j, c.diff ? &*c.diff : nullptr);
   if (!with_outcome) return j;
   j["expectation"] = to_string(c.expectation);
+  j["expectation_reason"] = c.expectation_reason;
   j["status"] = c.status;
   j["fails_run"] = c.fails_run;
   j["images"] = {{"cpu", c.images.cpu},
@@ -190,6 +191,7 @@ CaseRecord case_from_json(const nlohmann::json& j, const std::string& file, cons
     const std::string profile = r.get<std::string>(j, path, "profile");
     c.diff = diff_from_json(r, j, path, profile == "spec" ? CompareProfile::Spec : CompareProfile::Lavapipe);
   }
+  c.expectation_reason = r.get<std::string>(j, path, "expectation_reason");
   c.status = r.get<std::string>(j, path, "status");
   c.fails_run = r.get<bool>(j, path, "fails_run");
   const Json& images = r.at(j, path, "images");

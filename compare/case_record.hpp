@@ -38,7 +38,8 @@ struct CaseRecord {
   std::optional<DiffSummary> diff;
   // Against the expectations (conformance); compare leaves expectation Pass and judges alone.
   Verdict expectation = Verdict::Pass;
-  std::string status;  // runner status, e.g. "Pass", "ExpectedFail", "UnexpectedImprovement(Pass)"
+  std::string expectation_reason;  // the baseline entry's comment (compare/expectations.hpp), "" when none
+  std::string status;              // runner status, e.g. "Pass", "ExpectedFail", "UnexpectedImprovement(Pass)"
   bool fails_run = false;
   double duration_s = 0;  // written only to results.csv and junit.xml
   CaseImages images;
@@ -51,8 +52,8 @@ struct CaseRecord {
 // message, width, height, pixels, samples, depth_format, coverage_mismatches, missing,
 // unexpected, wrong_owner, allowed, covered_match, bad_pixels, depth_mismatches, depth_unit,
 // max_depth_error (+_r), depth_p50 / depth_p95 (+_r), max_depth_at, first_bad; the diff fields
-// are null when the scene was not compared. `with_outcome` adds expectation, status, fails_run,
-// images and explains. Durations are never written here (deterministic output).
+// are null when the scene was not compared. `with_outcome` adds expectation, expectation_reason,
+// status, fails_run, images and explains. Durations are never written here (deterministic output).
 nlohmann::ordered_json case_to_json(const CaseRecord& record, bool with_outcome);
 
 // The inverse of case_to_json(record, true). Throws InputError(file, json_path, expected).

@@ -40,6 +40,32 @@ Verdict Expectations::expected(const std::string& name) const {
   return it == baseline.end() ? Verdict::Pass : it->second;
 }
 
+std::string Expectations::reason(const std::string& name) const {
+  const auto it = reasons.find(name);
+  return it == reasons.end() ? std::string() : it->second;
+}
+
+std::map<std::string, std::string> parse_baseline_reasons(std::string_view text) {
+  std::map<std::string, std::string> reasons;
+  std::string comment;  // the comment lines since the last blank line or entry
+  while (!text.empty()) {
+    const auto end = text.find('\n');
+    const std::string_view line = trim(text.substr(0, end));
+    text = end == std::string_view::npos ? std::string_view{} : text.substr(end + 1);
+    if (!line.empty() && line.front() == '#') {
+      const std::string_view words = trim(line.substr(1));
+      if (!words.empty() && !comment.empty()) comment += ' ';
+      comment.append(words);
+      continue;
+    }
+    const auto comma = line.rfind(',');
+    if (!line.empty() && comma != std::string_view::npos && !comment.empty())
+      reasons.emplace(std::string(trim(line.substr(0, comma))), comment);
+    comment.clear();
+  }
+  return reasons;
+}
+
 std::map<std::string, Verdict> parse_baseline(std::string_view text, const std::string& file) {
   std::map<std::string, Verdict> baseline;
   for_each_content_line(text, [&](size_t n, std::string_view line) {
@@ -84,7 +110,11 @@ std::string read_text_file(const std::string& path) {
 Expectations load_expectations(const std::string& baseline_file, const std::string& flakes_file,
                                const std::string& skips_file) {
   Expectations e;
-  if (!baseline_file.empty()) e.baseline = parse_baseline(read_text_file(baseline_file), baseline_file);
+  if (!baseline_file.empty()) {
+    const std::string text = read_text_file(baseline_file);
+    e.baseline = parse_baseline(text, baseline_file);
+    e.reasons = parse_baseline_reasons(text);
+  }
   if (!flakes_file.empty()) e.flakes = parse_patterns(read_text_file(flakes_file), flakes_file);
   if (!skips_file.empty()) e.skips = parse_patterns(read_text_file(skips_file), skips_file);
   return e;

@@ -1,6 +1,7 @@
 // Expected results in the Mesa CI style (deqp-runner): a baseline of `name,Status` lines,
 // flakes and skips as one regular expression per line; `#` starts a comment line, blank lines
-// are ignored. A case not in the baseline is expected to pass.
+// are ignored. A case not in the baseline is expected to pass. The `#` lines directly above a
+// baseline entry (no blank line between) are its reason, which the report shows beside it.
 //
 // Outcome of a case (its runner status):
 //   result == expectation             → the result's name ("Pass", ...), or "ExpectedFail" for a failure
@@ -28,15 +29,20 @@ struct Pattern {
 
 struct Expectations {
   std::map<std::string, Verdict> baseline;
+  std::map<std::string, std::string> reasons;  // baseline entry → its comment, "" when none
   std::vector<Pattern> flakes;
   std::vector<Pattern> skips;
 
   Verdict expected(const std::string& name) const;
+  std::string reason(const std::string& name) const;
 };
 
 // Throws InputError(file, "line N", expected) on a malformed line, an unknown status or a
 // duplicate name.
 std::map<std::string, Verdict> parse_baseline(std::string_view text, const std::string& file);
+// Entry name → the text of the `#` lines directly above it (without the `#`, joined by a space);
+// entries without such lines are left out. Reads only what parse_baseline accepts.
+std::map<std::string, std::string> parse_baseline_reasons(std::string_view text);
 // Throws InputError on an invalid regular expression.
 std::vector<Pattern> parse_patterns(std::string_view text, const std::string& file);
 

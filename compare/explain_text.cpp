@@ -2,8 +2,10 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <filesystem>
 
+#include "compare/case_run.hpp"
 #include "compare/report.hpp"
 #include "cpu_raster/exact/explain.hpp"
 #include "model/image_io.hpp"
@@ -24,11 +26,20 @@ std::string value_text(const RenderResult& r, size_t index) {
   return text + fmt::format(", depth raw {:#x} = {:.9g}", raw, depth_raw_to_value(r.depth_format, raw));
 }
 
-std::string tail_text(const RenderResult& expected, const RenderResult& actual, CompareProfile profile, uint32_t x,
-                      uint32_t y, uint32_t sample) {
+// The two values named by their part in the case: the judged renderer (the Vulkan device, or a
+// classic CPU method) and the reference (compare/report.hpp cpu_is_judged).
+std::string tail_text(const RenderResult& expected, const RenderResult& actual, const std::string& cpu_method,
+                      CompareProfile profile, uint32_t x, uint32_t y, uint32_t sample) {
   const size_t i = expected.index(x, y, sample);
-  return fmt::format("CPU (expected):  {}\nVulkan (actual): {}\nclassification:  {}\n", value_text(expected, i),
-                     value_text(actual, i), describe_sample(expected, actual, profile, x, y, sample));
+  const bool cpu_judged = cpu_is_judged(cpu_method);
+  const std::string cpu = cpu_judged ? fmt::format("CPU {} (judged):", cpu_method) : "CPU exact model (reference):";
+  const std::string vulkan = cpu_judged ? "Vulkan device (reference):" : "Vulkan device (judged):";
+  const size_t width = std::max(cpu.size(), vulkan.size()) + 1;
+  std::string classification = describe_sample(expected, actual, profile, x, y, sample);
+  const std::string judged = judged_kind(classification, cpu_judged);
+  if (judged != classification) classification += " (the judged renderer " + judged.substr(7) + " it)";
+  return fmt::format("{:<{}}{}\n{:<{}}{}\n{:<{}}{}\n", cpu, width, value_text(expected, i), vulkan, width,
+                     value_text(actual, i), "classification:", width, classification);
 }
 
 std::string header_text(const Scene& scene, CompareProfile profile, uint32_t x, uint32_t y, uint32_t sample) {
@@ -45,7 +56,7 @@ std::string explain_sample_text(const Scene& scene, const CpuOptions& cpu_option
                                 uint32_t sample) {
   const std::vector<FragmentRecord> history = explain_pixel(scene, cpu_options, x, y, sample);
   return header_text(scene, profile, x, y, sample) + format_explanation(history) +
-         tail_text(expected, actual, profile, x, y, sample);
+         tail_text(expected, actual, cpu_method_label(cpu_options), profile, x, y, sample);
 }
 
 std::vector<ExplainLink> write_case_explanations(const std::string& report_dir, const std::string& case_name,
@@ -60,8 +71,9 @@ std::vector<ExplainLink> write_case_explanations(const std::string& report_dir, 
     try {
       text = explain_sample_text(scene, cpu_options, *result.expected, *result.actual, profile, at.x, at.y, at.sample);
     } catch (const std::exception& e) {  // the history is missing, the values still explain something
-      text = header_text(scene, profile, at.x, at.y, at.sample) + fmt::format("  (not available: {})\n", e.what()) +
-             tail_text(*result.expected, *result.actual, profile, at.x, at.y, at.sample);
+      text = header_text(scene, profile, at.x, at.y, at.sample) +
+             fmt::format("  (no CPU history for this sample: {})\n", e.what()) +
+             tail_text(*result.expected, *result.actual, cpu_method_label(cpu_options), profile, at.x, at.y, at.sample);
     }
     const std::string file = fmt::format("{}/explain_{}_{}_s{}.txt", case_folder(case_name), at.x, at.y, at.sample);
     ensure_output_dir((std::filesystem::path(report_dir) / case_folder(case_name)).string());

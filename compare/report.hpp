@@ -1,14 +1,21 @@
-// The HTML report: per case the CPU and Vulkan owner images (false colour), an error mask in the
-// CTS colours, a depth-difference heatmap, the numbers and the first bad samples; a summary table
-// that sorts and filters by status. Images through OpenImageIO, the page through kainjow
-// mustache (compare/templates/report.html.mustache). Layout of a report folder:
-//   index.html
-//   cases/<case>/cpu.png vulkan.png mask.png depth.png explain_<x>_<y>_s<sample>.txt
+// The HTML report, for triage: an index (run verdict, counts, the case table failures first, a
+// status legend) and a page per case as the CTS logs one case (status and message, the baseline's
+// reason, the reference, judged and difference images, a depth heatmap with its colour bar, the
+// numbers, the first bad samples with a link to the full list, paginated, the explanations of the
+// first bad samples and the scene source). In each case one renderer is judged against the other:
+// the Vulkan device against the exact CPU model, or a classic CPU method (cpu_method other than
+// "exact") against the Vulkan device. Images through OpenImageIO, pages through kainjow mustache
+// (compare/templates/). Layout of a report folder:
+//   index.html style.css
+//   cases/<case>/index.html cpu.png vulkan.png mask.png depth.png bad-samples-<n>.html
+//                explain_<x>_<y>_s<sample>.txt
 #pragma once
 
 #include <array>
 #include <cstdint>
+#include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "compare/case_record.hpp"
@@ -28,6 +35,31 @@ inline constexpr Rgb kMaskBackground{0, 0, 0};
 
 Rgb mask_colour(SampleClass c);
 
+// Whether the CPU side is the one judged: a classic method is judged against the Vulkan device,
+// the exact model is the reference the device is judged against.
+bool cpu_is_judged(std::string_view cpu_method);
+
+// A diff class seen from the judged renderer: when the CPU is judged, "missing" (the CPU covers,
+// the device does not) is a sample the judged renderer adds, and "unexpected" one it lacks.
+SampleClass judged_class(SampleClass c, bool cpu_judged);
+// "missing" / "unexpected" of a BadSample::kind swapped the same way; other kinds unchanged.
+std::string judged_kind(const std::string& kind, bool cpu_judged);
+
+// How a runner status looks in the report: one row per status name, so a new status is one line.
+struct StatusStyle {
+  std::string_view key;  // the status name, or its part before '(' ("UnexpectedImprovement(Pass)")
+  int group;             // case table order: 0 failing, 1 warning, 2 expected failure or flake, 3 pass, 4 not run here
+  std::string_view background, colour;  // CSS colours
+  std::string_view meaning;
+};
+std::span<const StatusStyle> status_styles();
+// The row of `status`; a status the table does not know takes the "Other" row. The group of a
+// case that fails the run is 0 whatever its status.
+const StatusStyle& status_style(std::string_view status);
+int status_group(const CaseRecord& record);
+// The records in the case table's order: by status_group, then by name.
+std::vector<const CaseRecord*> triage_order(const std::vector<CaseRecord>& records);
+
 // A pixel's class for the mask: the worst of its samples
 // (missing > unexpected > wrong owner > allowed > correct > background).
 SampleClass pixel_class(const SceneDiff& diff, uint32_t x, uint32_t y);
@@ -36,15 +68,35 @@ SampleClass pixel_class(const SceneDiff& diff, uint32_t x, uint32_t y);
 // [A-Za-z0-9._-] replaced by '_'.
 std::string case_folder(const std::string& case_name);
 
-// Writes the PNGs a case has renders for; returns their paths relative to `report_dir`.
-// Throws InputError when a file cannot be written.
+// Bad samples per page of a case's full list, and the page's file name in the case folder (n from 1).
+inline constexpr size_t kBadSamplesPerPage = 200;
+std::string bad_samples_page(size_t n);
+// The number of bad samples of a diff (coverage errors + depth mismatches) and of their pages.
+uint64_t bad_sample_count(const DiffSummary& diff);
+size_t bad_sample_pages(const DiffSummary& diff);
+
+// Writes cases/<case>/bad-samples-<n>.html, every bad sample of the diff in scan order (nothing
+// for a case without a diff or without bad samples). write_case_images calls it.
+void write_bad_sample_pages(const std::string& report_dir, const std::string& case_name, const CaseResult& result);
+
+// "linear-gradient(to right, ...)": the heatmap's colour map (inferno) as a CSS colour bar.
+std::string depth_colour_bar_css();
+
+// Writes the files a case has renders for: the PNGs (the depth heatmap only when some depth
+// differs) and, for a diff with bad samples, every bad sample on bad_sample_pages() pages.
+// Returns the images' paths relative to `report_dir`. Throws InputError when a file cannot be
+// written.
 CaseImages write_case_images(const std::string& report_dir, const std::string& case_name, const CaseResult& result);
 
-// The page (pure: the same records give the same bytes). Throws std::runtime_error when the
+// The index page (pure: the same records give the same bytes). Throws std::runtime_error when an
 // embedded template does not parse.
 std::string render_report_html(const RunInfo& info, const std::vector<CaseRecord>& records);
+// A case's page. Reads the scene file (record.source) and the explanation files below
+// `report_dir`; the same files give the same bytes.
+std::string render_case_html(const std::string& report_dir, const RunInfo& info, const CaseRecord& record);
 
-// Writes report_dir/index.html atomically.
+// Writes report_dir/index.html, style.css and every record's cases/<case>/index.html (each
+// atomically, and a page only when its bytes change).
 void write_report_html(const std::string& report_dir, const RunInfo& info, const std::vector<CaseRecord>& records);
 
 }  // namespace rastercmp

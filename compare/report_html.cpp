@@ -1,11 +1,15 @@
-// The report page (compare/report.hpp): records → mustache data → HTML.
+// The report's index page and the status table (compare/report.hpp): records → mustache data → HTML.
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <kainjow/mustache.hpp>
+#include <map>
+#include <mutex>
+#include <sstream>
 #include <stdexcept>
 
-#include "compare/depth_units.hpp"
 #include "compare/report.hpp"
 #include "compare/report_template.hpp"
 #include "model/image_io.hpp"
@@ -16,82 +20,79 @@ namespace {
 using kainjow::mustache::data;
 using kainjow::mustache::mustache;
 
+// One row per runner status (compare/expectations.hpp, deqp-runner's names). Colours: failures
+// in reds and browns, warnings yellow, expected failures blue, flakes lavender, passes green,
+// cases not run on this device grey.
+constexpr StatusStyle kStatusStyles[] = {
+    {"Fail", 0, "#cc0000", "#ffffff",
+     "the judged renderer differs where it must not, and the baseline does not expect it"},
+    {"Crash", 0, "#5b0f00", "#ffffff", "the case's process died before it reported a result"},
+    {"Timeout", 0, "#b45f06", "#ffffff", "the case ran past its time limit"},
+    {"Missing", 0, "#434343", "#ffffff", "the case left no result"},
+    {"InternalError", 0, "#741b47", "#ffffff",
+     "an error inside the case: device lost, validation messages or an exception"},
+    {"ResourceError", 0, "#c27ba0", "#000000", "the device ran out of memory"},
+    {"UnexpectedImprovement", 0, "#ff9900", "#000000",
+     "the baseline expects a failure, the case passed: update the baseline"},
+    {"QualityWarning", 1, "#ffd966", "#000000",
+     "spec profile: a wrong owner or depth beyond the tolerance; does not fail the run"},
+    {"ExpectedFail", 2, "#9fc5e8", "#000000", "fails as the baseline expects (its reason beside it)"},
+    {"KnownFlake", 2, "#b4a7d6", "#000000", "differs from its expectation, and its name matches a flake pattern"},
+    {"Flake", 2, "#d9d2e9", "#000000", "failed, then passed when run again"},
+    {"Pass", 3, "#93c47d", "#000000", "the judged renderer matches the reference"},
+    {"NotSupported", 4, "#d9d9d9", "#000000", "the CPU profile or the device does not support the scene"},
+    {"Skip", 4, "#efefef", "#000000", "left out by a skips pattern"},
+    {"Other", 3, "#ffffff", "#000000", "a status this report has no colour for"},
+};
+
 std::string number(double v) { return fmt::format("{:.6g}", v); }
 
-std::string owner_text(uint32_t owner) {
-  if (owner == kOwnerBackground) return "background";
-  return fmt::format("draw {} prim {}", owner_draw(owner), owner_primitive(owner));
+data styles_data() {
+  data list{data::type::list};
+  for (const StatusStyle& s : kStatusStyles) {
+    data d;
+    d.set("key", std::string(s.key));
+    d.set("label", std::string(s.key));
+    d.set("background", std::string(s.background));
+    d.set("colour", std::string(s.colour));
+    d.set("meaning", std::string(s.meaning));
+    list << d;
+  }
+  return list;
 }
 
-// A section that is left out when the text is empty (a non-empty string opens it).
-data optional_text(const std::string& text) { return text.empty() ? data(false) : data(text); }
+// The case name in pieces that end after each '.', so a long name wraps there (<wbr>).
+data name_parts(const std::string& name) {
+  data parts{data::type::list};
+  size_t start = 0;
+  while (start < name.size()) {
+    const size_t dot = name.find('.', start);
+    const size_t end = dot == std::string::npos ? name.size() : dot + 1;
+    data part;
+    part.set("part", name.substr(start, end - start));
+    parts << part;
+    start = end;
+  }
+  return parts;
+}
 
-data bad_sample_data(const BadSample& b, const std::vector<ExplainLink>& explains) {
+data case_row(const CaseRecord& c) {
+  const bool cpu_judged = cpu_is_judged(c.cpu_method);
+  const DiffSummary* s = c.diff ? &*c.diff : nullptr;
   data d;
-  d.set("x", std::to_string(b.at.x));
-  d.set("y", std::to_string(b.at.y));
-  d.set("sample", std::to_string(b.at.sample));
-  d.set("kind", b.kind);
-  d.set("expected_owner", owner_text(b.expected_owner));
-  d.set("actual_owner", owner_text(b.actual_owner));
-  d.set("expected_depth", b.has_depth ? fmt::format("{:#x}", b.expected_depth_raw) : "-");
-  d.set("actual_depth", b.has_depth ? fmt::format("{:#x}", b.actual_depth_raw) : "-");
-  d.set("depth_diff", b.depth_diff_raw ? fmt::format("{} ({} r)", b.depth_diff_raw, number(b.depth_diff_r)) : "-");
-  std::string link;
-  for (const ExplainLink& e : explains)
-    if (e.at == b.at) link = e.file;
-  d.set("explain", optional_text(link));
-  return d;
-}
-
-void set_diff_data(data& d, const DiffSummary* s) {
+  d.set("name_parts", name_parts(c.name));
+  d.set("href", case_folder(c.name) + "/index.html");
+  d.set("status", c.status);
+  d.set("key", std::string(status_style(c.status).key));
+  d.set("reason", c.expectation_reason);
+  d.set("judged", cpu_judged ? "CPU " + c.cpu_method : "Vulkan");
   auto count = [&](const char* key, uint64_t v) { d.set(key, s ? std::to_string(v) : "-"); };
-  count("missing", s ? s->missing : 0);
-  count("unexpected", s ? s->unexpected : 0);
+  count("lacks", s ? (cpu_judged ? s->unexpected : s->missing) : 0);
+  count("adds", s ? (cpu_judged ? s->missing : s->unexpected) : 0);
   count("wrong_owner", s ? s->wrong_owner : 0);
   count("allowed", s ? s->allowed : 0);
   count("depth_mismatches", s ? s->depth.mismatches : 0);
-  count("max_depth", s ? s->depth.max_raw : 0);
-  count("depth_p50", s ? s->depth.p50_raw : 0);
-  count("depth_p95", s ? s->depth.p95_raw : 0);
-  count("pixels", s ? s->pixels : 0);
-  count("bad_pixels", s ? s->bad_pixels : 0);
-  count("covered_match", s ? s->covered_match : 0);
   d.set("max_depth_r", s ? number(s->depth.max_r) : "-");
-  d.set("depth_p50_r", s ? number(s->depth.p50_r) : "-");
-  d.set("depth_p95_r", s ? number(s->depth.p95_r) : "-");
-  d.set("compared", s != nullptr);
-  if (!s) return;
-  d.set("samples", std::to_string(s->samples));
-  d.set("depth_format", to_string(s->depth_format));
-  d.set("depth_unit", s->depth_compared ? depth_unit_name(s->depth_format) : "- (depth not compared)");
-  d.set("max_depth_at",
-        fmt::format("({}, {}) sample {}", s->depth.max_at.x, s->depth.max_at.y, s->depth.max_at.sample));
-}
-
-data case_data(const CaseRecord& c) {
-  data d;
-  d.set("name", c.name);
-  d.set("anchor", "case-" + case_folder(c.name).substr(6));
-  d.set("source", c.source);
-  d.set("cpu_method", c.cpu_method);
-  d.set("status", c.status);
-  d.set("verdict", to_string(c.verdict));
-  d.set("expectation", to_string(c.expectation));
-  d.set("message", c.message);
-  d.set("row_class", c.fails_run ? "fails" : "ok");
-  d.set("width", std::to_string(c.width));
-  d.set("height", std::to_string(c.height));
-  set_diff_data(d, c.diff ? &*c.diff : nullptr);
-  d.set("cpu_image", optional_text(c.images.cpu));
-  d.set("vulkan_image", optional_text(c.images.vulkan));
-  d.set("mask_image", optional_text(c.images.mask));
-  d.set("depth_image", optional_text(c.images.depth_heatmap));
-  data bad{data::type::list};
-  if (c.diff)
-    for (const BadSample& b : c.diff->first_bad) bad << bad_sample_data(b, c.explains);
-  d.set("has_bad", c.diff && !c.diff->first_bad.empty());
-  d.set("bad", bad);
   return d;
 }
 
@@ -105,24 +106,87 @@ data page_data(const RunInfo& info, const std::vector<CaseRecord>& records) {
   page.set("not_run_count", std::to_string(info.not_run.size()));
   page.set("run_verdict", info.interrupted ? "interrupted" : run_passed(info, records) ? "pass" : "fail");
   page.set("case_count", std::to_string(records.size()));
+  page.set("styles", styles_data());
   data counts{data::type::list};
   const auto statuses = count_statuses(records);
   size_t i = 0;
   for (const auto& [status, n] : statuses) {
     data entry;
     entry.set("status", status);
+    entry.set("key", std::string(status_style(status).key));
     entry.set("count", std::to_string(n));
     entry.set("last", ++i == statuses.size());
     counts << entry;
   }
   page.set("counts", counts);
   data cases{data::type::list};
-  for (const CaseRecord& c : records) cases << case_data(c);
+  for (const CaseRecord* c : triage_order(records)) cases << case_row(*c);
   page.set("cases", cases);
   return page;
 }
 
+// Rewrites a file only when its bytes change: the case pages are written again after every case.
+void write_if_changed(const std::filesystem::path& path, const std::string& text) {
+  std::ifstream in(path, std::ios::binary);
+  if (in) {
+    std::ostringstream old;
+    old << in.rdbuf();
+    if (old.str() == text) return;
+  }
+  write_text_file_atomic(path.string(), text);
+}
+
+// The inputs each case page was last written from, by its path, in this process: a run rewrites
+// the report after every case, and only the pages whose record changed (the new case's) are
+// rendered again. The scene and explanation files a page also reads do not change during a run.
+class WrittenPages {
+ public:
+  static std::string inputs(const RunInfo& info, const CaseRecord& record) {
+    return info.profile + '\n' + info.device + '\n' + case_to_json(record, true).dump();
+  }
+  bool current(const std::filesystem::path& page, const std::string& inputs) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    const auto it = written_.find(page.string());
+    std::error_code ec;
+    return it != written_.end() && it->second == inputs && std::filesystem::is_regular_file(page, ec);
+  }
+  void remember(const std::filesystem::path& page, const std::string& inputs) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    written_[page.string()] = inputs;
+  }
+
+ private:
+  std::mutex mutex_;
+  std::map<std::string, std::string> written_;
+};
+
+WrittenPages& written_pages() {
+  static WrittenPages pages;
+  return pages;
+}
+
 }  // namespace
+
+std::span<const StatusStyle> status_styles() { return kStatusStyles; }
+
+const StatusStyle& status_style(std::string_view status) {
+  const std::string_view key = status.substr(0, status.find('('));
+  for (const StatusStyle& s : kStatusStyles)
+    if (s.key == key) return s;
+  return kStatusStyles[std::size(kStatusStyles) - 1];
+}
+
+int status_group(const CaseRecord& record) { return record.fails_run ? 0 : status_style(record.status).group; }
+
+std::vector<const CaseRecord*> triage_order(const std::vector<CaseRecord>& records) {
+  std::vector<const CaseRecord*> order;
+  for (const CaseRecord& c : records) order.push_back(&c);
+  std::stable_sort(order.begin(), order.end(), [](const CaseRecord* a, const CaseRecord* b) {
+    const int ga = status_group(*a), gb = status_group(*b);
+    return ga != gb ? ga < gb : a->name < b->name;
+  });
+  return order;
+}
 
 std::string render_report_html(const RunInfo& info, const std::vector<CaseRecord>& records) {
   mustache page{std::string(report_template())};
@@ -133,9 +197,18 @@ std::string render_report_html(const RunInfo& info, const std::vector<CaseRecord
 }
 
 void write_report_html(const std::string& report_dir, const RunInfo& info, const std::vector<CaseRecord>& records) {
+  namespace fs = std::filesystem;
   ensure_output_dir(report_dir);
-  write_text_file_atomic((std::filesystem::path(report_dir) / "index.html").string(),
-                         render_report_html(info, records));
+  write_if_changed(fs::path(report_dir) / "style.css", std::string(report_css()));
+  for (const CaseRecord& c : records) {
+    const fs::path page = fs::path(report_dir) / case_folder(c.name) / "index.html";
+    const std::string inputs = WrittenPages::inputs(info, c);
+    if (written_pages().current(page, inputs)) continue;
+    ensure_output_dir(page.parent_path().string());
+    write_if_changed(page, render_case_html(report_dir, info, c));
+    written_pages().remember(page, inputs);
+  }
+  write_text_file_atomic((fs::path(report_dir) / "index.html").string(), render_report_html(info, records));
 }
 
 }  // namespace rastercmp

@@ -43,12 +43,13 @@ OIIO::ImageBuf owner_image(const RenderResult& r) {
   return rgb_image(r.width, r.height, rgb);
 }
 
-OIIO::ImageBuf mask_image(const SceneDiff& diff) {
+// Missing / unexpected as the judged renderer sees them (judged_class).
+OIIO::ImageBuf mask_image(const SceneDiff& diff, bool cpu_judged) {
   const DiffSummary& s = diff.summary;
   std::vector<uint8_t> rgb(size_t(s.width) * s.height * 3);
   for (uint32_t y = 0; y < s.height; ++y)
     for (uint32_t x = 0; x < s.width; ++x) {
-      const Rgb c = mask_colour(pixel_class(diff, x, y));
+      const Rgb c = mask_colour(judged_class(pixel_class(diff, x, y), cpu_judged));
       std::copy(c.begin(), c.end(), rgb.begin() + std::ptrdiff_t((size_t(y) * s.width + x) * 3));
     }
   return rgb_image(s.width, s.height, rgb);
@@ -70,6 +71,23 @@ OIIO::ImageBuf depth_heatmap(const SceneDiff& diff) {
   OIIO::ImageBuf coloured = OIIO::ImageBufAlgo::color_map(normalised, 0, "inferno");
   if (coloured.has_error()) throw std::runtime_error("color_map inferno: " + coloured.geterror());
   return coloured;
+}
+
+// inferno at 0, 0.1, ..., 1 (the colour map the heatmap uses).
+std::vector<Rgb> inferno_stops() {
+  constexpr int kStops = 11;
+  std::vector<float> ramp(kStops);
+  for (int i = 0; i < kStops; ++i) ramp[size_t(i)] = float(i) / float(kStops - 1);
+  OIIO::ImageBuf values(OIIO::ImageSpec(kStops, 1, 1, OIIO::TypeDesc::FLOAT));
+  values.set_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, ramp.data());
+  OIIO::ImageBuf coloured = OIIO::ImageBufAlgo::color_map(values, 0, "inferno");
+  if (coloured.has_error()) throw std::runtime_error("color_map inferno: " + coloured.geterror());
+  std::vector<uint8_t> rgb(size_t(kStops) * 3);
+  coloured.get_pixels(OIIO::ROI(0, kStops, 0, 1, 0, 1, 0, 3), OIIO::TypeDesc::UINT8, rgb.data());
+  std::vector<Rgb> stops;
+  for (int i = 0; i < kStops; ++i)
+    stops.push_back({rgb[size_t(i) * 3], rgb[size_t(i) * 3 + 1], rgb[size_t(i) * 3 + 2]});
+  return stops;
 }
 
 int class_rank(SampleClass c) {
@@ -96,6 +114,17 @@ Rgb mask_colour(SampleClass c) {
     case SampleClass::Background: return kMaskBackground;
   }
   return kMaskBackground;
+}
+
+std::string depth_colour_bar_css() {
+  static const std::string css = [] {
+    const std::vector<Rgb> stops = inferno_stops();
+    std::string text = "linear-gradient(to right";
+    for (size_t i = 0; i < stops.size(); ++i)
+      text += fmt::format(", rgb({},{},{}) {}%", stops[i][0], stops[i][1], stops[i][2], i * 100 / (stops.size() - 1));
+    return text + ")";
+  }();
+  return css;
 }
 
 SampleClass pixel_class(const SceneDiff& diff, uint32_t x, uint32_t y) {
@@ -131,8 +160,10 @@ CaseImages write_case_images(const std::string& report_dir, const std::string& c
   if (result.expected) write(owner_image(*result.expected), "cpu.png", images.cpu);
   if (result.actual) write(owner_image(*result.actual), "vulkan.png", images.vulkan);
   if (result.diff) {
-    write(mask_image(*result.diff), "mask.png", images.mask);
-    if (!result.diff->depth_diff_r.empty()) write(depth_heatmap(*result.diff), "depth.png", images.depth_heatmap);
+    write(mask_image(*result.diff, cpu_is_judged(result.cpu_method)), "mask.png", images.mask);
+    if (!result.diff->depth_diff_r.empty() && result.diff->summary.depth.mismatches != 0)
+      write(depth_heatmap(*result.diff), "depth.png", images.depth_heatmap);
+    write_bad_sample_pages(report_dir, case_name, result);
   }
   return images;
 }

@@ -11,7 +11,7 @@ packages=(
   libopenimageio-dev openimageio-tools
   nlohmann-json3-dev libcli11-dev libfmt-dev
   libkainjow-mustache-dev gnuplot-nox
-  chromium
+  chromium fonts-dejavu-core
 )
 
 missing=()

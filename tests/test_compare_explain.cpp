@@ -48,15 +48,24 @@ TEST(ExplainText, ShowsTheHistoryBothValuesAndTheClass) {
   const std::string missing = explain_sample_text(p.scene, cpu_options(), *p.result.expected, *p.result.actual,
                                                   CompareProfile::Lavapipe, 6, 4, 0);
   EXPECT_NE(missing.find("pixel (6, 4) sample 0"), std::string::npos) << missing;
-  EXPECT_NE(missing.find("Vulkan (actual): owner background"), std::string::npos) << missing;
-  EXPECT_NE(missing.find("CPU (expected):  owner draw 1 primitive 0"), std::string::npos) << missing;
-  EXPECT_NE(missing.find("classification:  missing"), std::string::npos) << missing;
+  EXPECT_NE(missing.find("Vulkan device (judged):      owner background"), std::string::npos) << missing;
+  EXPECT_NE(missing.find("CPU exact model (reference): owner draw 1 primitive 0"), std::string::npos) << missing;
+  EXPECT_NE(missing.find("classification:              missing (the judged renderer lacks it)\n"), std::string::npos)
+      << missing;
   const std::string depth = explain_sample_text(p.scene, cpu_options(), *p.result.expected, *p.result.actual,
                                                 CompareProfile::Lavapipe, 2, 2, 0);
-  EXPECT_NE(depth.find("classification:  depth off by 3 LSB (1.5 r)"), std::string::npos) << depth;
+  EXPECT_NE(depth.find("classification:              depth off by 3 LSB (1.5 r)\n"), std::string::npos) << depth;
   const std::string match = explain_sample_text(p.scene, cpu_options(), *p.result.expected, *p.result.actual,
                                                 CompareProfile::Lavapipe, 0, 11, 0);
-  EXPECT_NE(match.find("classification:  match"), std::string::npos) << match;
+  EXPECT_NE(match.find("classification:              match\n"), std::string::npos) << match;
+  // Under a classic method the CPU is judged: the sample only the CPU covers is one it adds.
+  CpuOptions method = cpu_options();
+  method.methods = {{"tie_break", "none"}};
+  const std::string judged_cpu =
+      explain_sample_text(p.scene, method, *p.result.expected, *p.result.actual, CompareProfile::Lavapipe, 6, 4, 0);
+  EXPECT_NE(judged_cpu.find("CPU tie_break=none (judged): owner draw 1 primitive 0"), std::string::npos) << judged_cpu;
+  EXPECT_NE(judged_cpu.find("Vulkan device (reference):   owner background"), std::string::npos) << judged_cpu;
+  EXPECT_NE(judged_cpu.find("missing (the judged renderer adds it)"), std::string::npos) << judged_cpu;
 }
 
 TEST(ExplainText, ReportGetsFilesForTheFirstBadSamples) {

@@ -35,6 +35,25 @@ TEST(Baseline, ParsesNamesStatusesAndComments) {
   EXPECT_EQ(e.expected("rastercmp.not.listed"), Verdict::Pass);
 }
 
+TEST(Baseline, TheCommentAboveAnEntryIsItsReason) {
+  const auto reasons = parse_baseline_reasons(
+      "# header, not a reason\n"
+      "\n"
+      "# no tie rule:\n"
+      "#   both sides fill\n"
+      "a.fan,Fail\n"
+      "b.plain,Fail\n"
+      "# detached by a blank line\n"
+      "\n"
+      "c.other,Fail\n");
+  EXPECT_EQ(reasons.size(), 1u);
+  EXPECT_EQ(reasons.at("a.fan"), "no tie rule: both sides fill");
+  Expectations e;
+  e.reasons = reasons;
+  EXPECT_EQ(e.reason("a.fan"), "no tie rule: both sides fill");
+  EXPECT_EQ(e.reason("b.plain"), "");
+}
+
 TEST(Baseline, MalformedLinesNameTheFileAndLine) {
   try {
     parse_baseline("a,Fail\nb Fail\n", "fails.txt");

@@ -80,7 +80,8 @@ std::vector<CaseRecord> sample_records() {
   r.push_back(record("rastercmp.b.fail", Verdict::Fail, "Fail", true, 1.5));
   r.push_back(record("rastercmp.c.expected", Verdict::Fail, "ExpectedFail", false, 0.5));
   r.back().expectation = Verdict::Fail;
-  r.back().cpu_method = "fill=scanline depth=bilinear";  // parses back with the rest
+  r.back().expectation_reason = "no tie rule, \"quoted\"";  // parses back with the rest
+  r.back().cpu_method = "fill=scanline depth=bilinear";
   r.push_back(record("rastercmp.d.flaky", Verdict::Fail, "KnownFlake", false, 0.125));
   r.push_back(record("rastercmp.e.unsupported", Verdict::NotSupported, "NotSupported", false, 0.01));
   r.push_back(record("rastercmp.f.improved", Verdict::Pass, "UnexpectedImprovement(Pass)", true, 0.75));
@@ -250,6 +251,11 @@ TEST(Merge, ShardsMergeIntoTheWholeRunsOutputs) {
   for (const char* file : {"summary.json", "failures.csv", "junit.xml", "results.csv", "report/index.html"})
     EXPECT_EQ(read_text_file((root / "merged" / file).string()), read_text_file((root / "whole" / file).string()))
         << file;
+  for (const CaseRecord& c : records) {
+    const std::string page = "report/" + case_folder(c.name) + "/index.html";
+    EXPECT_EQ(read_text_file((root / "merged" / page).string()), read_text_file((root / "whole" / page).string()))
+        << page;
+  }
   EXPECT_EQ(read_text_file((root / "merged/report" / case_folder("rastercmp.g.lost") / "explain_1_2_s0.txt").string()),
             "rastercmp.g.lost\n");
 }
