@@ -196,7 +196,7 @@ RenderResult read_render_json(const std::string& dir, bool& depth, uint32_t& wid
                               uint32_t& samples) {
   const std::string meta_path = (fs::path(dir) / "render.json").string();
   std::ifstream in(meta_path);
-  if (!in) throw InputError(meta_path, "", "expected render.json from rastercmp render");
+  if (!in) throw InputError(meta_path, "", "expected render.json (rastercmp render or capture)");
   nlohmann::json meta;
   try {
     meta = nlohmann::json::parse(in);
