@@ -69,6 +69,18 @@ std::string compare_json(const RunInfo& info, const std::vector<CaseRecord>& rec
   return j.dump(2) + "\n";
 }
 
+// The capture's device; a render.json that cannot be read is the case's ResourceError (run_capture
+// names the file), so the run goes on with a device known only by its folder.
+DeviceInfo device_of_capture(const std::string& dir) {
+  try {
+    return capture_device(dir);
+  } catch (const InputError&) {
+    DeviceInfo unknown;
+    unknown.name = "unknown device (capture " + dir + ")";
+    return unknown;
+  }
+}
+
 int run_compare(const CompareArgs& args) {
   const CompareProfile profile = args.options.profile == "spec" ? CompareProfile::Spec : CompareProfile::Lavapipe;
   make_cpu_options(args.options);  // a bad --method is a usage error before any work
@@ -87,7 +99,7 @@ int run_compare(const CompareArgs& args) {
     throw UsageError("--capture: the device is the capture's, not --device");
   const CpuOptionsForScene cpu_options = [&](const Scene& s) { return make_cpu_options(args.options, &s); };
   const std::unique_ptr<CaseRunner> runner_ptr =
-      from_capture ? std::make_unique<CaseRunner>(profile, cpu_options, capture_device(args.capture_dir))
+      from_capture ? std::make_unique<CaseRunner>(profile, cpu_options, device_of_capture(args.capture_dir))
                    : std::make_unique<CaseRunner>(profile, cpu_options, make_vk_options(args.options));
   CaseRunner& runner = *runner_ptr;
   const RunInfo info = run_info_for(runner);

@@ -107,6 +107,14 @@ TEST(CliCapture, BrokenCapturesAreResourceErrorsNamingTheFile) {
                              1);
   EXPECT_NE(c.out.find("ResourceError"), std::string::npos) << c.out;
   EXPECT_NE(c.out.find(missing.string()), std::string::npos) << c.out;
+  // A render.json with impossible limits: the case's ResourceError too, naming render.json.
+  const fs::path bad_limits = captures / "msaa" / "lines" / "mixed_modes" / "render.json";
+  write_file(bad_limits, "{\"backend\": \"vulkan\", \"limits\": {\"subPixelPrecisionBits\": 0}}\n");
+  const RunResult l = run_ok({"compare", (suite / "msaa" / "lines" / "mixed_modes.json").string(), "--profile", "spec",
+                              "--capture", bad_limits.parent_path().string()},
+                             1);
+  EXPECT_NE(l.out.find("ResourceError"), std::string::npos) << l.out;
+  EXPECT_NE(l.out.find(bad_limits.string() + ": $.limits.subPixelPrecisionBits"), std::string::npos) << l.out;
   // A capture root with nothing in it is a usage error of the whole run (exit 2).
   const fs::path empty = tmp / "empty";
   fs::create_directories(empty);
