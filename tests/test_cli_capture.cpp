@@ -30,19 +30,20 @@ fs::path make_suite(const TempDir& tmp) {
   return suite;
 }
 
-RunResult run_ok(const std::vector<std::string>& args, int expected_exit = 0) {
-  const RunResult r = run_cli(args);
+RunResult run_ok(const std::vector<std::string>& args, int expected_exit = 0, const EnvEdits& env = {}) {
+  const RunResult r = run_cli(args, env);
   EXPECT_EQ(r.exit_code, expected_exit) << describe(args, r);
   return r;
 }
 
-// summary.json has no durations: two runs that judge alike write the same bytes.
+// summary.json has no durations: two runs that judge alike write the same bytes. Judging captures
+// needs no Vulkan driver, so those runs go without one.
 std::string conformance_summary(const fs::path& suite, const fs::path& out, const std::string& profile,
                                 const std::string& captures) {
   std::vector<std::string> args = {"conformance", "--suite",   suite.string(), "--out",
                                    out.string(),  "--profile", profile};
   if (!captures.empty()) args.insert(args.end(), {"--captures", captures});
-  run_ok(args);
+  run_ok(args, 0, captures.empty() ? EnvEdits{} : kNoVulkanDriver);
   return read_file(out / "summary.json");
 }
 
