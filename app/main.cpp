@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   int exit_code = kExitOk;
   app::add_devices_command(app, exit_code);
+  app::add_methods_command(app, exit_code);
   app::add_render_command(app, exit_code);
   app::add_capture_command(app, exit_code);
   app::add_compare_command(app, exit_code);

@@ -7,6 +7,8 @@
 
 #include "compare/case_run.hpp"
 #include "compare/report.hpp"
+#include "cpu_raster/classic/classic_explain.hpp"
+#include "cpu_raster/classic/render_classic.hpp"
 #include "cpu_raster/exact/explain.hpp"
 #include "model/image_io.hpp"
 
@@ -42,11 +44,11 @@ std::string tail_text(const RenderResult& expected, const RenderResult& actual, 
                      value_text(actual, i), "classification:", width, classification);
 }
 
-std::string header_text(const Scene& scene, CompareProfile profile, uint32_t x, uint32_t y, uint32_t sample) {
+std::string header_text(const Scene& scene, CompareProfile profile, uint32_t x, uint32_t y, uint32_t sample,
+                        bool classic = false) {
   return fmt::format(
-      "{}: pixel ({}, {}) sample {}, {} profile\nCPU history (every primitive that reached the pixel, "
-      "in submission order):\n",
-      scene.name, x, y, sample, to_string(profile));
+      "{}: pixel ({}, {}) sample {}, {} profile\nCPU history ({}):\n", scene.name, x, y, sample, to_string(profile),
+      classic ? "the classic methods' own decisions" : "every primitive that reached the pixel, in submission order");
 }
 
 }  // namespace
@@ -54,6 +56,9 @@ std::string header_text(const Scene& scene, CompareProfile profile, uint32_t x, 
 std::string explain_sample_text(const Scene& scene, const CpuOptions& cpu_options, const RenderResult& expected,
                                 const RenderResult& actual, CompareProfile profile, uint32_t x, uint32_t y,
                                 uint32_t sample) {
+  if (uses_classic_methods(cpu_options))  // the methods' own history: cpu_raster/classic/classic_explain.hpp
+    return header_text(scene, profile, x, y, sample, true) + explain_classic_pixel(scene, cpu_options, x, y, sample) +
+           tail_text(expected, actual, profile, x, y, sample);
   const std::vector<FragmentRecord> history = explain_pixel(scene, cpu_options, x, y, sample);
   return header_text(scene, profile, x, y, sample) + format_explanation(history) +
          tail_text(expected, actual, cpu_method_label(cpu_options), profile, x, y, sample);

@@ -1,5 +1,6 @@
 // `rastercmp explain` text for one sample, as RenderDoc's pixel history shows it: every
-// primitive that reached the sample on the CPU path (cpu_raster/explain.hpp), then the Vulkan
+// primitive that reached the sample on the CPU path (cpu_raster/exact/explain.hpp, or with classic
+// methods cpu_raster/classic/classic_explain.hpp), then the Vulkan
 // value there (owner + raw depth) and a one-line classification (compare/diff.hpp
 // describe_sample). The report writes these for the first bad samples of a case and links them.
 #pragma once

@@ -6,6 +6,7 @@
 // methods/) never include it.
 #pragma once
 
+#include "cpu_raster/classic/method_registry.hpp"  // the stages and methods --method accepts
 #include "cpu_raster/exact/cpu_options.hpp"
 #include "model/render_result.hpp"
 #include "model/scene.hpp"

@@ -1,5 +1,6 @@
 #include "experiments/gnuplot.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -34,6 +35,22 @@ std::string data_text(const std::vector<DataBlock>& blocks) {
   return text;
 }
 
+// 16 series styles: distinct colours, and dash and point types that cycle with other periods, so
+// neighbouring series differ in all three. Line width and point size shrink over each group of four,
+// so series that coincide (D24 over D32) still show one inside the other.
+constexpr const char* kSeriesColours[kSeriesStyles] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b",
+                                                       "#e377c2", "#17becf", "#000000", "#bcbd22", "#7f7f7f", "#aec7e8",
+                                                       "#ff9896", "#98df8a", "#ffbb78", "#c5b0d5"};
+constexpr int kPointTypes[] = {7, 5, 9, 11, 13, 2, 3, 1, 6, 4, 8, 10, 12, 14};
+
+std::string series_style_commands() {
+  std::string text;
+  for (int k = 0; k < kSeriesStyles; ++k)
+    text += fmt::format("set linetype {} lc rgb '{}' lw {} dt {} pt {} ps {}\n", k + 1, kSeriesColours[k],
+                        3.5 - 0.5 * (k % 4), k % 4 + 1, kPointTypes[k % 14], 2.0 - 0.3 * (k % 4));
+  return text + fmt::format("set linetype cycle {}\n", kSeriesStyles);
+}
+
 void run_terminal(const std::string& gnuplot, const std::string& dir, const std::string& name,
                   const std::string& terminal, const std::string& extension) {
   const std::string final_path = (fs::path(dir) / (name + "." + extension)).string();
@@ -53,6 +70,28 @@ void run_terminal(const std::string& gnuplot, const std::string& dir, const std:
 }
 
 }  // namespace
+
+std::string noenhanced_text(const std::string& body) {
+  std::istringstream in(body);
+  std::string out;
+  for (std::string line; std::getline(in, line);) {
+    for (const char* command : {"set title ", "set xlabel ", "set ylabel ", "set cblabel ", "set label "})
+      if (line.rfind(command, 0) == 0 && line.find("noenhanced") == std::string::npos) line += " noenhanced";
+    out += line + "\n";
+  }
+  return out;
+}
+
+double log_axis_floor(const std::vector<double>& values) {
+  double smallest = 0;
+  for (double v : values)
+    if (v > 0 && (smallest == 0 || v < smallest)) smallest = v;
+  return smallest == 0 ? 0.1 : std::pow(10.0, std::floor(std::log10(smallest)) - 1);
+}
+
+std::string zero_tic_command(const std::string& axis, double floor) {
+  return fmt::format("set {}tics add ('0' {:g})\n", axis, floor);
+}
 
 std::string gp_quote(const std::string& text) {
   std::string quoted = "'";
@@ -81,7 +120,8 @@ void render_chart(const std::string& dir, const std::string& name, const std::ve
   write_text_file_atomic((fs::path(dir) / (name + ".dat")).string(), data_text(blocks));
   write_text_file_atomic((fs::path(dir) / (name + ".gp")).string(),
                          "# rastercmp chart; run: gnuplot -e \"set terminal svg; set output 'x.svg'; DATA='" + name +
-                             ".dat'\" " + name + ".gp\n" + "set key noenhanced\n" + body);
+                             ".dat'\" " + name + ".gp\n" + "set key noenhanced\n" + series_style_commands() +
+                             noenhanced_text(body));
   run_terminal(gnuplot, dir, name, "svg size 960,640 dynamic font 'sans,13' background '#ffffff'", "svg");
   run_terminal(gnuplot, dir, name, "pngcairo size 1200,800 font 'sans,12'", "png");
 }

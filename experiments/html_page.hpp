@@ -1,5 +1,6 @@
 // The index.html of an experiment folder: each chart shown (SVG, linking its PNG), then the raw
-// files. Written atomically.
+// files. Rendered from experiments/templates/experiment_page.html.mustache (kainjow mustache, as
+// the report), written atomically.
 #pragma once
 
 #include <string>
@@ -14,9 +15,9 @@ struct PageSection {
   std::vector<std::vector<std::string>> table = {};  // optional: first row is the header (plain text, escaped)
 };
 
+std::string index_html(const std::string& title, const std::vector<PageSection>& sections,
+                       const std::vector<std::string>& raw_files);
 void write_index_html(const std::string& dir, const std::string& title, const std::vector<PageSection>& sections,
                       const std::vector<std::string>& raw_files);
-
-std::string html_escape(const std::string& text);
 
 }  // namespace rastercmp::experiments

@@ -42,7 +42,7 @@ void chart_far_near(const std::string& dir, const CsvTable& table, const std::st
                          "set xlabel 'far / near'\nset ylabel 'fraction of decal pixels won by the wrong surface'\n",
                          scene);
   body += "plot for [i=0:" + std::to_string(blocks.size() - 1) +
-          "] DATA index i using 1:2 title columnheader(1) lw 2 lc (i+1) dt i%3+1, \\\n"
+          "] DATA index i using 1:2 title columnheader(1) lt (i+1), \\\n"
           "     for [i=0:" +
           std::to_string(blocks.size() - 1) + "] DATA index i using 1:3 notitle with points pt 2 ps 1.4 lc (i+1)\n";
   for (DataBlock& block : blocks) block.rows.insert(block.rows.begin(), {"\"" + block.title + "\"", "x", "x"});
@@ -74,7 +74,7 @@ void chart_min_offset(const std::string& dir, const CsvTable& table, const std::
       "set xlabel 'angle between the plane and the image plane (degrees); depth slope grows as tan(angle)'\n"
       "set ylabel 'smallest {} factor with no wrong pixel'\nset logscale y 2\nset ytics add ('0' 0.125)\n"
       "set key outside right top\nset grid\nset style data linespoints\n"
-      "plot for [i=0:{}] DATA index i using 1:2 title columnheader(1) lw 2 pt 7\n",
+      "plot for [i=0:{}] DATA index i using 1:2 title columnheader(1) lt (i+1)\n",
       axis, axis, blocks.size() - 1);
   render_chart(dir, "min_" + axis + "_vs_angle", blocks, body);
 }
@@ -96,7 +96,7 @@ void chart_clamp(const std::string& dir, const CsvTable& table) {
                            "set ylabel 'fraction won by the wrong surface'\nset xtics add ('off' 1)\n"
                            "plot for [i=0:" +
                            std::to_string(blocks.size() - 1) +
-                           "] DATA index i using 1:2 title columnheader(1) lw 2 pt 7\n";
+                           "] DATA index i using 1:2 title columnheader(1) lt (i+1)\n";
   render_chart(dir, "clamp", blocks, body);
 }
 
@@ -120,27 +120,32 @@ void chart_angle(const std::string& dir, const CsvTable& table) {
                            "set xlabel 'angle (degrees)'\nset ylabel 'fraction won by the wrong surface'\n"
                            "plot for [i=0:" +
                            std::to_string(blocks.size() - 1) +
-                           "] DATA index i using 1:2 title columnheader(1) lw 2 lc (i+1) dt i%2+1\n";
+                           "] DATA index i using 1:2 title columnheader(1) lt (i+1)\n";
   render_chart(dir, "wrong_vs_angle", blocks, body);
 }
 
+// One legend entry per formula and the formats it applies to: lavapipe's r is 2 mrd = 2/(2^n-1) for
+// the unorm formats and 2^(e-n) for d32_sfloat (docs/lavapipe-rules.md §4.3).
 void chart_r(const std::string& dir, const std::vector<DepthRMeasure>& measures) {
-  std::vector<DataBlock> blocks(4);
-  const char* titles[] = {"measured, CPU", "measured, Vulkan", "spec bound", "lavapipe 2/(2^n-1)"};
-  for (size_t s = 0; s < 4; ++s) blocks[s] = {titles[s], {{"x", fmt::format("\"{}\"", titles[s]), "x"}}};
+  const char* titles[] = {"measured, CPU", "measured, Vulkan", "spec bound", "lavapipe 2/(2^n-1), unorm",
+                          "lavapipe 2^(e-n), d32_sfloat"};
+  std::vector<DataBlock> blocks(5);
+  for (size_t s = 0; s < 5; ++s) blocks[s] = {titles[s], {{"x", fmt::format("\"{}\"", titles[s]), "x"}}};
   for (size_t i = 0; i < measures.size(); ++i) {
     const DepthRMeasure& m = measures[i];
+    const bool is_float = m.format == DepthFormat::D32Sfloat;
     const double values[] = {m.r_cpu, m.r_vk, m.spec_bound, m.lavapipe_formula};
     for (size_t s = 0; s < 4; ++s)
-      blocks[s].rows.push_back({fmt::format("{}", double(i) + 0.1 * double(s) - 0.15), to_string(m.format),
-                                fmt::format("{:.10g}", values[s])});
+      blocks[s == 3 && is_float ? 4 : s].rows.push_back({fmt::format("{}", double(i) + 0.1 * double(s) - 0.15),
+                                                         to_string(m.format), fmt::format("{:.10g}", values[s])});
   }
   const std::string body =
       "set title 'r (depth step of constantFactor 1) per format: measured against the bounds'\n"
       "set logscale y 10\nset format y '10^{%L}'\nset ylabel 'r (depth units)'\nset xrange [-0.6:2.6]\n"
       "set xtics noenhanced ('d16_unorm' 0, 'x8_d24_unorm' 1, 'd32_sfloat at z 0.375' 2)\nset key outside right "
       "top\nset grid\n"
-      "plot for [i=0:3] DATA index i using 1:3 title columnheader(2) with points pt (i==0?7:i==1?2:i==2?4:6) ps 2\n";
+      "plot for [i=0:4] DATA index i using 1:3 title columnheader(2) with points lt (i+1) pt "
+      "(i==0?7:i==1?2:i==2?4:i==3?6:8) ps 2\n";
   render_chart(dir, "depth_r", blocks, body);
 }
 

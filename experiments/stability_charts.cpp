@@ -40,13 +40,13 @@ void chart_fight_onset(const std::string& dir, const CsvTable& table) {
       "set title 'Two surfaces a given distance apart (50 units away, 30 degrees): wrong surface against far/near'\n"
       "set logscale x 10\nset format x '10^{%L}'\nset xlabel 'far / near'\nset yrange [-0.02:1.02]\n"
       "set ylabel 'fraction won by the farther surface'\nset key outside right top\nset grid\n" +
-          plot_blocks(lines.size(), "1:2", "with linespoints lw 2 lc (i+1)"));
+          plot_blocks(lines.size(), "1:2", "with linespoints lt (i+1)"));
   render_chart(
       dir, "fight_onset_map", onsets,
       "set title 'Far/near ratio at which surfaces start to fight, per depth format'\n"
       "set logscale xy 10\nset format y '10^{%L}'\nset xlabel 'separation between the surfaces (world units)'\n"
       "set ylabel 'smallest far/near with a wrong pixel'\nset key outside right top\nset grid\n" +
-          plot_blocks(onsets.size(), "1:2", "with linespoints lw 2 pt 7 ps 1.5"));
+          plot_blocks(onsets.size(), "1:2", "with linespoints lt (i+1)"));
 }
 
 void chart_slivers(const std::string& dir, const CsvTable& table) {
@@ -73,23 +73,32 @@ void chart_slivers(const std::string& dir, const CsvTable& table) {
   render_chart(dir, "sliver_map", blocks, body);
 }
 
-// Mismatches of one experiment against its parameter (log x, only positive parameters).
+// Mismatches of one experiment against its parameter (log x; a parameter of 0 at a labelled floor).
 void chart_limit(const std::string& dir, const CsvTable& table, const std::string& experiment, const std::string& title,
                  const std::string& xlabel) {
   const size_t a = table.column("param_a"), cov = table.column("coverage_mismatch"),
                dep = table.column("depth_mismatch");
   DataBlock coverage{"coverage", {{"coverage", "x"}}}, depth{"depth", {{"depth", "x"}}};
-  for (const Row& row : select_rows(table, {{"experiment", experiment}})) {
-    if (!(to_double(row[a]) > 0)) continue;
-    coverage.rows.push_back({row[a], row[cov]});
-    depth.rows.push_back({row[a], row[dep]});
+  const std::vector<Row> rows = select_rows(table, {{"experiment", experiment}});
+  std::vector<double> parameters;
+  for (const Row& row : rows) parameters.push_back(to_double(row[a]));
+  const double floor = log_axis_floor(parameters);  // a parameter of 0 is drawn there, tic "0"
+  bool has_zero = false;
+  for (const Row& row : rows) {
+    const double p = to_double(row[a]);
+    if (p < 0 || std::isnan(p)) continue;  // no place on a log axis
+    has_zero = has_zero || p == 0;
+    const std::string x = p == 0 ? fmt::format("{:g}", floor) : row[a];
+    coverage.rows.push_back({x, row[cov]});
+    depth.rows.push_back({x, row[dep]});
   }
   render_chart(dir, experiment, {coverage, depth},
                "set title " + gp_quote(title) + "\nset logscale x 10\nset format x '10^{%L}'\nset xlabel " +
                    gp_quote(xlabel) +
                    "\nset ylabel 'samples that differ from lavapipe'\nset yrange [-0.5:*]\n"
                    "set key outside right top\nset grid\n" +
-                   plot_blocks(2, "1:2", "with linespoints lw 2 pt 7 ps 1.5"));
+                   (has_zero ? zero_tic_command("x", floor) : std::string()) +
+                   plot_blocks(2, "1:2", "with linespoints lt (i+1)"));
 }
 
 void chart_non_finite(const std::string& dir, const CsvTable& table) {

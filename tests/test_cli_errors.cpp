@@ -127,6 +127,27 @@ TEST(CliErrors, HelpExitsZero) {
   }
 }
 
+// `methods` lists every stage and name (the registry, cpu_raster/classic/method_registry.hpp); --help
+// names them too; a method that cannot run on the scene exits 2 naming the scene's feature.
+TEST(CliErrors, MethodsAreListedAndAMethodTheSceneDoesNotSuitExitsTwo) {
+  const RunResult listed = run_cli({"methods"});
+  EXPECT_EQ(listed.exit_code, 0) << listed.err;
+  for (const char* line : {"  cyrus_beck ", "  weiler_atherton ", "  flood ", "  pseudo_depth_7500 ",
+                           "one depth step at far 7500 is 34.2 eye units in D16", "Flood Fill"})
+    EXPECT_NE(listed.out.find(line), std::string::npos) << line << "\n" << listed.out;
+  const RunResult json = run_cli({"methods", "--json"});
+  EXPECT_EQ(json.exit_code, 0);
+  EXPECT_NE(json.out.find("\"notes_section\": \"Cyrus-Beck Algorithm\""), std::string::npos) << json.out;
+  const RunResult help = run_cli({"render", "--help"});
+  EXPECT_NE(help.out.find("fill=exact, scanline, even_odd, winding, float_edge, flood"), std::string::npos) << help.out;
+  const TempDir tmp;
+  const std::vector<std::string> args{"render", kGoodScene.string(),  "--backend", "cpu",
+                                      "--out",  (tmp / "o").string(), "--method",  "depth=pseudo_depth_75"};
+  const RunResult refused = run_cli(args);
+  EXPECT_EQ(refused.exit_code, 2) << describe(args, refused);
+  EXPECT_NE(refused.err.find("$.draws[0].positions[0] has w = 1"), std::string::npos) << describe(args, refused);
+}
+
 // --- no Vulkan driver -----------------------------------------------------------------------
 
 // Exit 3 and one line that says which Debian packages to install.

@@ -4,6 +4,8 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 
 #include "compare/explain_text.hpp"
 #include "compare/report.hpp"
@@ -83,6 +85,43 @@ TEST(ExplainText, ReportGetsFilesForTheFirstBadSamples) {
   unsupported.verdict = Verdict::NotSupported;
   EXPECT_TRUE(write_case_explanations(dir.string(), "x", p.scene, cpu_options(), unsupported, CompareProfile::Lavapipe)
                   .empty());
+  fs::remove_all(dir);
+}
+
+// Every scene of scenes/methods/ with its own methods: a planted bad sample gets the classic
+// path's history in its report file, never "not available".
+TEST(ExplainText, ClassicMethodScenesGetTheirMethodsHistory) {
+  const fs::path dir = fs::temp_directory_path() / ("rastercmp_test_compare_explain_m" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  size_t scenes = 0;
+  for (const auto& entry : fs::recursive_directory_iterator(std::string(RASTERCMP_SOURCE_DIR) + "/scenes/methods")) {
+    if (entry.path().extension() != ".json") continue;
+    const Scene scene = load_scene_file(entry.path().string());
+    CpuOptions cpu = cpu_options();
+    cpu.methods = scene.methods;
+    CaseResult result;
+    result.expected = render_cpu(scene, cpu);
+    result.actual = result.expected;
+    size_t planted = 0;
+    while (planted < result.actual->owner.size() && result.actual->owner[planted] == kOwnerBackground) ++planted;
+    const bool draws = planted < result.actual->owner.size();  // cull/normal_dot_view/back culls everything
+    if (draws)
+      result.actual->owner[planted] = kOwnerBackground;
+    else
+      result.actual->owner[0] = encode_owner(0, 0);
+    result.diff = diff_results(*result.expected, *result.actual, CompareProfile::Lavapipe);
+    result.verdict = Verdict::Fail;
+    const auto links = write_case_explanations(dir.string(), scene.name, scene, cpu, result, CompareProfile::Lavapipe);
+    ASSERT_EQ(links.size(), 1u) << scene.name;
+    std::ifstream in(dir / links[0].file);
+    std::stringstream text;
+    text << in.rdbuf();
+    EXPECT_EQ(text.str().find("not available"), std::string::npos) << text.str();
+    EXPECT_NE(text.str().find("classic path, methods"), std::string::npos) << text.str();
+    EXPECT_EQ(draws, text.str().find("owner written") != std::string::npos) << text.str();
+    ++scenes;
+  }
+  EXPECT_GE(scenes, 38u);
   fs::remove_all(dir);
 }
 

@@ -3,11 +3,16 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <regex>
+#include <set>
+#include <sstream>
 
 #include <gtest/gtest.h>
 
 #include "experiments/chart_labels.hpp"
 #include "experiments/csv_log.hpp"
+#include "experiments/gnuplot.hpp"
+#include "experiments/html_page.hpp"
 #include "experiments/scene_make.hpp"
 #include "experiments/speed_accuracy.hpp"
 #include "experiments/sweep_common.hpp"
@@ -133,6 +138,75 @@ TEST(ExperimentsScenes, FarTriangleReachesTheViewportBoundsLimit) {
   EXPECT_EQ(double(scene.viewport->x) + scene.viewport->width, 32767.0);
   EXPECT_LE(scene.viewport->width, float(kMaxFramebufferSide));
   EXPECT_EQ(scene.width, kMaxFramebufferSide);
+}
+
+std::string read_text(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+TEST(ExperimentsCharts, TitlesAndLabelsAreNotEnhancedText) {
+  const std::string body = noenhanced_text(
+      "set title 'near_coplanar'\nset xlabel 'a_b'\nset ylabel 'c' noenhanced\nset format x '10^{%L}'\n");
+  EXPECT_EQ(body,
+            "set title 'near_coplanar' noenhanced\nset xlabel 'a_b' noenhanced\nset ylabel 'c' noenhanced\n"
+            "set format x '10^{%L}'\n");
+}
+
+TEST(ExperimentsCharts, ZeroOnALogAxisGoesToALabelledFloor) {
+  EXPECT_DOUBLE_EQ(log_axis_floor({0, 0.5, 3, 100}), 0.01);
+  EXPECT_DOUBLE_EQ(log_axis_floor({0, 20}), 1);
+  EXPECT_DOUBLE_EQ(log_axis_floor({0}), 0.1);
+  EXPECT_EQ(zero_tic_command("x", 0.01), "set xtics add ('0' 0.01)\n");
+}
+
+// A chart with 12 series and a title with underscores, through gnuplot when it is installed: the
+// title prints as written and every series has its own colour and dash pattern.
+TEST(ExperimentsCharts, TwelveSeriesGetDistinctStylesAndUnderscoresSurvive) {
+  const fs::path dir = temp_dir("charts");
+  std::vector<DataBlock> blocks;
+  for (int i = 0; i < 12; ++i)
+    blocks.push_back(
+        {"series_" + std::to_string(i),
+         {{"\"series_" + std::to_string(i) + "\"", "x"}, {"1", std::to_string(i)}, {"2", std::to_string(i)}}});
+  try {
+    find_gnuplot();
+  } catch (const EnvironmentError&) {
+    GTEST_SKIP() << "gnuplot is not installed";
+  }
+  render_chart(dir.string(), "many", blocks,
+               "set title 'near_coplanar'\nplot for [i=0:11] DATA index i using 1:2 title columnheader(1) with lines "
+               "lt (i+1)\n");
+  const std::string svg = read_text(dir / "many.svg");
+  EXPECT_NE(svg.find("near_coplanar"), std::string::npos);
+  EXPECT_EQ(svg.find("near_{c}oplanar"), std::string::npos);
+  EXPECT_NE(svg.find("series_11"), std::string::npos);
+  const std::string script = read_text(dir / "many.gp");
+  std::set<std::string> colours, styles;
+  const std::regex linetype("set linetype (\\d+) lc rgb '(#[0-9a-f]{6})' lw [0-9.]+ dt (\\d) pt (\\d+)");
+  for (std::sregex_iterator it(script.begin(), script.end(), linetype), end; it != end; ++it)
+    if (std::stoi((*it)[1]) <= 12) {
+      colours.insert((*it)[2]);
+      styles.insert((*it)[2].str() + "/" + (*it)[3].str() + "/" + (*it)[4].str());
+    }
+  EXPECT_EQ(colours.size(), 12u);
+  EXPECT_EQ(styles.size(), 12u);
+}
+
+TEST(ExperimentsPage, RendersFromTheTemplateWithEscaping) {
+  const std::string html = index_html(
+      "Polygon <offset>", {{"Z & fighting", "a < b", {"zfight_far_near_near_coplanar"}, {{"h1", "h2"}, {"1", "x\"y"}}}},
+      {"polygon_offset.csv"});
+  EXPECT_NE(html.find("<title>Polygon &lt;offset&gt;</title>"), std::string::npos) << html;
+  EXPECT_NE(html.find("<h2>Z &amp; fighting</h2>"), std::string::npos);
+  EXPECT_NE(html.find("<p>a &lt; b</p>"), std::string::npos);
+  EXPECT_NE(html.find("<th>h1</th><th>h2</th>"), std::string::npos);
+  EXPECT_NE(html.find("<td>x&quot;y</td>"), std::string::npos);
+  EXPECT_NE(html.find("<img src=\"zfight_far_near_near_coplanar.svg\""), std::string::npos);
+  EXPECT_NE(html.find("<li><a href=\"polygon_offset.csv\">polygon_offset.csv</a></li>"), std::string::npos);
+  EXPECT_EQ(index_html("t", {{"no table", "", {}}}, {}).find("<table>"), std::string::npos);
 }
 
 }  // namespace

@@ -4,8 +4,13 @@
 #include <cmath>
 #include <limits>
 
+#include "cpu_raster/methods/clip_line_cohen_sutherland.hpp"
 #include "cpu_raster/methods/clip_line_cohen_sutherland_3d.hpp"
+#include "cpu_raster/methods/clip_line_cyrus_beck.hpp"
 #include "cpu_raster/methods/clip_polygon_sutherland_hodgman.hpp"
+#include "cpu_raster/methods/clip_polygon_weiler_atherton.hpp"
+#include "cpu_raster/methods/interp_perspective.hpp"
+#include "model/errors.hpp"
 
 namespace rastercmp::cpu::classic {
 namespace {
@@ -75,7 +80,126 @@ ClassicClippedLine liang_barsky_homogeneous(const std::array<ClipVertex, 2>& lin
   return result;
 }
 
+// The viewport rectangle in window space: where -w <= x, y <= w lands after the divide.
+methods::Rect2 viewport_rect(const ViewportTransform& viewport) {
+  const double x0 = double(viewport.translate[0]) - double(viewport.scale[0]);
+  const double x1 = double(viewport.translate[0]) + double(viewport.scale[0]);
+  const double y0 = double(viewport.translate[1]) - double(viewport.scale[1]);
+  const double y1 = double(viewport.translate[1]) + double(viewport.scale[1]);
+  return {std::min(x0, x1), std::min(y0, y1), std::max(x0, x1), std::max(y0, y1)};
+}
+
+methods::Vec2 window_xy(const ClipVertex& v) { return {v.window.x, v.window.y}; }
+
+// 2-D clipping needs what the divide keeps: w > 0 and, with depth clip, 0 <= z <= w (the registry
+// refuses scenes that break this; a primitive that still does is reported, never clipped wrongly).
+template <size_t N>
+void require_2d(const std::array<ClipVertex, N>& vertices, bool depth_clip) {
+  for (const ClipVertex& v : vertices) {
+    if (!(v.pos_clip.w > 0)) throw NotSupportedError("a 2-D clipper got a vertex with w <= 0 (behind the eye)");
+    if (depth_clip && !(v.pos_clip.z >= 0 && v.pos_clip.z <= v.pos_clip.w))
+      throw NotSupportedError("a 2-D clipper got a vertex outside the depth clip planes");
+  }
+}
+
+// A vertex a 2-D clipper made at window point q with window-space weights l of the originals:
+// 1/w and every clip coordinate over w are affine in window space, so the clip position is the
+// perspective-correct blend; its window z comes from it (C viewport transform), x and y are the clipper's.
+template <size_t N>
+ClipVertex vertex_at_window(const std::array<ClipVertex, N>& originals, const std::array<double, N>& l, methods::Vec2 q,
+                            const ViewportTransform& viewport) {
+  for (const ClipVertex& original : originals)
+    if (window_xy(original) == q) return original;
+  double inv_w = 0;
+  methods::Vec4 clip{0, 0, 0, 0};
+  for (size_t k = 0; k < N; ++k) {
+    const double weight = l[k] / double(originals[k].pos_clip.w);
+    inv_w += weight;
+    clip = {clip.x + weight * originals[k].pos_clip.x, clip.y + weight * originals[k].pos_clip.y,
+            clip.z + weight * originals[k].pos_clip.z, clip.w + weight * originals[k].pos_clip.w};
+  }
+  ClipVertex made;
+  made.pos_clip = glm::vec4(float(clip.x / inv_w), float(clip.y / inv_w), float(clip.z / inv_w), float(clip.w / inv_w));
+  made.window = window_from_clip_c(made.pos_clip, viewport);
+  made.window.x = float(q.x);
+  made.window.y = float(q.y);
+  made.made_by_clipper = true;
+  return made;
+}
+
+// The parameter of point q along the window segment a -> b (by its longer axis).
+double window_parameter(methods::Vec2 a, methods::Vec2 b, methods::Vec2 q) {
+  const double dx = b.x - a.x, dy = b.y - a.y;
+  if (dx == 0 && dy == 0) return 0;
+  return std::abs(dx) >= std::abs(dy) ? (q.x - a.x) / dx : (q.y - a.y) / dy;
+}
+
+ClassicClippedLine clip_line_2d(const std::array<ClipVertex, 2>& line, const ViewportTransform& viewport,
+                                LineClipper clipper) {
+  const methods::Rect2 rect = viewport_rect(viewport);
+  const methods::Segment2 segment{window_xy(line[0]), window_xy(line[1])};
+  ClassicClippedLine result;
+  methods::Segment2 visible;
+  if (clipper == LineClipper::CohenSutherland) {
+    const methods::CohenSutherlandResult cs = methods::clip_line_cohen_sutherland(segment, rect);
+    result.passes = cs.passes;
+    result.clips = cs.clips;
+    if (!cs.accepted) return result;
+    visible = cs.segment;
+  } else {
+    const methods::Polygon2 window{
+        {rect.x_min, rect.y_min}, {rect.x_max, rect.y_min}, {rect.x_max, rect.y_max}, {rect.x_min, rect.y_max}};
+    const methods::CyrusBeckResult cb = methods::clip_line_cyrus_beck(segment, window);
+    result.passes = 1;
+    if (!cb.accepted) return result;
+    result.clips = int(cb.t_in != 0) + int(cb.t_out != 1);
+    visible = cb.segment;
+  }
+  result.visible = true;
+  std::array<ClipVertex, 2> ends;
+  const methods::Vec2 q[2] = {visible.p0, visible.p1};
+  for (size_t k = 0; k < 2; ++k) {
+    const double t = window_parameter(segment.p0, segment.p1, q[k]);
+    ends[k] = vertex_at_window(line, std::array<double, 2>{1 - t, t}, q[k], viewport);
+  }
+  result.line = ends;
+  return result;
+}
+
 }  // namespace
+
+std::vector<std::array<ClipVertex, 3>> clip_triangle_weiler_atherton(const std::array<ClipVertex, 3>& triangle,
+                                                                     const ViewportTransform& viewport,
+                                                                     bool depth_clip) {
+  for (const ClipVertex& v : triangle)
+    if (!finite(v.pos_clip)) return {};
+  const methods::ClipVolume volume = vulkan_volume(depth_clip);
+  const auto [any, all] = outcodes(triangle, volume);
+  if (any == 0) return {triangle};
+  if (all != 0) return {};
+  require_2d(triangle, depth_clip);
+  const std::array<methods::Vec2, 3> xy{window_xy(triangle[0]), window_xy(triangle[1]), window_xy(triangle[2])};
+  const methods::Polygon2 subject(xy.begin(), xy.end());
+  const double area = methods::signed_area(subject);
+  if (area == 0) return {};  // no area in window space: the set-up drops it anyway
+  const methods::Rect2 rect = viewport_rect(viewport);
+  const methods::Polygon2 window{
+      {rect.x_min, rect.y_min}, {rect.x_max, rect.y_min}, {rect.x_max, rect.y_max}, {rect.x_min, rect.y_max}};
+  const methods::WeilerAthertonResult wa = methods::clip_polygon_weiler_atherton(subject, window);
+  if (wa.degenerate)
+    throw NotSupportedError(
+        "clip=weiler_atherton: a triangle touches the viewport boundary with a vertex or along an edge "
+        "(degenerate contact, which the method does not resolve)");
+  std::vector<std::array<ClipVertex, 3>> fan;
+  for (methods::Polygon2 piece : wa.polygons) {
+    if ((methods::signed_area(piece) > 0) != (area > 0)) std::reverse(piece.begin(), piece.end());  // keep facing
+    std::vector<ClipVertex> made;
+    for (const methods::Vec2& q : piece)
+      made.push_back(vertex_at_window(triangle, methods::barycentric_window(xy, q), q, viewport));
+    for (size_t k = 2; k < made.size(); ++k) fan.push_back({made[0], made[k - 1], made[k]});
+  }
+  return fan;
+}
 
 std::vector<std::array<ClipVertex, 3>> clip_triangle_sutherland_hodgman(const std::array<ClipVertex, 3>& triangle,
                                                                         const ViewportTransform& viewport,
@@ -109,6 +233,10 @@ ClassicClippedLine clip_line_classic(const std::array<ClipVertex, 2>& line, cons
     return result;
   }
   if (clipper == LineClipper::LiangBarsky) return liang_barsky_homogeneous(line, volume, viewport);
+  if (clipper == LineClipper::CohenSutherland || clipper == LineClipper::CyrusBeck) {
+    require_2d(line, depth_clip);
+    return clip_line_2d(line, viewport, clipper);
+  }
   const methods::CohenSutherland3dResult cs =
       methods::clip_line_cohen_sutherland_3d(to_vec4(line[0].pos_clip), to_vec4(line[1].pos_clip), volume);
   result.passes = cs.passes;

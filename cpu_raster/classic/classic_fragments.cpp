@@ -1,16 +1,20 @@
 #include "cpu_raster/classic/classic_fragments.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <vector>
 
+#include "cpu_raster/classic/method_registry.hpp"
 #include "cpu_raster/methods/depth_bilinear.hpp"
 #include "cpu_raster/methods/fill_edge_function.hpp"
+#include "cpu_raster/methods/fill_flood.hpp"
 #include "cpu_raster/methods/fill_polygon_rule.hpp"
 #include "cpu_raster/methods/fill_scanline_notes.hpp"
 #include "cpu_raster/methods/interp_perspective.hpp"
 #include "cpu_raster/methods/line_bresenham.hpp"
 #include "cpu_raster/methods/line_dda.hpp"
+#include "cpu_raster/methods/pseudo_depth.hpp"
 
 namespace rastercmp::cpu::classic {
 namespace {
@@ -36,6 +40,67 @@ methods::Polygon2 window_polygon(const ClassicPrimitive& p, double shift) {
   return polygon;
 }
 
+// The pixel holding a window point.
+methods::PixelXY pixel_of(const WindowVertex& v) { return {int32_t(std::floor(v.x)), int32_t(std::floor(v.y))}; }
+
+}  // namespace
+
+FloodTrace flood_trace(const ClassicPrimitive& p, const PixelRect& region) {
+  FloodTrace trace;
+  int32_t x0 = region.x1, y0 = region.y1, x1 = region.x0, y1 = region.y0;  // the outline's pixel box ∩ region
+  for (size_t k = 0; k < 3; ++k) {
+    const methods::PixelXY v = pixel_of(p.window[k]);
+    x0 = std::min(x0, v.x), y0 = std::min(y0, v.y), x1 = std::max(x1, v.x), y1 = std::max(y1, v.y);
+  }
+  x0 = std::max(x0, region.x0), y0 = std::max(y0, region.y0), x1 = std::min(x1, region.x1),
+  y1 = std::min(y1, region.y1);
+  if (x0 > x1 || y0 > y1) return trace;
+  methods::CellGrid grid{x1 - x0 + 1, y1 - y0 + 1, {}};
+  grid.cells.assign(size_t(grid.width) * size_t(grid.height), kFloodEmpty);
+  trace.origin = {x0, y0};
+  for (size_t k = 0; k < 3; ++k)  // the outline, Bresenham between the vertices' pixels
+    for (const methods::PixelXY& q : methods::line_bresenham(pixel_of(p.window[k]), pixel_of(p.window[(k + 1) % 3]))) {
+      const methods::PixelXY cell{q.x - x0, q.y - y0};
+      if (grid.contains(cell)) grid.cells[size_t(cell.y) * size_t(grid.width) + size_t(cell.x)] = kFloodOutline;
+    }
+  // The seed: the centroid's pixel when it is inside and not on the outline, else the first
+  // such pixel in row order whose centre lies inside the float triangle.
+  const methods::Polygon2 triangle{
+      {p.window[0].x, p.window[0].y}, {p.window[1].x, p.window[1].y}, {p.window[2].x, p.window[2].y}};
+  const auto usable = [&](methods::PixelXY cell) {
+    return grid.contains(cell) && grid.at(cell) == kFloodEmpty &&
+           methods::winding_number(triangle, {cell.x + x0 + 0.5, cell.y + y0 + 0.5}) != 0;
+  };
+  const methods::PixelXY centroid{
+      int32_t(std::floor((double(p.window[0].x) + p.window[1].x + p.window[2].x) / 3)) - x0,
+      int32_t(std::floor((double(p.window[0].y) + p.window[1].y + p.window[2].y) / 3)) - y0};
+  std::optional<methods::PixelXY> seed;
+  if (usable(centroid)) seed = centroid;
+  for (int32_t y = 0; y < grid.height && !seed; ++y)
+    for (int32_t x = 0; x < grid.width && !seed; ++x)
+      if (usable({x, y})) seed = methods::PixelXY{x, y};
+  if (seed) {
+    trace.seed = methods::PixelXY{seed->x + x0, seed->y + y0};
+    methods::FloodFillResult filled = methods::flood_fill(grid, *seed, kFloodFilled);
+    trace.filled = filled.filled;
+    grid = std::move(filled.grid);
+  }
+  trace.grid = std::move(grid);
+  return trace;
+}
+
+namespace {
+
+std::vector<methods::Span> flood_spans(const ClassicPrimitive& p, const PixelRect& region) {
+  const FloodTrace trace = flood_trace(p, region);
+  methods::SpanBuilder builder;
+  for (int32_t y = 0; y < trace.grid.height; ++y)
+    for (int32_t x = 0; x < trace.grid.width; ++x)
+      if (trace.grid.at({x, y}) != kFloodEmpty)
+        builder.add(y + trace.origin.y, x + trace.origin.x, x + trace.origin.x + 1);
+  return builder.take();
+}
+
 std::vector<methods::Span> coverage_spans(const ClassicPrimitive& p, FillMethod fill, const PixelRect& region) {
   const methods::PixelBounds bounds = bounds_of(region);
   switch (fill) {
@@ -53,12 +118,10 @@ std::vector<methods::Span> coverage_spans(const ClassicPrimitive& p, FillMethod 
           fill == FillMethod::EvenOdd ? methods::FillRule::EvenOdd : methods::FillRule::NonZero;
       return methods::fill_polygon_rule(window_polygon(p, 0), {rule, 0.5, bounds});
     }
+    case FillMethod::Flood: return flood_spans(p, region);
   }
   return {};
 }
-
-// The pixel holding a window point.
-methods::PixelXY pixel_of(const WindowVertex& v) { return {int32_t(std::floor(v.x)), int32_t(std::floor(v.y))}; }
 
 std::vector<methods::PixelXY> line_pixels(const ClassicPrimitive& p, LineMethod line) {
   const methods::PixelXY p0 = pixel_of(p.window[0]), p1 = pixel_of(p.window[1]);
@@ -77,9 +140,35 @@ uint32_t plane_depth_raw(const ClassicPrimitive& p, int32_t px, int32_t py, bool
   return sample_depth(p.raster.depth, p.raster.offset.offset, point.x, point.y, p.depth.range, p.depth.format, fma).raw;
 }
 
+// The eye distance w at the pixel centre: 1/w is affine in window space (lines: along the segment).
+double eye_distance_at(const ClassicPrimitive& p, methods::Vec2 centre) {
+  if (p.is_line) {
+    const methods::Vec2 a{p.window[0].x, p.window[0].y}, b{p.window[1].x, p.window[1].y};
+    const double length2 = methods::dot(b - a, b - a);
+    const double t = length2 > 0 ? std::clamp(methods::dot(centre - a, b - a) / length2, 0.0, 1.0) : 0.0;
+    return 1 / ((1 - t) / double(p.w_clip[0]) + t / double(p.w_clip[1]));
+  }
+  const std::array<methods::Vec2, 3> pos_window{methods::Vec2{p.window[0].x, p.window[0].y},
+                                                methods::Vec2{p.window[1].x, p.window[1].y},
+                                                methods::Vec2{p.window[2].x, p.window[2].y}};
+  const std::array<double, 3> l = methods::barycentric_window(pos_window, centre);
+  double inv_w = 0;
+  for (size_t k = 0; k < 3; ++k) inv_w += l[k] / double(p.w_clip[k]);
+  return 1 / inv_w;
+}
+
 }  // namespace
 
-uint32_t fragment_depth_raw(const ClassicPrimitive& p, DepthMethod method, int32_t px, int32_t py) {
+double pseudo_depth_value(const ClassicPrimitive& p, double far_distance, int32_t px, int32_t py) {
+  const double w = eye_distance_at(p, {px + 0.5, py + 0.5});
+  // Eye z is -w (camera looking down -z); pz = 1 at near, -1 at far; stored as (1 - pz) / 2.
+  return (1 - methods::pseudo_depth(-w, -kPseudoDepthNear, -far_distance)) / 2;
+}
+
+uint32_t fragment_depth_raw(const ClassicPrimitive& p, const ClassicMethods& chosen, int32_t px, int32_t py) {
+  const DepthMethod method = chosen.depth;
+  if (method == DepthMethod::PseudoDepth)
+    return finish_depth(p, float(pseudo_depth_value(p, chosen.pseudo_far, px, py)));
   if (method == DepthMethod::NoFma) return plane_depth_raw(p, px, py, false);
   if (method == DepthMethod::Exact || p.is_line) return plane_depth_raw(p, px, py, p.depth.fma);
   const methods::Vec2 centre{px + 0.5, py + 0.5};
@@ -105,7 +194,7 @@ void for_each_fragment(const ClassicPrimitive& p, const ClassicMethods& chosen, 
   const auto emit = [&](int32_t x, int32_t y) {
     if (!region.contains(x, y)) return;
     Fragment fragment{x, y, 0};
-    if (p.depth.active) fragment.depth_raw = fragment_depth_raw(p, chosen.depth, x, y);
+    if (p.depth.active) fragment.depth_raw = fragment_depth_raw(p, chosen, x, y);
     sink(fragment);
   };
   if (p.is_line && chosen.line != LineMethod::Exact) {

@@ -5,21 +5,27 @@
 //                    (so the notes' integer sample points are pixel centres);
 //        float_edge  methods::fill_triangle_edge_function, EdgeTieRule::None (E >= 0 on all edges);
 //        even_odd / winding  methods::fill_polygon_rule at pixel centres;
+//        flood       the Bresenham outline between the vertices' pixels, then methods::flood_fill
+//                    (4-connected) from one seed pixel inside; outline and filled cells are covered;
 //  line  exact       the set-up's line quad planes (Vulkan's line modes);
 //        dda / bresenham  methods::line_dda / line_bresenham between the pixels holding the two
 //                    window endpoints (both included), width 1;
 //  depth exact / no_fma  the set-up's plane, z = a0 + dzdx px + dzdy py, fused or not (§3.3);
 //        bilinear    methods::bilinear_depth_in_triangle at the pixel centre (edges, then span);
 //        perspective_correct  methods::interpolate_perspective of window z with the clip w;
-//        lines always take the plane. Then the depth bias, the clamps and the format conversion
+//        pseudo_depth_F  methods::pseudo_depth of the eye distance w (1/w interpolated in window
+//                    space), near 25, far F, stored as (1 - pz) / 2 (lines too);
+//        other methods: lines take the plane. Then the depth bias, the clamps and the format conversion
 //        of the exact path (depth_sample.hpp, §3.4-§3.5).
 // Classic fills cover only pixels of the draw region (framebuffer ∩ scissor ∩ viewport).
 #pragma once
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 
 #include "cpu_raster/classic/classic_front_end.hpp"
+#include "cpu_raster/methods/fill_flood.hpp"
 
 namespace rastercmp::cpu::classic {
 
@@ -35,6 +41,22 @@ void for_each_fragment(const ClassicPrimitive& primitive, const ClassicMethods& 
                        const FragmentSink& sink);
 
 // The stored depth of the primitive at pixel (px, py) by the depth method.
-uint32_t fragment_depth_raw(const ClassicPrimitive& primitive, DepthMethod method, int32_t px, int32_t py);
+uint32_t fragment_depth_raw(const ClassicPrimitive& primitive, const ClassicMethods& chosen, int32_t px, int32_t py);
+
+// depth=pseudo_depth_*: (1 - pz) / 2 of the eye distance w at the pixel centre (near 25), before
+// bias, clamp and format conversion.
+double pseudo_depth_value(const ClassicPrimitive& primitive, double far_distance, int32_t px, int32_t py);
+
+// fill=flood on one triangle: the grid over the outline's pixel box ∩ draw region, holding the
+// Bresenham outline, the flood-filled cells and the empty rest; the seed (none when no pixel
+// centre inside the triangle is off the outline).
+inline constexpr uint32_t kFloodEmpty = 0, kFloodOutline = 1, kFloodFilled = 2;
+struct FloodTrace {
+  methods::CellGrid grid;  // cell (x, y) is pixel (x + origin.x, y + origin.y)
+  methods::PixelXY origin{};
+  std::optional<methods::PixelXY> seed;  // in pixels
+  uint64_t filled = 0;
+};
+FloodTrace flood_trace(const ClassicPrimitive& primitive, const PixelRect& region);
 
 }  // namespace rastercmp::cpu::classic

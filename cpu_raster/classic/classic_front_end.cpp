@@ -1,5 +1,7 @@
 #include "cpu_raster/classic/classic_front_end.hpp"
 
+#include <optional>
+
 #include "cpu_raster/classic/classic_clip.hpp"
 #include "cpu_raster/classic/classic_cull.hpp"
 #include "cpu_raster/exact/assemble.hpp"
@@ -39,6 +41,18 @@ std::array<ClipVertex, N> clip_vertices(const DrawContext& dc, const AssembledPr
   return vertices;
 }
 
+// Whether a clipper made one of the vertices (the exact clipper does not mark the ones it makes).
+template <size_t N>
+bool any_made(const std::array<ClipVertex, N>& vertices, const std::array<ClipVertex, N>& originals) {
+  for (const ClipVertex& v : vertices) {
+    if (v.made_by_clipper) return true;
+    bool original = false;
+    for (const ClipVertex& o : originals) original = original || v.pos_clip == o.pos_clip;
+    if (!original) return true;
+  }
+  return false;
+}
+
 ClassicPrimitive make_primitive(const DrawContext& dc, uint32_t primitive_index, bool is_line) {
   ClassicPrimitive primitive;
   primitive.draw_index = dc.setup.draw_index;
@@ -59,9 +73,12 @@ void run_triangle(const DrawContext& dc, const AssembledPrimitive& prim, std::ve
   const std::vector<std::array<ClipVertex, 3>> pieces =
       dc.methods->clip == ClipMethod::SutherlandHodgman
           ? clip_triangle_sutherland_hodgman(triangle, dc.frame->viewport, depth_clip)
+      : dc.methods->clip == ClipMethod::WeilerAtherton
+          ? clip_triangle_weiler_atherton(triangle, dc.frame->viewport, depth_clip)
           : clip_triangle(triangle, dc.frame->viewport).triangles;
   const uint32_t owner = encode_owner(dc.setup.draw_index, prim.primitive_index);
-  for (const std::array<ClipVertex, 3>& piece : pieces) {
+  for (size_t k = 0; k < pieces.size(); ++k) {
+    const std::array<ClipVertex, 3>& piece = pieces[k];
     const std::array<WindowVertex, 3> window{piece[0].window, piece[1].window, piece[2].window};
     if (!nv_cull && dc.pipelined && state.cull_mode != CullMode::None &&  // draw_pipe_cull.c (§2.6)
         pipeline_cull_drops(pipeline_cull_determinant(window), state.cull_mode, state.front_face))
@@ -69,6 +86,9 @@ void run_triangle(const DrawContext& dc, const AssembledPrimitive& prim, std::ve
     const TriangleSetup setup = setup_triangle(window, owner, dc.setup);
     if (setup.fate != SetupFate::Rasterized) continue;
     ClassicPrimitive primitive = make_primitive(dc, prim.primitive_index, false);
+    primitive.clipped = any_made(piece, triangle);
+    primitive.piece = uint32_t(k);
+    primitive.pieces = uint32_t(pieces.size());
     primitive.window = window;
     primitive.w_clip = {piece[0].pos_clip.w, piece[1].pos_clip.w, piece[2].pos_clip.w};
     primitive.raster = setup.raster;
@@ -76,14 +96,23 @@ void run_triangle(const DrawContext& dc, const AssembledPrimitive& prim, std::ve
   }
 }
 
+std::optional<LineClipper> line_clipper(ClipMethod clip) {
+  switch (clip) {
+    case ClipMethod::CohenSutherland: return LineClipper::CohenSutherland;
+    case ClipMethod::CohenSutherland3d: return LineClipper::CohenSutherland3d;
+    case ClipMethod::LiangBarsky: return LineClipper::LiangBarsky;
+    case ClipMethod::CyrusBeck: return LineClipper::CyrusBeck;
+    default: return std::nullopt;  // the triangle clippers leave lines to the exact clipper
+  }
+}
+
 void run_line(const DrawContext& dc, const AssembledPrimitive& prim, std::vector<ClassicPrimitive>& out) {
   const std::array<ClipVertex, 2> line = clip_vertices<2>(dc, prim);
   std::array<ClipVertex, 2> clipped;
-  if (dc.methods->clip == ClipMethod::CohenSutherland3d || dc.methods->clip == ClipMethod::LiangBarsky) {
-    const LineClipper clipper =
-        dc.methods->clip == ClipMethod::LiangBarsky ? LineClipper::LiangBarsky : LineClipper::CohenSutherland3d;
+  const std::optional<LineClipper> clipper = line_clipper(dc.methods->clip);
+  if (clipper) {
     const ClassicClippedLine result =
-        clip_line_classic(line, dc.frame->viewport, dc.draw->state.depth_clip_enabled(), clipper);
+        clip_line_classic(line, dc.frame->viewport, dc.draw->state.depth_clip_enabled(), *clipper);
     if (!result.visible) return;
     clipped = result.line;
   } else {
@@ -95,6 +124,7 @@ void run_line(const DrawContext& dc, const AssembledPrimitive& prim, std::vector
                                      encode_owner(dc.setup.draw_index, prim.primitive_index), dc.setup);
   if (setup.fate != SetupFate::Rasterized) return;
   ClassicPrimitive primitive = make_primitive(dc, prim.primitive_index, true);
+  primitive.clipped = any_made(clipped, line);
   primitive.window = {clipped[0].window, clipped[1].window, WindowVertex{}};
   primitive.w_clip = {clipped[0].pos_clip.w, clipped[1].pos_clip.w, 1};
   primitive.raster = setup.raster;

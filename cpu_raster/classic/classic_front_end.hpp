@@ -20,6 +20,9 @@ struct ClassicPrimitive {
   uint32_t draw_index = 0;
   uint32_t primitive_index = 0;
   bool is_line = false;
+  bool clipped = false;                  // the clip stage made a vertex of this primitive
+  uint32_t piece = 0;                    // which of the clipped fan's triangles
+  uint32_t pieces = 1;                   // how many the clip stage made of the primitive
   std::array<WindowVertex, 3> window{};  // after clipping, emit order (2 used for lines)
   std::array<float, 3> w_clip{1, 1, 1};  // clip w of those vertices
   RasterPrimitive raster;                // the exact set-up's result (rasterized)

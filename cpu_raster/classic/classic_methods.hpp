@@ -11,10 +11,18 @@
 
 namespace rastercmp::cpu::classic {
 
-enum class ClipMethod { Exact, SutherlandHodgman, CohenSutherland3d, LiangBarsky };
-enum class FillMethod { Exact, Scanline, FloatEdge, EvenOdd, Winding };
+enum class ClipMethod {
+  Exact,
+  SutherlandHodgman,
+  WeilerAtherton,
+  CohenSutherland,
+  CohenSutherland3d,
+  LiangBarsky,
+  CyrusBeck
+};
+enum class FillMethod { Exact, Scanline, FloatEdge, EvenOdd, Winding, Flood };
 enum class LineMethod { Exact, Dda, Bresenham };
-enum class DepthMethod { Exact, NoFma, Bilinear, PerspectiveCorrect };
+enum class DepthMethod { Exact, NoFma, Bilinear, PerspectiveCorrect, PseudoDepth };
 enum class VisibilityMethod { ZBuffer, Painter, Bsp };
 enum class CullMethod { Exact, NormalDotView };
 
@@ -25,17 +33,19 @@ struct ClassicMethods {
   DepthMethod depth = DepthMethod::Exact;
   VisibilityMethod visibility = VisibilityMethod::ZBuffer;
   CullMethod cull = CullMethod::Exact;
-  SetupMethods setup;  // snap, tie_break
+  double pseudo_far = 0;  // DepthMethod::PseudoDepth: the far plane (near is 25)
+  SetupMethods setup;     // snap, tie_break
 
   // Coverage or depth decided outside the exact rasterizer: one sample per pixel only.
   bool per_pixel() const {
     return fill != FillMethod::Exact || line != LineMethod::Exact || depth == DepthMethod::Bilinear ||
-           depth == DepthMethod::PerspectiveCorrect || visibility != VisibilityMethod::ZBuffer;
+           depth == DepthMethod::PerspectiveCorrect || depth == DepthMethod::PseudoDepth ||
+           visibility != VisibilityMethod::ZBuffer;
   }
 };
 
-// The stages this path knows (clip, fill, line, depth, visibility, cull) and the exact path's
-// (snap, tie_break). Throws UsageError naming the valid stages or the valid names of the stage.
+// The stages and names of method_registry.hpp. Throws UsageError naming the valid stages or the
+// valid names of the stage.
 ClassicMethods parse_classic_methods(const std::vector<MethodChoice>& choices);
 
 // True when a choice names one of the classic stages (anything but snap and tie_break).

@@ -1,10 +1,12 @@
 #include "cpu_raster/classic/render_classic.hpp"
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "cpu_raster/classic/classic_front_end.hpp"
 #include "cpu_raster/classic/classic_visibility.hpp"
+#include "cpu_raster/classic/method_registry.hpp"
 #include "cpu_raster/exact/profile_support.hpp"
 #include "cpu_raster/exact/render_targets.hpp"
 #include "model/errors.hpp"
@@ -14,19 +16,11 @@ namespace {
 
 using namespace cpu::classic;
 
-void check_classic_support(const Scene& scene, const CpuOptions& options, const ClassicMethods& chosen) {
+void check_classic_support(const Scene& scene, const CpuOptions& options) {
   if (options.profile != CpuProfile::Lavapipe)
     throw NotSupportedError("classic methods (--method) run on the lavapipe profile only");
-  if (chosen.per_pixel() && scene.samples != 1)
-    throw NotSupportedError("the selected classic methods decide one sample per pixel; the scene has " +
-                            std::to_string(scene.samples) + " samples");
-  if (chosen.line == LineMethod::Exact) return;
-  for (size_t d = 0; d < scene.draws.size(); ++d)
-    if (is_line_topology(scene.draws[d].topology) && scene.draws[d].state.line_width != 1)
-      throw NotSupportedError("$.draws[" + std::to_string(d) +
-                              "]: line=dda and line=bresenham draw 1-pixel lines; "
-                              "line_width is " +
-                              std::to_string(scene.draws[d].state.line_width));
+  for (const MethodChoice& choice : options.methods)
+    if (const std::optional<std::string> why = method_inapplicable(scene, choice)) throw NotSupportedError(*why);
 }
 
 std::string describe_methods(const CpuOptions& options) {
@@ -61,13 +55,25 @@ void draw_with_zbuffer(const std::vector<ClassicPrimitive>& primitives, const Cl
 
 bool uses_classic_methods(const CpuOptions& options) { return names_classic_stage(options.methods); }
 
-RenderResult render_classic(const Scene& scene, const CpuOptions& options) {
-  const ClassicMethods chosen = parse_classic_methods(options.methods);
+namespace cpu::classic {
+
+ClassicFrame prepare_classic_frame(const Scene& scene, const CpuOptions& options) {
+  ClassicFrame prepared{parse_classic_methods(options.methods), {}, {}};
   cpu::check_lavapipe_profile_support(scene);
-  check_classic_support(scene, options, chosen);
-  const cpu::FrameContext frame = cpu::make_frame_context(scene, options.fma, chosen.setup);
-  std::vector<ClassicPrimitive> primitives;
-  for (uint32_t d = 0; d < scene.draws.size(); ++d) collect_primitives(frame, d, chosen, primitives);
+  check_classic_support(scene, options);
+  prepared.frame = cpu::make_frame_context(scene, options.fma, prepared.chosen.setup);
+  for (uint32_t d = 0; d < scene.draws.size(); ++d)
+    collect_primitives(prepared.frame, d, prepared.chosen, prepared.primitives);
+  return prepared;
+}
+
+}  // namespace cpu::classic
+
+RenderResult render_classic(const Scene& scene, const CpuOptions& options) {
+  const ClassicFrame prepared = prepare_classic_frame(scene, options);
+  const ClassicMethods& chosen = prepared.chosen;
+  const cpu::FrameContext& frame = prepared.frame;
+  const std::vector<ClassicPrimitive>& primitives = prepared.primitives;
   cpu::RenderTargets targets = cpu::make_render_targets(scene);
   if (chosen.visibility == VisibilityMethod::ZBuffer) {
     draw_with_zbuffer(primitives, chosen, frame.region, targets);

@@ -6,19 +6,36 @@
 // output goes through the same compare and report.
 #pragma once
 
+#include <vector>
+
+#include "cpu_raster/classic/classic_front_end.hpp"
 #include "cpu_raster/exact/cpu_options.hpp"
 #include "model/render_result.hpp"
 
 namespace rastercmp {
 
+namespace cpu::classic {
+
+// What render_classic draws: the parsed methods, the frame and the primitives that reach the
+// fill, line, depth and visibility stages. Throws as render_classic.
+struct ClassicFrame {
+  ClassicMethods chosen;
+  FrameContext frame;
+  std::vector<ClassicPrimitive> primitives;
+};
+ClassicFrame prepare_classic_frame(const Scene& scene, const CpuOptions& options);
+
+}  // namespace cpu::classic
+
 // True when options.methods names a classic stage (clip, fill, line, depth, visibility, cull);
 // snap and tie_break alone are the exact path's ablations. Does not validate names.
 bool uses_classic_methods(const CpuOptions& options);
 
-// Throws UsageError for an unknown stage or name, NotSupportedError for the spec profile, for
-// multisampling with a per-pixel method (fill, line, bilinear or perspective_correct depth,
-// painter, bsp), for painter/bsp with lines and for dda/bresenham with lines wider than 1 pixel,
-// and what the exact path refuses.
+// Throws UsageError for an unknown stage or name, NotSupportedError for the spec profile, for a
+// method the scene does not suit (method_inapplicable, method_registry.hpp: multisampling with a
+// per-pixel method, painter/bsp with lines, dda/bresenham with wide lines, a 2-D clipper with
+// vertices behind the eye or beyond the depth planes, pseudo-depth with w outside near..far) and
+// what the exact path refuses.
 RenderResult render_classic(const Scene& scene, const CpuOptions& options);
 
 }  // namespace rastercmp
