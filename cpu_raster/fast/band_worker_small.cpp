@@ -2,7 +2,6 @@
 // phase before the walks that measures which tile rows each block may reach.
 #include <algorithm>
 
-#include "cpu_raster/exact/assemble.hpp"
 #include "cpu_raster/fast/band_worker.hpp"
 #include "cpu_raster/fast/block_rows.hpp"
 #include "cpu_raster/fast/small_block_input.hpp"
@@ -53,8 +52,8 @@ void BandWorker::draw_block(uint32_t d, const SmallBlock& block) {
   for (uint32_t l = 0; l < block.in.count; ++l) {
     const uint32_t bit = 1u << l;
     if (out.scalar_mask & bit) {
-      const std::array<uint32_t, 3> v = assemble_primitive(frame_.scene->draws[d], block.first + l).position;
-      triangle(d, block.first + l, v[0], v[1], v[2]);
+      const size_t at = size_t(l) * block.in.stride;  // the block's corners: assemble_primitive's positions
+      triangle(d, block.first + l, block.in.corners[0][at], block.in.corners[1][at], block.in.corners[2][at]);
     } else if ((out.grid_mask | out.job_mask) & bit)
       draw_small(out, int(l), encode_owner(d, block.first + l), raster);
   }

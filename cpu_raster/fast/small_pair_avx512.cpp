@@ -297,7 +297,10 @@ RASTERCMP_AVX512 void setup_small_pair_avx512(const SmallBlockInput& in0, const 
   const Lanes grid =
       live & _mm512_cmplt_epi32_mask(w, splat(kGridSide)) & _mm512_cmplt_epi32_mask(h, splat(kGridSide)) & used;
   const Lanes job = Lanes(live & ~grid & one_tile & used);  // grid lanes may span tiles
-  const Lanes scalar = Lanes((~simple | (live & ~grid & ~job)) & used);
+  // The scalar set-up's first verdicts for the lanes it would drop at once (small_setup_simd.inl).
+  const Lanes outside = _mm512_test_epi32_mask(_mm512_ternarylogic_epi32(p0.flags, p1.flags, p2.flags, 0x80),
+                                               splat(int32_t(kVertexClipBits)));
+  const Lanes scalar = Lanes(((special & ~outside) | (~special & ~small & ~empty) | (live & ~grid & ~job)) & used);
   for (int b = 0; b < 2; ++b) {
     pair.out[b]->grid_mask = half_bits(grid, b);
     pair.out[b]->job_mask = half_bits(job, b);

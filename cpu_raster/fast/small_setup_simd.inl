@@ -306,7 +306,17 @@ RASTERCMP_SMALL_TARGET void RASTERCMP_SMALL_SETUP(const SmallBlockInput& in, Sma
   const __m256i job = _mm256_and_si256(_mm256_andnot_si256(grid, live), one_tile);  // grid lanes may span tiles
   out.grid_mask = lanes(grid) & used;
   out.job_mask = lanes(job) & used;
-  out.scalar_mask = (~lanes(simple) | (lanes(live) & ~out.grid_mask & ~out.job_mask)) & used;
+  // The scalar set-up's first verdicts, taken here for the lanes it would drop at once: every
+  // corner outside one clip plane (ClipFate::Outside), or an unclipped lane whose rectangle
+  // misses the draw region (exact for every lane with its snap done, small or not).
+  const __m256i not_outside =
+      _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_and_si256(p0.flags, _mm256_and_si256(p1.flags, p2.flags)),
+                                          _mm256_set1_epi32(int32_t(kVertexClipBits))),
+                         zero);
+  const uint32_t special_lanes = ~lanes(_mm256_cmpeq_epi32(special, zero));
+  out.scalar_mask = ((special_lanes & lanes(not_outside)) | (~special_lanes & ~lanes(small) & ~lanes(empty)) |
+                     (lanes(live) & ~out.grid_mask & ~out.job_mask)) &
+                    used;
   if ((out.grid_mask | out.job_mask) == 0) return;
   const __m256i swap = _mm256_cmpgt_epi32(zero, area);  // rotate_fixed_position_12: (v0, v2, v1)
   swap_where(swap, p1.x_fixed, p2.x_fixed);
