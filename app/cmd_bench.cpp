@@ -1,13 +1,17 @@
-// rastercmp bench [--json FILE] [--reps N] [--scene NAME]... [--suite DIR] [--threads N]
+// rastercmp bench [--json FILE] [--reps N] [--scene NAME|FILE]... [--suite DIR] [--threads N]
+//                 [--scaling [--chart-dir DIR]]
 // Times, in one run and interleaved rep by rep, the exact CPU path (threads = 0), the fast CPU path
 // (threads = N, default 2) and lavapipe (submit to fence; instance, pipeline and resource creation
 // and read-back excluded; LP_NUM_THREADS=2 unless set) on the benchmark scenes of
-// bench/bench_scenes.hpp and on the whole built-in suite (docs/performance.md).
+// bench/bench_scenes.hpp, on any scene file and on the whole built-in suite (docs/performance.md).
+// --scaling times the fast path alone at 1, 2, 4, ... threads up to the host's cores and charts
+// time against threads (gnuplot).
 #include <sys/resource.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <memory>
@@ -24,9 +28,12 @@
 #include "bench/bench_stats.hpp"
 #include "compare/case_select.hpp"
 #include "cpu_raster/cpu_raster.hpp"
+#include "cpu_raster/fast/cpu_features.hpp"
 #include "cpu_raster/fast/render_fast.hpp"
+#include "experiments/gnuplot.hpp"
 #include "model/errors.hpp"
 #include "model/host.hpp"
+#include "model/scene_io.hpp"
 #include "vk_reference/vk_reference.hpp"
 
 namespace rastercmp::app {
@@ -41,7 +48,25 @@ struct BenchArgs {
   unsigned threads = 2;
   std::vector<std::string> scenes;  // empty: all standard scenes and the suite
   std::string suite_dir;            // empty: the built-in suite (default_suite_dir)
+  bool scaling = false;             // the fast path alone at 1, 2, 4, ... threads
+  std::string chart_dir = "bench-scaling";
 };
+
+// The host's CPU, as /proc/cpuinfo names it ("unknown" elsewhere), and the fast path's kernels on it.
+std::string cpu_model() {
+  std::ifstream in("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.rfind("model name", 0) != 0) continue;
+    const size_t colon = line.find(':');
+    if (colon != std::string::npos) return line.substr(line.find_first_not_of(" \t", colon + 1));
+  }
+  return "unknown";
+}
+
+const char* fast_kernels() {
+  return cpu::fast::host_has_avx512() ? "avx512" : cpu::fast::host_has_avx2_fma() ? "avx2" : "scalar";
+}
 
 // One row of the table: one scene, or the whole suite rendered once per rep.
 struct BenchCase {
@@ -108,9 +133,13 @@ std::vector<BenchCase> make_cases(const BenchArgs& args) {
     names.push_back("suite");
   }
   std::vector<BenchCase> cases;
+  const std::vector<std::string> standard = bench::standard_bench_scene_names();
   for (const std::string& name : names) {
     if (name == "suite")
       cases.push_back({name, bench::load_scene_suite(args.suite_dir.empty() ? default_suite_dir() : args.suite_dir)});
+    else if (std::find(standard.begin(), standard.end(), name) == standard.end() &&
+             (name.ends_with(".json") || std::filesystem::is_regular_file(name)))  // a scene file, named by its stem
+      cases.push_back({std::filesystem::path(name).stem().string(), {load_scene_file(name)}});
     else
       cases.push_back({name, {bench::standard_bench_scene(name).scene}});
   }
@@ -208,6 +237,8 @@ void print_table(const std::vector<CaseReport>& reports, const BenchArgs& args, 
       "\nmedian ms [min-max] over {} reps ({} for the exact path); fast CPU path: {} thread(s); lavapipe: "
       "LP_NUM_THREADS={}\n\n",
       args.reps, args.exact_reps, args.threads, std::getenv("LP_NUM_THREADS"));
+  fmt::print("CPU: {} ({} hardware threads), fast path kernels: {}\n\n", cpu_model(),
+             std::thread::hardware_concurrency(), fast_kernels());
   fmt::print(
       "| scene | tris | frags | exact ms | fast ms | fast+alloc ms | lavapipe ms | lvp/fast | lvp/exact | fast "
       "Mtri/s | fast Mpix/s | lvp Mtri/s | lvp Mpix/s | peak MiB exact/fast/lvp | same bytes exact/lvp |\n");
@@ -247,6 +278,9 @@ nlohmann::ordered_json stats_json(const std::vector<double>& samples) {
 void write_json(const std::string& path, const std::vector<CaseReport>& reports, const BenchArgs& args,
                 const bench::LoadMonitor& load) {
   nlohmann::ordered_json j;
+  j["cpu_model"] = cpu_model();
+  j["hardware_threads"] = std::thread::hardware_concurrency();
+  j["fast_kernels"] = fast_kernels();
   j["fast_threads"] = args.threads;
   j["lp_num_threads"] = std::getenv("LP_NUM_THREADS");
   j["load"] = {{"other_cores", load.other_cores()},
@@ -272,7 +306,88 @@ void write_json(const std::string& path, const std::vector<CaseReport>& reports,
   out << j.dump(2) << "\n";
 }
 
+// --scaling: the fast path alone, at 1, 2, 4, ... threads up to the host's hardware threads (and
+// that number itself), median of --reps renders into reused buffers per scene and count.
+std::vector<uint32_t> scaling_threads() {
+  const uint32_t cores = std::max(1u, std::thread::hardware_concurrency());
+  std::vector<uint32_t> counts;
+  for (uint32_t t = 1; t < cores; t *= 2) counts.push_back(t);
+  counts.push_back(cores);
+  return counts;
+}
+
+int run_scaling(const BenchArgs& args) {
+  std::vector<BenchCase> cases = make_cases(args);
+  const std::vector<uint32_t> counts = scaling_threads();
+  CpuOptions options;
+  options.fma = lavapipe_fuses_on_this_host();
+  fmt::print("CPU: {} ({} hardware threads), fast path kernels: {}\n", cpu_model(), std::thread::hardware_concurrency(),
+             fast_kernels());
+  fmt::print("fast path, median ms over {} reps (speed-up over 1 thread)\n\n| scene |", args.reps);
+  for (uint32_t t : counts) fmt::print(" {} thr |", t);
+  fmt::print("\n|---|");
+  for (size_t i = 0; i < counts.size(); ++i) fmt::print("---:|");
+  fmt::print("\n");
+  nlohmann::ordered_json j;
+  j["cpu_model"] = cpu_model();
+  j["hardware_threads"] = std::thread::hardware_concurrency();
+  j["fast_kernels"] = fast_kernels();
+  std::vector<experiments::DataBlock> blocks;
+  std::string plot = "plot ";
+  for (BenchCase& c : cases) {
+    std::vector<Scene> kept;  // the scenes the CPU profile supports
+    std::vector<RenderResult> results;
+    for (Scene& scene : c.scenes) {
+      try {
+        results.push_back(render_cpu_fast(scene, options));
+        kept.push_back(std::move(scene));
+      } catch (const NotSupportedError&) {
+      }
+    }
+    fmt::print("| {} |", c.name);
+    experiments::DataBlock block{c.name, {{"threads", "ms", experiments::gp_quote(c.name)}}};
+    nlohmann::ordered_json row{{"name", c.name}};
+    double one = 0;
+    for (uint32_t t : counts) {
+      options.threads = t;
+      std::vector<double> samples;
+      for (unsigned rep = 0; rep < args.reps; ++rep) {
+        double total = 0;
+        for (size_t i = 0; i < kept.size(); ++i)
+          total += seconds_of([&] { render_cpu_fast_into(kept[i], options, results[i]); });
+        samples.push_back(total);
+      }
+      const TimingStats s = bench::summarize(samples);
+      if (t == 1) one = s.median;
+      fmt::print(" {:.2f} ({:.1f}x) |", s.median * 1e3, s.median > 0 ? one / s.median : 0);
+      std::fflush(stdout);
+      block.rows.push_back({fmt::format("{}", t), fmt::format("{}", s.median * 1e3), "x"});
+      row["threads"].push_back({{"threads", t}, {"fast", stats_json(samples)}});
+    }
+    fmt::print("\n");
+    plot += fmt::format("DATA index {} using 1:2 title columnheader(3) with linespoints lw 2 pt 7, ", blocks.size());
+    blocks.push_back(std::move(block));
+    j["scenes"].push_back(std::move(row));
+  }
+  if (!args.json_path.empty()) {
+    std::ofstream out(args.json_path);
+    if (!out) throw UsageError("--json " + args.json_path + ": cannot write the file");
+    out << j.dump(2) << "\n";
+  }
+  plot.resize(plot.size() - 2);
+  const std::string body = "set title " +
+                           experiments::gp_quote("fast path: time per render against threads (" + cpu_model() + ")") +
+                           " noenhanced\nset logscale xy 2\nset xlabel 'threads'\nset ylabel 'ms (median)'\n"
+                           "set key outside right top\nset grid\n" +
+                           plot + "\n";
+  std::filesystem::create_directories(args.chart_dir);
+  experiments::render_chart(args.chart_dir, "bench_scaling", blocks, body);
+  fmt::print("\nchart: {}/bench_scaling.svg and .png\n", args.chart_dir);
+  return kExitOk;
+}
+
 int run_bench(const BenchArgs& args) {
+  if (args.scaling) return run_scaling(args);
   setenv("LP_NUM_THREADS", "2", 0);  // before the device exists; an explicit setting wins
   std::vector<BenchCase> cases = make_cases(args);
   VulkanRenderer vulkan(VkOptions{});
@@ -301,9 +416,14 @@ void add_bench_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--reps", args->reps, "timed repetitions per scene (fast path and lavapipe)")
       ->check(CLI::Range(1, 1000));
   cmd->add_option("--exact-reps", args->exact_reps, "timed repetitions of the exact path (at most --reps)");
-  cmd->add_option("--scene", args->scenes, "fill_b2f, fill_f2b, grid_180k, tiny_1m, perspective or suite (repeatable)");
+  cmd->add_option("--scene", args->scenes,
+                  "fill_b2f, fill_f2b, grid_180k, tiny_1m, perspective, lines_20k, msaa4_grid, suite or a scene file "
+                  "(repeatable)");
   cmd->add_option("--suite", args->suite_dir, "suite folder for the suite row (default: the built-in scenes/)");
   cmd->add_option("--threads", args->threads, "threads of the fast CPU path")->check(CLI::Range(1, 64));
+  cmd->add_flag("--scaling", args->scaling,
+                "time the fast path alone at 1, 2, 4, ... threads up to the host's and chart time against threads");
+  cmd->add_option("--chart-dir", args->chart_dir, "folder of the --scaling chart (default bench-scaling)");
   cmd->callback([args, &exit_code] { exit_code = run_bench(*args); });
 }
 

@@ -2,6 +2,7 @@
 // bench/bench_scenes.hpp on the exact CPU path, the fast CPU path and lavapipe.
 //   Exact/<scene>, Fast/<scene>/threads:<n>  wall time of render_cpu / render_cpu_fast_into (buffers reused)
 //   FastNewBuffers/<scene>/threads:2         render_cpu_fast: new result buffers each time
+//   FastSuite/threads:<n>                    render_cpu_fast_into on every supported scene of scenes/
 //   Lavapipe/<scene>                         submit to fence (manual time; creation and read-back excluded)
 //   Interleaved/<scene>                      each iteration one fast render and one lavapipe submit, in
 //                                            alternating order; manual time = the fast render, counters
@@ -18,6 +19,7 @@
 #include "bench/bench_scenes.hpp"
 #include "cpu_raster/cpu_raster.hpp"
 #include "cpu_raster/fast/render_fast.hpp"
+#include "model/errors.hpp"
 #include "model/host.hpp"
 #include "vk_reference/vk_reference.hpp"
 
@@ -68,6 +70,23 @@ void fast_new_buffers(benchmark::State& state, const Scene* scene) {
   const CpuOptions options = cpu_options(uint32_t(state.range(0)));
   for (auto _ : state) benchmark::DoNotOptimize(render_cpu_fast(*scene, options));
   set_rates(state, *scene);
+}
+
+// The built-in suite as `rastercmp bench` times it: every scene the CPU profile supports, once per
+// iteration, each into its own reused buffers.
+void fast_suite(benchmark::State& state) {
+  const CpuOptions options = cpu_options(uint32_t(state.range(0)));
+  std::vector<Scene> scenes;
+  std::vector<RenderResult> results;
+  for (Scene& scene : bench::load_scene_suite(RASTERCMP_SOURCE_DIR "/scenes")) {
+    try {
+      results.push_back(render_cpu_fast(scene, options));
+      scenes.push_back(std::move(scene));
+    } catch (const NotSupportedError&) {
+    }
+  }
+  for (auto _ : state)
+    for (size_t i = 0; i < scenes.size(); ++i) render_cpu_fast_into(scenes[i], options, results[i]);
 }
 
 void lavapipe(benchmark::State& state, const Scene* scene) {
@@ -130,6 +149,12 @@ int main(int argc, char** argv) {
         ->Unit(benchmark::kMillisecond)
         ->UseManualTime();
   }
+  benchmark::RegisterBenchmark("FastSuite", fast_suite)
+      ->ArgName("threads")
+      ->Arg(1)
+      ->Arg(2)
+      ->Unit(benchmark::kMillisecond)
+      ->UseRealTime();
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();

@@ -113,8 +113,36 @@ Scene perspective_scene(uint32_t cells, uint32_t size) {
   return scene;
 }
 
+Scene lines_scene(uint32_t count, uint32_t size, uint64_t seed) {
+  Scene scene;
+  scene.name = "bench.lines." + std::to_string(count);
+  scene.description = std::to_string(count) + " random line segments of up to 1/8 of the width, D32, LESS";
+  scene.width = scene.height = size;
+  Draw draw;
+  draw.name = "lines";
+  draw.topology = Topology::LineList;
+  std::mt19937_64 rng(seed);
+  for (uint32_t n = 0; n < count; ++n) {
+    const double x = 2.0 * unit(rng) - 1.0, y = 2.0 * unit(rng) - 1.0, z = 0.1 + 0.8 * unit(rng);
+    const double angle = 6.283185307179586 * unit(rng), length = 0.25 * unit(rng);
+    draw.positions_clip.emplace_back(float(x), float(y), float(z), 1.0f);
+    draw.positions_clip.emplace_back(float(x + length * std::cos(angle)), float(y + length * std::sin(angle)),
+                                     float(z + 0.1 * (unit(rng) - 0.5)), 1.0f);
+  }
+  scene.draws.push_back(std::move(draw));
+  return scene;
+}
+
+Scene msaa_grid_scene(uint32_t cells, uint32_t size) {
+  Scene scene = grid_scene(cells, size);
+  scene.name = "bench.msaa4.grid." + std::to_string(cells);
+  scene.description = "jittered grid of " + std::to_string(2ull * cells * cells) + " triangles, 4 samples per pixel";
+  scene.samples = 4;
+  return scene;
+}
+
 std::vector<std::string> standard_bench_scene_names() {
-  return {"fill_b2f", "fill_f2b", "grid_180k", "tiny_1m", "perspective"};
+  return {"fill_b2f", "fill_f2b", "grid_180k", "tiny_1m", "perspective", "lines_20k", "msaa4_grid"};
 }
 
 BenchScene standard_bench_scene(const std::string& name) {
@@ -123,7 +151,10 @@ BenchScene standard_bench_scene(const std::string& name) {
   if (name == "grid_180k") return {name, grid_scene(300)};
   if (name == "tiny_1m") return {name, grid_scene(724)};
   if (name == "perspective") return {name, perspective_scene()};
-  throw UsageError("unknown bench scene \"" + name + "\"; known: fill_b2f, fill_f2b, grid_180k, tiny_1m, perspective");
+  if (name == "lines_20k") return {name, lines_scene(20000)};
+  if (name == "msaa4_grid") return {name, msaa_grid_scene(100, 512)};
+  throw UsageError("unknown bench scene \"" + name +
+                   "\"; known: fill_b2f, fill_f2b, grid_180k, tiny_1m, perspective, lines_20k, msaa4_grid");
 }
 
 std::vector<BenchScene> standard_bench_scenes() {

@@ -6,7 +6,9 @@
 //    jittered by up to 1/4 cell, z = 0.5 + 0.2 sin(3x) cos(2y): 300 cells give 180,000 triangles
 //    of about 5.8 px at 1024x1024, 724 cells 1,048,352 triangles of about 1 px;
 //  - perspective: a rolling terrain seen by a perspective camera, cut by the near, far and side
-//    planes of the view volume.
+//    planes of the view volume;
+//  - lines: random line segments (1 px wide, up to 1/8 of the width long), D32, LESS;
+//  - msaa4_grid: a grid (as above) rendered with 4 samples per pixel.
 #pragma once
 
 #include <cstdint>
@@ -20,13 +22,15 @@ namespace rastercmp::bench {
 Scene fill_layers_scene(bool back_to_front, uint32_t size = 1024, uint32_t layers = 16);
 Scene grid_scene(uint32_t cells, uint32_t size = 1024, uint64_t seed = 1);
 Scene perspective_scene(uint32_t cells = 200, uint32_t size = 1024);
+Scene lines_scene(uint32_t count, uint32_t size = 1024, uint64_t seed = 1);
+Scene msaa_grid_scene(uint32_t cells, uint32_t size = 512);
 
 struct BenchScene {
   std::string name;  // short id for tables and --scene
   Scene scene;
 };
 
-// fill_b2f, fill_f2b, grid_180k, tiny_1m, perspective (names as in docs/performance.md).
+// fill_b2f, fill_f2b, grid_180k, tiny_1m, perspective, lines_20k, msaa4_grid (docs/performance.md).
 std::vector<BenchScene> standard_bench_scenes();
 std::vector<std::string> standard_bench_scene_names();
 // One of the standard scenes by name; throws UsageError naming the known ones.

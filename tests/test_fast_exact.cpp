@@ -223,6 +223,9 @@ TEST(FastBenchScenes, SmallVersionsMatchExactPath) {
   expect_fast_matches(bench::grid_scene(60, 256), true);
   expect_fast_matches(bench::grid_scene(181, 256), true);  // about 1 px triangles
   expect_fast_matches(bench::perspective_scene(40, 192), true);
+  expect_fast_matches(bench::perspective_scene(120, 256), true);  // triangles of 8-16 px, clipped ones
+  expect_fast_matches(bench::lines_scene(300, 160), true);
+  expect_fast_matches(bench::msaa_grid_scene(24, 96), true);
 }
 
 // render_cpu_fast as the bench and render_cpu call it (its own choice of workers) on a scene big

@@ -1,6 +1,6 @@
 // Unit tests of the fast path's stages against the exact path's own functions: the per-vertex
-// pass (AVX2 and scalar), the 32-bit "G" edge form, the tile depth-bounds verdicts, the
-// benchmark statistics.
+// pass (AVX2 and scalar), the 32-bit "G" edge form, the tile depth-bounds verdicts, the row
+// columns of the exact rasterizer's planes, the benchmark statistics.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -17,6 +17,7 @@
 #include "cpu_raster/exact/float_ops.hpp"
 #include "cpu_raster/fast/block_rows.hpp"
 #include "cpu_raster/fast/cpu_features.hpp"
+#include "cpu_raster/fast/exact_rows.hpp"
 #include "cpu_raster/fast/fast_vertices.hpp"
 #include "cpu_raster/fast/small_triangles.hpp"
 #include "cpu_raster/fast/small_window.hpp"
@@ -446,6 +447,26 @@ TEST(FastDepthBounds, FragmentRangeIsTheCornersExtremes) {
   steep.dzdx = std::numeric_limits<float>::infinity();
   FragmentRange unused;
   EXPECT_FALSE(fragment_range(steep, PixelRect{0, 0, 3, 3}, depth, unused));
+}
+
+// plane_columns (exact_rows.hpp) against the plane's value at every column of a row: the columns
+// it keeps are exactly those with E > 0, for planes of every slope, with and without a sample offset.
+TEST(FastExactRows, PlaneColumnsAreThePassingColumns) {
+  fast_test::Random r(23);
+  for (int n = 0; n < 4000; ++n) {
+    EdgePlane plane;
+    plane.dcdx = int64_t(r.below(4)) == 0 ? 0 : int64_t(r.below(1u << 20)) - (1 << 19);
+    plane.dcdy = int64_t(r.below(1u << 20)) - (1 << 19);
+    plane.c = (int64_t(r.below(1u << 30)) - (1 << 29)) * int64_t(1 + r.below(1u << 10));
+    const int64_t sample_x = int64_t(r.below(256)), y_fixed = int64_t(r.below(1u << 16)) * 16 + int64_t(r.below(256));
+    int32_t x0 = int32_t(r.below(300)) - 20, x1 = x0 + int32_t(r.below(400));
+    const int32_t lo = x0, hi = x1;
+    const bool any = plane_columns(plane, sample_x, y_fixed, x0, x1);
+    for (int32_t px = lo; px <= hi; ++px) {
+      const bool passes = edge_value(plane, int64_t(px) * kFixedOne + sample_x, y_fixed) > 0;
+      ASSERT_EQ(passes, any && px >= x0 && px <= x1) << "case " << n << " column " << px;
+    }
+  }
 }
 
 TEST(FastBenchStats, QuartilesAndExtremes) {

@@ -10,6 +10,7 @@
 #include "cpu_raster/exact/depth_plane.hpp"
 #include "cpu_raster/exact/pipeline_cull.hpp"
 #include "cpu_raster/exact/triangle_setup.hpp"
+#include "cpu_raster/fast/exact_rows.hpp"
 #include "cpu_raster/fast/small_block_input.hpp"
 #include "cpu_raster/fast/tile_depth_bounds.hpp"
 #include "cpu_raster/fast/tile_edges.hpp"
@@ -306,7 +307,8 @@ size_t BandWorker::first_visible(const PixelRect& tile, const DrawRaster& raster
 }
 
 // Draws the fast path does not handle: the exact front end, each primitive's visit rectangle cut
-// to this worker's tile rows, and the exact rasterizer on the same targets.
+// to this worker's tile rows, and the exact rasterizer's evaluation on the same targets (each row's
+// columns cut to the primitive's, exact_rows.hpp).
 void BandWorker::walk_exact(uint32_t d) {
   const DepthTestState& depth = frame_.draws[d].raster.depth;
   run_front_end(frame_.exact, d, [&](const PrimitiveOutcome& outcome) {
@@ -318,7 +320,7 @@ void BandWorker::walk_exact(uint32_t d) {
       band.visit.y0 = std::max(visit.y0, ty * kTileSize);
       band.visit.y1 = std::min(visit.y1, ty * kTileSize + kTileSize - 1);
       prepare_tiles(band.visit, depth.write);
-      rasterize_primitive(band, depth, frame_.targets);
+      rasterize_primitive_rows(band, depth, frame_.targets);
     }
   });
 }

@@ -2,7 +2,6 @@
 // phase before the walks that measures which tile rows each block may reach.
 #include <algorithm>
 
-#include "cpu_raster/exact/assemble.hpp"
 #include "cpu_raster/fast/band_worker.hpp"
 #include "cpu_raster/fast/block_rows.hpp"
 #include "cpu_raster/fast/small_block_input.hpp"
@@ -11,9 +10,22 @@
 namespace rastercmp::cpu::fast {
 namespace {
 
+// Whether every lane of the block has all three corners outside one clip plane (the set-up drops
+// such lanes: ClipFate::Outside); its indices already checked.
+bool block_outside(const SmallBlockInput& in) {
+  for (uint32_t l = 0; l < in.count; ++l) {
+    const size_t at = size_t(l) * in.stride;
+    if ((in.vertices[in.corners[0][at]].flags & in.vertices[in.corners[1][at]].flags &
+         in.vertices[in.corners[2][at]].flags & kVertexClipBits) == 0)
+      return false;
+  }
+  return true;
+}
+
 template <Topology T, bool Indexed>
 bool measure_rows(FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end) {
   bool bad = false;
+  const uint32_t first = begin;
   const uint32_t positions = uint32_t(frame.scene->draws[d].positions_clip.size());
   if (positions == 0) return begin == end;                 // every corner would be out of range
   if constexpr (T == Topology::TriangleList && Indexed) {  // the full blocks of a mesh
@@ -40,7 +52,16 @@ bool measure_rows(FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end) {
     frame.draws[d].block_rows[b] =
         block_tile_rows(block.in, frame.draws[d].tile_rows, positions, frame.exact.region, bad);
   }
-  return !bad;
+  if (bad) return false;
+  // A block with a clipped corner may reach any row, unless no lane has a corner inside the view
+  // volume's planes (a camera's scene: most of the mesh behind, beside or past it): no worker sets
+  // those up.
+  for (uint32_t b = first; b < end; ++b) {
+    if (frame.draws[d].block_rows[b] != kBlockAnyRow) continue;
+    fill_block_corners<T, Indexed>(frame.scene->draws[d].indices.data(), count, b, block);
+    if (block_outside(block.in)) frame.draws[d].block_rows[b] = kNoRow;
+  }
+  return true;
 }
 
 }  // namespace
@@ -53,8 +74,8 @@ void BandWorker::draw_block(uint32_t d, const SmallBlock& block) {
   for (uint32_t l = 0; l < block.in.count; ++l) {
     const uint32_t bit = 1u << l;
     if (out.scalar_mask & bit) {
-      const std::array<uint32_t, 3> v = assemble_primitive(frame_.scene->draws[d], block.first + l).position;
-      triangle(d, block.first + l, v[0], v[1], v[2]);
+      const size_t at = size_t(l) * block.in.stride;  // the block's corners: assemble_primitive's positions
+      triangle(d, block.first + l, block.in.corners[0][at], block.in.corners[1][at], block.in.corners[2][at]);
     } else if ((out.grid_mask | out.job_mask) & bit)
       draw_small(out, int(l), encode_owner(d, block.first + l), raster);
   }

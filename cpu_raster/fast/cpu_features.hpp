@@ -8,10 +8,13 @@
 
 namespace rastercmp::cpu::fast {
 
-// The host executes AVX2 and FMA3 instructions (__builtin_cpu_supports).
+// The host executes AVX2 and FMA3 instructions (__builtin_cpu_supports), and
+// RASTERCMP_FAST_KERNELS is not "scalar".
 bool host_has_avx2_fma();
 
-// The host also executes AVX-512 F, VL, BW and DQ instructions.
+// The host also executes AVX-512 F, VL, BW and DQ instructions, and RASTERCMP_FAST_KERNELS is
+// neither "scalar" nor "avx2" (the variable lets a host whose 512-bit operations cost more than
+// two 256-bit ones, or lower the clock, run the AVX2 kernels: docs/performance.md).
 bool host_has_avx512();
 
 }  // namespace rastercmp::cpu::fast

@@ -297,7 +297,10 @@ RASTERCMP_AVX512 void setup_small_pair_avx512(const SmallBlockInput& in0, const 
   const Lanes grid =
       live & _mm512_cmplt_epi32_mask(w, splat(kGridSide)) & _mm512_cmplt_epi32_mask(h, splat(kGridSide)) & used;
   const Lanes job = Lanes(live & ~grid & one_tile & used);  // grid lanes may span tiles
-  const Lanes scalar = Lanes((~simple | (live & ~grid & ~job)) & used);
+  // The scalar set-up's first verdicts for the lanes it would drop at once (small_setup_simd.inl).
+  const Lanes outside = _mm512_test_epi32_mask(_mm512_ternarylogic_epi32(p0.flags, p1.flags, p2.flags, 0x80),
+                                               splat(int32_t(kVertexClipBits)));
+  const Lanes scalar = Lanes(((special & ~outside) | (~special & ~small & ~empty) | (live & ~grid & ~job)) & used);
   for (int b = 0; b < 2; ++b) {
     pair.out[b]->grid_mask = half_bits(grid, b);
     pair.out[b]->job_mask = half_bits(job, b);
@@ -359,9 +362,11 @@ RASTERCMP_AVX512 void setup_small_pair_avx512(const SmallBlockInput& in0, const 
   store_halves(out0.a0, out1.a0, plane.a0);
   store_halves(out0.dzdx, out1.dzdx, plane.dzdx);
   store_halves(out0.dzdy, out1.dzdy, plane.dzdy);
-  if (job) {  // one span per row: 8 lanes from origin_x, kept inside the tile (rect.x1 <= origin_x + 7)
+  if (job) {  // one or two spans per row from origin_x, kept inside the tile (small_setup_simd.inl)
+    const __m512i room =
+        _mm512_mask_blend_epi32(_mm512_cmpgt_epi32_mask(w, splat(7)), splat(kTileSize - 8), splat(kTileSize - 16));
     const __m512i origin_x =
-        _mm512_min_epi32(x0, _mm512_add_epi32(_mm512_and_si512(x0, splat(~(kTileSize - 1))), splat(kTileSize - 8)));
+        _mm512_min_epi32(x0, _mm512_add_epi32(_mm512_and_si512(x0, splat(~(kTileSize - 1))), room));
     store_halves(out0.origin_x, out1.origin_x, origin_x);
     for (int i = 0; i < 3; ++i) store_halves(out0.g_minus_1[i], out1.g_minus_1[i], edge_at(edges[i], origin_x, y0));
   }

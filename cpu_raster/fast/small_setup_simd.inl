@@ -306,7 +306,18 @@ RASTERCMP_SMALL_TARGET void RASTERCMP_SMALL_SETUP(const SmallBlockInput& in, Sma
   const __m256i job = _mm256_and_si256(_mm256_andnot_si256(grid, live), one_tile);  // grid lanes may span tiles
   out.grid_mask = lanes(grid) & used;
   out.job_mask = lanes(job) & used;
-  out.scalar_mask = (~lanes(simple) | (lanes(live) & ~out.grid_mask & ~out.job_mask)) & used;
+  out.scalar_mask = lanes(live) & ~out.grid_mask & ~out.job_mask & used;
+  if (const uint32_t other = ~lanes(simple) & used; other != 0) [[unlikely]] {
+    // The scalar set-up's first verdicts, taken here for the lanes it would drop at once: every
+    // corner outside one clip plane (ClipFate::Outside), or an unclipped lane whose rectangle
+    // misses the draw region (exact for every lane with its snap done, small or not).
+    const __m256i not_outside =
+        _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_and_si256(p0.flags, _mm256_and_si256(p1.flags, p2.flags)),
+                                            _mm256_set1_epi32(int32_t(kVertexClipBits))),
+                           zero);
+    const uint32_t special_lanes = ~lanes(_mm256_cmpeq_epi32(special, zero));
+    out.scalar_mask |= other & ((special_lanes & lanes(not_outside)) | (~special_lanes & ~lanes(empty)));
+  }
   if ((out.grid_mask | out.job_mask) == 0) return;
   const __m256i swap = _mm256_cmpgt_epi32(zero, area);  // rotate_fixed_position_12: (v0, v2, v1)
   swap_where(swap, p1.x_fixed, p2.x_fixed);
@@ -345,10 +356,12 @@ RASTERCMP_SMALL_TARGET void RASTERCMP_SMALL_SETUP(const SmallBlockInput& in, Sma
     });
   }
   if (out.job_mask) {
-    // One span per row: 8 lanes from origin_x, kept inside the tile (rect.x1 <= origin_x + 7).
-    const __m256i origin_x = _mm256_min_epi32(
-        x0,
-        _mm256_add_epi32(_mm256_and_si256(x0, _mm256_set1_epi32(~(kTileSize - 1))), _mm256_set1_epi32(kTileSize - 8)));
+    // One or two 8-lane spans per row from origin_x (two when the rectangle is wider than 8 px),
+    // kept inside the tile (rect.x1 <= origin_x + 8 * spans - 1).
+    const __m256i room = _mm256_blendv_epi8(_mm256_set1_epi32(kTileSize - 8), _mm256_set1_epi32(kTileSize - 16),
+                                            _mm256_cmpgt_epi32(w, _mm256_set1_epi32(7)));
+    const __m256i origin_x =
+        _mm256_min_epi32(x0, _mm256_add_epi32(_mm256_and_si256(x0, _mm256_set1_epi32(~(kTileSize - 1))), room));
     _mm256_store_si256(reinterpret_cast<__m256i*>(out.origin_x), origin_x);
     _mm256_store_ps(out.a0, plane.a0);
     _mm256_store_ps(out.dzdx, plane.dzdx);

@@ -7,12 +7,13 @@
 //    pixel position per step); the depth test and the writes are then done triangle by triangle,
 //    in order, by scatter_grid_lane;
 //  - other small lanes (at most kSmallWidth x kSmallHeight, inside one tile): one kernel call with
-//    edge values relative to the triangle's own corner (the 256-scaled E of edge_plane.hpp);
+//    edge values relative to the triangle's own corner (the 256-scaled E of edge_plane.hpp), one
+//    or two 8-pixel spans per row;
 //  - the rest (larger, clipped, non-finite) goes back to the scalar set-up.
 //
 // 32-bit bound: a small lane's unclipped bounding box spans at most kSmallWidth x kSmallHeight
-// pixels, so |X_i - X_j| <= 256*(kSmallWidth + 1) < 2^12 and |Y_i - Y_j| <= 256*(kSmallHeight + 1)
-// <= 2^13; the doubled area is below 2^26 and every edge value formed within 8 columns and
+// pixels, so |X_i - X_j| <= 256*(kSmallWidth + 1) < 2^13 and |Y_i - Y_j| <= 256*(kSmallHeight + 1)
+// < 2^13; the doubled area is below 2^26 and every edge value formed within 24 columns and
 // kSmallHeight rows of the corner below 2^27.
 #pragma once
 
@@ -26,7 +27,7 @@
 
 namespace rastercmp::cpu::fast {
 
-inline constexpr int32_t kSmallWidth = 8;      // pixels: one 8-lane span per row
+inline constexpr int32_t kSmallWidth = 16;     // pixels: at most two 8-lane spans per row
 inline constexpr int32_t kSmallHeight = 16;    // rows
 inline constexpr int32_t kGridSide = 8;        // candidate pixels per side of a grid lane
 inline constexpr int32_t kSmallGridShift = 2;  // blocks whose grid lanes all fit in 4x4 pixels

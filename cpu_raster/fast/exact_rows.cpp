@@ -1,0 +1,70 @@
+#include "cpu_raster/fast/exact_rows.hpp"
+
+#include <algorithm>
+#include <optional>
+
+namespace rastercmp::cpu::fast {
+namespace {
+
+int64_t floor_div(int64_t a, int64_t d) {  // d > 0
+  const int64_t q = a / d;
+  return (a % d != 0 && a < 0) ? q - 1 : q;
+}
+
+}  // namespace
+
+bool plane_columns(const EdgePlane& plane, int64_t sample_x, int64_t y_fixed, int32_t& x0, int32_t& x1) {
+  const int64_t k = edge_value(plane, sample_x, y_fixed);  // E at column 0; E(px) = k - dcdx * kFixedOne * px
+  if (plane.dcdx == 0) return k > 0 && x0 <= x1;
+  if (plane.dcdx > 0) {  // k - d px > 0  <=>  px <= floor((k - 1) / d)
+    const int64_t last = floor_div(k - 1, plane.dcdx * kFixedOne);
+    x1 = int32_t(std::min<int64_t>(x1, last));
+  } else {  // k + d px > 0  <=>  px >= floor(-k / d) + 1
+    const int64_t first = floor_div(-k, -plane.dcdx * kFixedOne) + 1;
+    x0 = int32_t(std::max<int64_t>(x0, first));
+  }
+  return x0 <= x1;
+}
+
+// rasterize_primitive (rasterize.cpp) with the loops over a row's columns and its samples swapped
+// (every (column, sample) of a primitive writes its own values: the order between them does not
+// matter) and each sample's columns cut to plane_columns of every plane. Those columns are
+// covered, so with an active depth test only evaluate_sample's depth work is left to do.
+void rasterize_primitive_rows(const RasterPrimitive& p, const DepthTestState& depth, RenderTargets& targets) {
+  const std::optional<EdgeFrame32> frame32 = make_edge_frame32(p.planes, p.visit);  // as WorkSkips{} does
+  const EdgeFrame32* edges32 = frame32 ? &*frame32 : nullptr;
+  const bool read_stored = (depth.active || depth.compute_when_inactive) && !targets.depth_raw.empty();
+  const uint32_t tested_samples = p.per_sample ? targets.samples : 1;
+  for (int32_t py = p.visit.y0; py <= p.visit.y1; ++py) {
+    for (uint32_t s = 0; s < tested_samples; ++s) {
+      const SamplePoint origin = sample_point(0, py, s, p.per_sample);
+      int32_t x0 = p.visit.x0, x1 = p.visit.x1;
+      bool any = true;
+      for (uint32_t i = 0; i < p.planes.count && any; ++i)
+        any = plane_columns(p.planes.plane[i], origin.x_fixed, origin.y_fixed, x0, x1);
+      if (!any) continue;
+      for (int32_t px = x0; px <= x1; ++px) {
+        const size_t i = targets.index(px, py, s);
+        if (depth.active && !depth.compute_when_inactive) {  // covered (plane_columns): evaluate_sample's depth part
+          const SamplePoint point = sample_point(px, py, s, p.per_sample);
+          const SampleDepth z =
+              sample_depth(p.depth, p.offset.offset, point.x, point.y, depth.range, depth.format, depth.fma);
+          if (!depth_test_passes(depth.op, depth.format, z.raw, read_stored ? targets.depth_raw[i] : 0)) continue;
+          if (depth.write) targets.depth_raw[i] = z.raw;
+        } else {
+          const SampleVerdict verdict =
+              evaluate_sample(p, depth, px, py, s, read_stored ? targets.depth_raw[i] : 0, edges32);
+          if (!verdict.passes()) continue;
+          if (depth.write) targets.depth_raw[i] = verdict.depth.raw;
+        }
+        if (p.per_sample) {
+          targets.owner[i] = p.owner;
+        } else {
+          for (uint32_t t = 0; t < targets.samples; ++t) targets.owner[targets.index(px, py, t)] = p.owner;
+        }
+      }
+    }
+  }
+}
+
+}  // namespace rastercmp::cpu::fast

@@ -1,0 +1,21 @@
+// The exact rasterizer for the primitives the fast path leaves to it (lines, multisampled
+// frames): rasterize_primitive's per-sample evaluation (evaluate_sample), visiting in each row and
+// for each sample only the columns whose sample passes every plane, worked out from the planes
+// (each E = c + dcdy*Ys - dcdx*Xs is linear in the column, so the passing columns of one plane are
+// an interval, and so are those of all of them). The columns it leaves out are the ones the exact
+// rasterizer finds uncovered, so the bytes are the same; a line's box, mostly empty, is no longer
+// visited whole.
+#pragma once
+
+#include "cpu_raster/exact/rasterize.hpp"
+
+namespace rastercmp::cpu::fast {
+
+// Columns [x0, x1] narrowed to those whose sample point (px * kFixedOne + sample_x, y_fixed)
+// gives `plane` a value > 0; false when none is left.
+bool plane_columns(const EdgePlane& plane, int64_t sample_x, int64_t y_fixed, int32_t& x0, int32_t& x1);
+
+// Same writes as rasterize_primitive(p, depth, targets).
+void rasterize_primitive_rows(const RasterPrimitive& p, const DepthTestState& depth, RenderTargets& targets);
+
+}  // namespace rastercmp::cpu::fast
