@@ -36,7 +36,7 @@ std::string default_out(const std::string& scene_path) {
 int run_reduce(const ReduceArgs& args) {
   const CompareProfile profile = args.options.profile == "spec" ? CompareProfile::Spec : CompareProfile::Lavapipe;
   make_cpu_options(args.options);
-  const Scene scene = load_scene_file(args.scene_path);
+  const Scene scene = load_checked_scene(args.scene_path);
   const std::string out = args.out_file.empty() ? default_out(args.scene_path) : args.out_file;
   const auto parent = std::filesystem::path(out).parent_path();
   ensure_output_dir(parent.empty() ? "." : parent.string());

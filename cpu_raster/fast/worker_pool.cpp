@@ -39,7 +39,7 @@ WorkerPool::WorkerPool(uint32_t workers) {
     stop_workers();
     throw EnvironmentError("cannot start " + std::to_string(workers - 1) + " CPU worker threads (started " +
                            std::to_string(started) + ": " + e.what() +
-                           "); use a smaller --threads or raise the process limit (ulimit -u)");
+                           "); use a smaller --threads or raise the process or memory limit (ulimit -u, ulimit -v)");
   }
 }
 
