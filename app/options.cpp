@@ -28,6 +28,10 @@ CpuOptions make_cpu_options(const RenderOptions& o, const Scene* scene) {
   cpu.threads = o.threads;
   if (scene) cpu.methods = scene->methods;
   for (const std::string& m : o.methods) {
+    constexpr size_t kMaxShown = 64;  // no known STAGE=NAME is this long; a longer one is not echoed whole
+    if (m.size() > kMaxShown)
+      throw UsageError("--method " + m.substr(0, kMaxShown) + "... (" + std::to_string(m.size()) +
+                       " bytes): expected STAGE=NAME, e.g. --method fill=scanline");
     const auto eq = m.find('=');
     if (eq == std::string::npos || eq == 0 || eq + 1 == m.size())
       throw UsageError("--method " + m + ": expected STAGE=NAME, e.g. --method fill=scanline");

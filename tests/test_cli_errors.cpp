@@ -183,6 +183,12 @@ TEST(CliErrors, AnUnknownMethodOnTheCommandLineIsRefusedWithTheAcceptedNames) {
   expect_refused({"compare", kGoodScene.string(), "--method", "fill=nosuch", "--json", (tmp / "c.json").string()}, fill,
                  tmp);
   expect_refused({"conformance", "--out", out, "--method", "fill=nosuch"}, fill, tmp);
+  // A long value is cut in the message, with its size.
+  const RunResult r =
+      run_cli({"render", kGoodScene.string(), "--out", out, "--method", "fill=" + std::string(100000, 'x')});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_LT(r.err.size(), 200u);
+  EXPECT_NE(r.err.find("xxx... (100005 bytes): expected STAGE=NAME"), std::string::npos) << r.err.substr(0, 200);
 }
 
 TEST(CliErrors, AnUnknownMethodInASceneIsRefusedWithFileAndJsonPath) {
