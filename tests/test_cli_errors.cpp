@@ -270,8 +270,15 @@ TEST(CliErrors, ScenesOverTheSizeLimitAreRefused) {
 TEST(CliErrors, OutputFilesAreCheckedBeforeAnyWork) {
   const TempDir tmp;
   fs::create_directories(tmp / "existing");
-  expect_refused({"compare", kGoodScene.string(), "--json", (tmp / "existing").string()},
-                 {(tmp / "existing").string(), "expected a file to write"}, tmp);
+  const std::vector<std::string> needles = {(tmp / "existing").string(), "expected a file to write"};
+  expect_refused({"compare", kGoodScene.string(), "--json", (tmp / "existing").string()}, needles, tmp);
+  expect_refused({"bench", "--scene", "perspective", "--json", (tmp / "existing").string()}, needles, tmp);
+  expect_refused({"reduce", kGoodScene.string(), "--out", (tmp / "existing").string()}, needles, tmp);
+  // A --json file in a folder not yet made: refused for another reason (here no Vulkan) and the
+  // folder made for it is removed again.
+  const std::vector<std::string> args = {"compare", kGoodScene.string(), "--json", (tmp / "new" / "c.json").string()};
+  EXPECT_EQ(run_cli(args, kNoVulkanLoader).exit_code, 3);
+  EXPECT_FALSE(fs::exists(tmp / "new"));
 }
 
 TEST(CliErrors, VersionPrintsTheProjectVersion) {
