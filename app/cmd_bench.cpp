@@ -24,6 +24,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/commands.hpp"
+#include "app/options.hpp"
 #include "bench/bench_scenes.hpp"
 #include "bench/bench_stats.hpp"
 #include "compare/case_select.hpp"
@@ -389,6 +390,8 @@ int run_scaling(const BenchArgs& args) {
 int run_bench(const BenchArgs& args) {
   if (args.scaling) return run_scaling(args);
   setenv("LP_NUM_THREADS", "2", 0);  // before the device exists; an explicit setting wins
+  std::optional<OutputFolder> json_folder;  // --json checked before the minutes of timing
+  if (!args.json_path.empty()) json_folder.emplace(output_file_folder(args.json_path));
   std::vector<BenchCase> cases = make_cases(args);
   VulkanRenderer vulkan(VkOptions{});
   const bool fma = vulkan.device().is_lavapipe ? vulkan.device().fma : lavapipe_fuses_on_this_host();
@@ -402,6 +405,7 @@ int run_bench(const BenchArgs& args) {
   load.stop();
   print_table(reports, args, load);
   if (!args.json_path.empty()) write_json(args.json_path, reports, args, load);
+  if (json_folder) json_folder->keep();
   for (const CaseReport& r : reports)
     if (!r.fast_equals_exact || !r.fast_equals_lavapipe) return kExitMismatch;
   return kExitOk;

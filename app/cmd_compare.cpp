@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -52,11 +53,6 @@ void print_case(const CaseRecord& record) {
   }
 }
 
-void check_json_target(const std::string& file) {
-  const auto parent = std::filesystem::path(file).parent_path();
-  ensure_output_dir(parent.empty() ? "." : parent.string());
-}
-
 std::string compare_json(const RunInfo& info, const std::vector<CaseRecord>& records) {
   nlohmann::ordered_json j;
   j["profile"] = info.profile;
@@ -83,15 +79,16 @@ DeviceInfo device_of_capture(const std::string& dir) {
 
 int run_compare(const CompareArgs& args) {
   const CompareProfile profile = args.options.profile == "spec" ? CompareProfile::Spec : CompareProfile::Lavapipe;
-  make_cpu_options(args.options);  // a bad --method is a usage error before any work
+  make_cpu_options(args.options);                          // a bad --method is a usage error before any work
+  std::optional<OutputFolder> json_folder, report_folder;  // checked before any work
+  if (!args.json_file.empty()) json_folder.emplace(output_file_folder(args.json_file));
+  if (!args.report_dir.empty()) report_folder.emplace(args.report_dir);
   std::vector<SuiteCase> cases;
   for (const std::string& path : args.scene_paths) {
-    Scene scene = load_scene_file(path);
+    Scene scene = load_checked_scene(path);
     std::string name = scene.name;
     cases.push_back({std::move(name), path, std::move(scene)});
   }
-  if (!args.json_file.empty()) check_json_target(args.json_file);
-  if (!args.report_dir.empty()) ensure_output_dir(args.report_dir);
 
   const bool from_capture = !args.capture_dir.empty();
   if (from_capture && cases.size() != 1) throw UsageError("--capture: expected exactly one scene");
@@ -116,6 +113,8 @@ int run_compare(const CompareArgs& args) {
     records.push_back(std::move(record));
   }
   if (!args.json_file.empty()) write_text_file_atomic(args.json_file, compare_json(info, records));
+  if (json_folder) json_folder->keep();
+  if (report_folder) report_folder->keep();
   if (!args.report_dir.empty()) {
     write_report_html(args.report_dir, info, records);
     fmt::print("report: {}\n", (std::filesystem::path(args.report_dir) / "index.html").string());

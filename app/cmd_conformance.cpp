@@ -62,6 +62,7 @@ int run_conformance_command(ConformanceArgs& args) {
   if (!args.shard.empty()) o.shard = parse_shard(args.shard);
 
   const ConformancePlan plan = plan_conformance(o);
+  for (const SuiteCase& c : plan.cases) check_scene_methods(c.scene, c.path);  // a bad "methods" is exit 2
   fmt::print("conformance: {} case(s) of {} in the suite (shard {}/{}) → {}\n", plan.cases.size(), plan.suite_size,
              plan.shard.index, plan.shard.count, o.out_dir);
   std::fflush(stdout);

@@ -48,7 +48,7 @@ int run_explain(const ExplainArgs& args) {
   const std::string_view pixel(args.pixel);
   const uint32_t x = parse_coordinate(pixel.substr(0, comma), args.pixel);
   const uint32_t y = parse_coordinate(pixel.substr(comma + 1), args.pixel);
-  const Scene scene = load_scene_file(args.scene_path);
+  const Scene scene = load_checked_scene(args.scene_path);
   check_sample_in_scene(scene, x, y, args.sample);
 
   const CompareProfile profile = args.options.profile == "spec" ? CompareProfile::Spec : CompareProfile::Lavapipe;

@@ -36,10 +36,9 @@ std::string default_out(const std::string& scene_path) {
 int run_reduce(const ReduceArgs& args) {
   const CompareProfile profile = args.options.profile == "spec" ? CompareProfile::Spec : CompareProfile::Lavapipe;
   make_cpu_options(args.options);
-  const Scene scene = load_scene_file(args.scene_path);
+  const Scene scene = load_checked_scene(args.scene_path);
   const std::string out = args.out_file.empty() ? default_out(args.scene_path) : args.out_file;
-  const auto parent = std::filesystem::path(out).parent_path();
-  ensure_output_dir(parent.empty() ? "." : parent.string());
+  OutputFolder out_folder(output_file_folder(out));  // a folder in its place or an unwritable one: exit 2 now
   CaseRunner runner(
       profile, [&](const Scene& s) { return make_cpu_options(args.options, &s); }, make_vk_options(args.options));
   const std::string kind = soak::failure_kind(soak::judge(runner, scene));
@@ -52,6 +51,7 @@ int run_reduce(const ReduceArgs& args) {
   reduced.description = fmt::format("{}{}reduced by rastercmp reduce ({} failure)", scene.description,
                                     scene.description.empty() ? "" : "; ", kind);
   soak::write_scene_file(out, reduced);
+  out_folder.keep();
   fmt::print("{}: {} failure; {} draws, {} primitives -> {} draws, {} primitives in {} runs{}\n", args.scene_path, kind,
              stats.draws_before, stats.primitives_before, stats.draws_after, stats.primitives_after, stats.runs,
              stats.hit_limit ? " (run limit reached)" : "");

@@ -23,9 +23,9 @@ struct RenderArgs {
 };
 
 int run_render(const RenderArgs& args) {
-  const Scene scene = load_scene_file(args.scene_path);
+  const Scene scene = load_checked_scene(args.scene_path);
   const CpuOptions cpu_options = make_cpu_options(args.options, &scene);  // a bad --method fails here
-  ensure_output_dir(args.out_dir);  // before any work: an unwritable folder is a usage error
+  OutputFolder out(args.out_dir);  // before any work: an unwritable folder is a usage error
   RenderResult result;
   if (args.backend == "cpu") {
     result = render_cpu(scene, cpu_options);
@@ -40,6 +40,7 @@ int run_render(const RenderArgs& args) {
     }
   }
   write_render_outputs(result, args.out_dir);
+  out.keep();
   fmt::print("{}: {}x{}, {} sample(s), depth {} → {} ({})\n", scene.name, result.width, result.height, result.samples,
              to_string(result.depth_format), args.out_dir, result.device);
   return kExitOk;

@@ -1,6 +1,7 @@
 // rastercmp: the command-line front end. Exit codes: README "Exit codes" (model/errors.hpp).
 #include <cstdio>
 #include <exception>
+#include <string>
 
 #include <fmt/core.h>
 #include <CLI/CLI.hpp>
@@ -12,6 +13,7 @@ int main(int argc, char** argv) {
   using namespace rastercmp;
   CLI::App app{"rastercmp: a CPU rasterizer and lavapipe, compared pixel by pixel"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", std::string("rastercmp ") + RASTERCMP_VERSION);
   int exit_code = kExitOk;
   app::add_devices_command(app, exit_code);
   app::add_methods_command(app, exit_code);

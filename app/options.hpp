@@ -27,4 +27,31 @@ void add_render_options(CLI::App& cmd, RenderOptions& options);
 CpuOptions make_cpu_options(const RenderOptions& options, const Scene* scene = nullptr);
 VkOptions make_vk_options(const RenderOptions& options);
 
+// Throws InputError (the file, $.methods.STAGE, the accepted names) for a scene "methods" entry
+// the CPU renderer does not know.
+void check_scene_methods(const Scene& scene, const std::string& path);
+
+// An output folder made (with ensure_output_dir) before any work, so that an unwritable one is
+// exit 2 at once; if the command then fails, the destructor removes the folders it created, as
+// long as they are still empty. keep() once the outputs are written.
+class OutputFolder {
+ public:
+  explicit OutputFolder(const std::string& dir);
+  ~OutputFolder();
+  OutputFolder(const OutputFolder&) = delete;
+  OutputFolder& operator=(const OutputFolder&) = delete;
+  void keep() { created_.clear(); }
+
+ private:
+  void remove_empty_created();
+  std::vector<std::string> created_;  // deepest first
+};
+
+// For --json FILE and the like, before any work: throws InputError when FILE exists and is not a
+// regular file (a folder, say); returns the folder it goes in ("." when none is named).
+std::string output_file_folder(const std::string& file);
+
+// load_scene_file and check_scene_methods: a scene file as the commands that render read it.
+Scene load_checked_scene(const std::string& path);
+
 }  // namespace rastercmp::app

@@ -164,9 +164,13 @@ std::vector<BenchScene> standard_bench_scenes() {
 }
 
 std::vector<Scene> load_scene_suite(const std::string& root) {
+  std::error_code ec;
+  if (!std::filesystem::is_directory(root, ec))
+    throw InputError(root, "", "expected a suite folder with scene files (*.json)");
   std::vector<std::string> paths;
-  for (const auto& entry : std::filesystem::recursive_directory_iterator(root))
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(root, ec))
     if (entry.is_regular_file() && entry.path().extension() == ".json") paths.push_back(entry.path().string());
+  if (ec) throw InputError(root, "", "expected a readable folder: " + ec.message());
   std::sort(paths.begin(), paths.end());
   std::vector<Scene> scenes;
   for (const std::string& path : paths) scenes.push_back(load_scene_file(path));

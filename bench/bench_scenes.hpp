@@ -36,7 +36,8 @@ std::vector<std::string> standard_bench_scene_names();
 // One of the standard scenes by name; throws UsageError naming the known ones.
 BenchScene standard_bench_scene(const std::string& name);
 
-// Every scenes/**/*.json under `root`, sorted by path (loader errors propagate).
+// Every scenes/**/*.json under `root`, sorted by path (loader errors propagate; a missing or
+// unreadable folder is an InputError).
 std::vector<Scene> load_scene_suite(const std::string& root);
 
 // Triangles the scene's draws form (its primitives, for Mtri/s).

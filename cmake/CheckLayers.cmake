@@ -1,4 +1,4 @@
-# cmake -DSOURCE_DIR=... [-DCPU_ONLY_TESTS=a;b] -P CheckLayers.cmake
+# cmake -DSOURCE_DIR=... [-DCPU_ONLY_TESTS=a;b] [-DNO_LOADER_BINARIES=c;d] -P CheckLayers.cmake
 # Fails (exit 1, naming the file and the include) when a layer includes what it must not:
 #   cpu_raster/exact/    model/ and itself only
 #   cpu_raster/methods/  model/ and itself only
@@ -7,7 +7,8 @@
 #   compare/             the renderers (cpu_raster/, vk_reference/) only from case_run.* (which
 #                        renders) and explain_text.* (which traces on the exact path); report.hpp
 #                        and run_outputs.{hpp,cpp} do not include each other
-# and, for each binary in CPU_ONLY_TESTS, that it does not link the Vulkan loader.
+# and, for each binary in CPU_ONLY_TESTS and NO_LOADER_BINARIES (the rastercmp executable, which
+# opens the loader at run time: vk_reference/vk_loader.hpp), that it has no NEEDED libvulkan.
 if(NOT SOURCE_DIR)
   message(FATAL_ERROR "CheckLayers.cmake: pass -DSOURCE_DIR=<source tree>")
 endif()
@@ -57,6 +58,15 @@ foreach(_bin ${CPU_ONLY_TESTS})
     set(_errors "${_errors}\n  readelf -d ${_bin} failed")
   elseif(_dyn MATCHES "libvulkan")
     set(_errors "${_errors}\n  ${_bin} links the Vulkan loader although it tests the CPU path alone")
+  endif()
+endforeach()
+
+foreach(_bin ${NO_LOADER_BINARIES})
+  execute_process(COMMAND readelf -d ${_bin} OUTPUT_VARIABLE _dyn RESULT_VARIABLE _rc)
+  if(NOT _rc EQUAL 0)
+    set(_errors "${_errors}\n  readelf -d ${_bin} failed")
+  elseif(_dyn MATCHES "NEEDED[^\n]*libvulkan")
+    set(_errors "${_errors}\n  ${_bin} links the Vulkan loader; it must open it at run time (vk_loader.hpp)")
   endif()
 endforeach()
 

@@ -58,7 +58,7 @@ std::string explain_sample_text(const Scene& scene, const CpuOptions& cpu_option
                                 uint32_t sample) {
   if (uses_classic_methods(cpu_options))  // the methods' own history: cpu_raster/classic/classic_explain.hpp
     return header_text(scene, profile, x, y, sample, true) + explain_classic_pixel(scene, cpu_options, x, y, sample) +
-           tail_text(expected, actual, profile, x, y, sample);
+           tail_text(expected, actual, cpu_method_label(cpu_options), profile, x, y, sample);
   const std::vector<FragmentRecord> history = explain_pixel(scene, cpu_options, x, y, sample);
   return header_text(scene, profile, x, y, sample) + format_explanation(history) +
          tail_text(expected, actual, cpu_method_label(cpu_options), profile, x, y, sample);

@@ -2,10 +2,12 @@
 // renders; each layer depends on the exact path only, never on this file or on each other.
 #include "cpu_raster/cpu_raster.hpp"
 
+#include "cpu_raster/classic/classic_methods.hpp"
 #include "cpu_raster/classic/render_classic.hpp"
 #include "cpu_raster/exact/render_exact.hpp"
 #include "cpu_raster/fast/render_fast.hpp"
 #include "cpu_raster/spec/spec_profile.hpp"
+#include "model/errors.hpp"
 
 namespace rastercmp {
 namespace {
@@ -30,6 +32,15 @@ RenderResult render_cpu(const Scene& scene, const CpuOptions& options) {
   if (uses_classic_methods(options)) return render_classic(scene, options);  // cpu_raster/classic/
   if (options.profile == CpuProfile::Spec) return render_spec(scene, options);
   return render_lavapipe_profile(scene, options);
+}
+
+std::string method_choice_problem(const MethodChoice& choice) {
+  try {
+    cpu::classic::parse_classic_methods({choice});  // the registry: throws naming the known names
+  } catch (const UsageError& e) {
+    return e.what();
+  }
+  return "";
 }
 
 }  // namespace rastercmp

@@ -263,20 +263,35 @@ std::vector<Draw> read_draws(const Node& root, const RasterState& defaults, cons
   return result;
 }
 
+// Reads at most kMaxSceneFileBytes + 1 bytes: a larger file, or an endless one (/dev/zero, a
+// pipe), is refused before parsing whatever its reported size.
 std::string read_file_text(const std::string& path) {
   std::error_code error;
   if (std::filesystem::is_directory(path, error)) {
     throw InputError(path, "$", "expected a scene file, found a directory");
   }
+  const auto too_large = [&path] {
+    return InputError(path, "$",
+                      fmt::format("expected a scene file of at most {} MiB, found more", kMaxSceneFileBytes >> 20));
+  };
+  if (std::filesystem::is_regular_file(path, error) && std::filesystem::file_size(path, error) > kMaxSceneFileBytes)
+    throw too_large();  // a regular file's size is believed when it is too large; any file is read with the cap
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, "$", fmt::format("expected a readable scene file, found: {}", std::strerror(errno)));
-  std::ostringstream text;
-  text << in.rdbuf();
+  std::string text;
+  constexpr size_t kChunk = size_t(1) << 20;
+  while (in && text.size() <= kMaxSceneFileBytes) {
+    const size_t old_size = text.size();
+    text.resize(old_size + kChunk);
+    in.read(text.data() + old_size, std::streamsize(kChunk));
+    text.resize(old_size + size_t(in.gcount()));
+  }
   if (in.bad()) {
     throw InputError(path, "$",
                      fmt::format("expected a readable scene file, found a read error: {}", std::strerror(errno)));
   }
-  return std::move(text).str();
+  if (text.size() > kMaxSceneFileBytes) throw too_large();
+  return text;
 }
 
 }  // namespace

@@ -22,11 +22,13 @@ bool is_identifier(std::string_view key) {
   return true;
 }
 
+// A key or string for a message: quoted, and past kMaxShownStringLength bytes cut, with its size
+// (a megabyte key is not echoed whole).
 std::string shown_string(std::string_view text) {
   if (text.size() <= kMaxShownStringLength) return Json(std::string(text)).dump();
   size_t cut = kMaxShownStringLength;
   while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0) == 0x80) --cut;  // keep UTF-8 whole
-  return Json(std::string(text.substr(0, cut))).dump() + "...";
+  return Json(std::string(text.substr(0, cut))).dump() + fmt::format("... ({} bytes)", text.size());
 }
 
 std::string join_keys(std::initializer_list<std::string_view> keys) {
@@ -56,7 +58,8 @@ std::string describe(const Json& value) {
 }
 
 std::string key_path(const std::string& parent, std::string_view key) {
-  return is_identifier(key) ? parent + "." + std::string(key) : parent + "[" + shown_string(key) + "]";
+  if (is_identifier(key) && key.size() <= kMaxShownStringLength) return parent + "." + std::string(key);
+  return parent + "[" + shown_string(key) + "]";
 }
 
 std::string index_path(const std::string& parent, size_t index) { return fmt::format("{}[{}]", parent, index); }
@@ -101,8 +104,11 @@ bool Node::as_bool() const {
 std::string Node::as_line(std::string_view what) const {
   if (!json().is_string()) fail(what);
   const std::string& text = json().get_ref<const std::string&>();
-  for (const char c : text) {
-    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7F) fail(fmt::format("{} without control characters", what));
+  for (size_t i = 0; i < text.size(); ++i) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    // C0 and DEL, and C1 (U+0080..U+009F, in UTF-8 0xC2 0x80..0x9F; the text is valid UTF-8).
+    const bool c1 = c == 0xC2 && i + 1 < text.size() && static_cast<unsigned char>(text[i + 1]) <= 0x9F;
+    if (c < 0x20 || c == 0x7F || c1) fail(fmt::format("{} without control characters", what));
   }
   return text;
 }

@@ -2,6 +2,7 @@
 // an output folder that cannot be written is exit 2 before any work, a bad or missing option is
 // exit 2 and writes no file, and without a Vulkan driver the Vulkan commands exit 3 saying what to install.
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 
 #include <string>
 #include <vector>
@@ -106,6 +107,7 @@ TEST(CliErrors, BadOrMissingOptionsExitTwoAndWriteNothing) {
       {"conformance", "--out", out, "--shard", "3/2"},                    // shard index beyond the count
       {"conformance", "--out", out, "--suite", (tmp / "none").string()},  // no such suite
       {"merge"},                                                          // nothing to merge
+      {"bench", "--scene", "suite", "--suite", (tmp / "none").string()},  // no such suite (was exit 4)
   };
   for (const std::vector<std::string>& args : command_lines) {
     const RunResult r = run_cli(args, kNoVulkanDriver);
@@ -151,8 +153,8 @@ TEST(CliErrors, MethodsAreListedAndAMethodTheSceneDoesNotSuitExitsTwo) {
 // --- no Vulkan driver -----------------------------------------------------------------------
 
 // Exit 3 and one line that says which Debian packages to install.
-void expect_no_vulkan(const std::vector<std::string>& args) {
-  const RunResult r = run_cli(args, kNoVulkanDriver);
+void expect_no_vulkan(const std::vector<std::string>& args, const EnvEdits& env = kNoVulkanDriver) {
+  const RunResult r = run_cli(args, env);
   const std::string what = describe(args, r);
   EXPECT_EQ(r.signal, 0) << what;
   EXPECT_EQ(r.exit_code, 3) << what;
@@ -181,6 +183,175 @@ TEST(CliErrors, WithoutAVulkanDriverTheCpuRendererStillWorks) {
   ASSERT_EQ(r.exit_code, 0) << describe(args, r);
   EXPECT_TRUE(fs::is_regular_file(tmp / "cpu" / "owner.tif"));
   EXPECT_TRUE(fs::is_regular_file(tmp / "cpu" / "render.json"));
+}
+
+// --- issue #22: bad input that used to get through -------------------------------------------
+
+// Exit 2, nothing on stdout, one error line holding every one of `needles`, no file under `tmp`
+// written and no folder left behind. Run without the Vulkan loader: exit 2 (not 3) shows the
+// input is refused before any Vulkan work.
+void expect_refused(const std::vector<std::string>& args, const std::vector<std::string>& needles, const TempDir& tmp) {
+  const TreeSnapshot before = snapshot_tree(tmp.path());
+  const RunResult r = run_cli(args, kNoVulkanLoader);
+  const std::string what = describe(args, r);
+  EXPECT_EQ(r.signal, 0) << what;
+  EXPECT_EQ(r.exit_code, 2) << what;
+  EXPECT_EQ(r.out, "") << what;
+  const std::vector<std::string> err = lines_of(r.err);
+  ASSERT_EQ(err.size(), 1u) << what;
+  for (const std::string& needle : needles) EXPECT_NE(err[0].find(needle), std::string::npos) << needle << "\n" << what;
+  EXPECT_EQ(snapshot_tree(tmp.path()), before) << "something was written or left behind\n" << what;
+}
+
+TEST(CliErrors, AnUnknownMethodOnTheCommandLineIsRefusedWithTheAcceptedNames) {
+  const TempDir tmp;
+  const std::string out = (tmp / "out").string();
+  const std::vector<std::string> fill = {"--method fill=nosuch",
+                                         "known: exact, scanline, even_odd, winding, float_edge, flood"};
+  const std::vector<std::string> stage = {"--method nosuch=x", "known stages: clip, fill"};
+  for (const char* backend : {"cpu", "vulkan"}) {
+    expect_refused({"render", kGoodScene.string(), "--backend", backend, "--out", out, "--method", "fill=nosuch"}, fill,
+                   tmp);
+  }
+  expect_refused({"render", kGoodScene.string(), "--out", out, "--method", "nosuch=x"}, stage, tmp);
+  expect_refused({"compare", kGoodScene.string(), "--method", "fill=nosuch", "--json", (tmp / "c.json").string()}, fill,
+                 tmp);
+  expect_refused({"conformance", "--out", out, "--method", "fill=nosuch"}, fill, tmp);
+  // A long value is cut in the message, with its size.
+  const RunResult r =
+      run_cli({"render", kGoodScene.string(), "--out", out, "--method", "fill=" + std::string(100000, 'x')});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_LT(r.err.size(), 200u);
+  EXPECT_NE(r.err.find("xxx... (100005 bytes): expected STAGE=NAME"), std::string::npos) << r.err.substr(0, 200);
+}
+
+TEST(CliErrors, AnUnknownMethodInASceneIsRefusedWithFileAndJsonPath) {
+  const TempDir tmp;
+  std::string text = read_file(kGoodScene);
+  const size_t brace = text.find('{');
+  ASSERT_NE(brace, std::string::npos);
+  text.insert(brace + 1, "\"methods\": {\"fill\": \"nosuch\"},");
+  const fs::path suite = tmp / "suite";
+  fs::create_directories(suite);
+  const fs::path scene = suite / "bad_method.json";
+  write_file(scene, text);
+  const std::vector<std::string> needles = {scene.string() + ": $.methods.fill: ",
+                                            "known: exact, scanline, even_odd, winding, float_edge, flood"};
+  const std::string out = (tmp / "out").string();
+  for (const char* backend : {"cpu", "vulkan"}) {
+    expect_refused({"render", scene.string(), "--backend", backend, "--out", out}, needles, tmp);
+  }
+  expect_refused({"compare", kGoodScene.string(), scene.string(), "--report", (tmp / "report").string()}, needles, tmp);
+  // conformance: its --out folder handling belongs to the runner; only the verdict is checked here.
+  const std::vector<std::string> args = {"conformance", "--suite", suite.string(), "--out", out};
+  const RunResult r = run_cli(args, kNoVulkanLoader);
+  EXPECT_EQ(r.exit_code, 2) << describe(args, r);
+  for (const std::string& needle : needles) EXPECT_NE(r.err.find(needle), std::string::npos) << describe(args, r);
+}
+
+// CLI11 refuses it while parsing (its message and a --help hint: two lines).
+TEST(CliErrors, ThreadsAreBounded) {
+  const TempDir tmp;
+  for (const char* threads : {"257", "400", "-1"}) {
+    const std::vector<std::string> args = {"render", kGoodScene.string(), "--out", (tmp / "out").string(), "--threads",
+                                           threads};
+    const RunResult r = run_cli(args, kNoVulkanLoader);
+    EXPECT_EQ(r.exit_code, 2) << describe(args, r);
+    EXPECT_NE(r.err.find(std::string("--threads: Value ") + threads + " not in range 0 to 256"), std::string::npos)
+        << describe(args, r);
+    EXPECT_FALSE(fs::exists(tmp / "out"));
+  }
+}
+
+// Threads the system refuses (here an address-space limit too small for 255 thread stacks, which
+// the child inherits) are exit 3 naming the count, not std::terminate (exit 134), and no output
+// is left. ASan reserves terabytes of shadow: no address-space limit under it.
+TEST(CliErrors, ThreadsTheSystemRefusesAreExitThree) {
+#ifdef RASTERCMP_SANITIZER_BUILD
+  GTEST_SKIP() << "an address-space limit cannot hold under ASan";
+#else
+  const TempDir tmp;
+  // 512x512 pixels: enough work that the fast path starts every thread asked for.
+  write_file(
+      tmp / "big.json",
+      R"({"width": 512, "height": 512, "draws": [{"positions": [[-0.5, -0.5, 0.5], [0.5, -0.5, 0.5], [0, 0.5, 0.5]]}]})");
+  const std::vector<std::string> args = {"render", (tmp / "big.json").string(), "--threads", "256",
+                                         "--out",  (tmp / "out").string()};
+  rlimit as{}, stack{};
+  ASSERT_EQ(getrlimit(RLIMIT_AS, &as), 0);
+  ASSERT_EQ(getrlimit(RLIMIT_STACK, &stack), 0);
+  rlimit small_as = as, small_stack = stack;
+  small_as.rlim_cur = rlim_t(1) << 30;     // 1 GiB: the executable starts, 255 stacks of 8 MiB do not fit
+  small_stack.rlim_cur = rlim_t(8) << 20;  // the thread stack size glibc takes from it
+  ASSERT_EQ(setrlimit(RLIMIT_STACK, &small_stack), 0);
+  ASSERT_EQ(setrlimit(RLIMIT_AS, &small_as), 0);
+  const RunResult r = run_cli(args, kNoVulkanLoader);
+  setrlimit(RLIMIT_AS, &as);
+  setrlimit(RLIMIT_STACK, &stack);
+  EXPECT_EQ(r.signal, 0) << describe(args, r);
+  EXPECT_EQ(r.exit_code, 3) << describe(args, r);
+  EXPECT_NE(r.err.find("cannot start 255 CPU worker threads"), std::string::npos) << describe(args, r);
+  EXPECT_FALSE(fs::exists(tmp / "out"));
+#endif
+}
+
+TEST(CliErrors, ScenesOverTheSizeLimitAreRefused) {
+  const TempDir tmp;
+  expect_refused({"render", "/dev/zero", "--out", (tmp / "out").string()},
+                 {"/dev/zero: $: expected a scene file of at most 64 MiB"}, tmp);
+}
+
+TEST(CliErrors, OutputFilesAreCheckedBeforeAnyWork) {
+  const TempDir tmp;
+  fs::create_directories(tmp / "existing");
+  const std::vector<std::string> needles = {(tmp / "existing").string(), "expected a file to write"};
+  expect_refused({"compare", kGoodScene.string(), "--json", (tmp / "existing").string()}, needles, tmp);
+  expect_refused({"bench", "--scene", "perspective", "--json", (tmp / "existing").string()}, needles, tmp);
+  expect_refused({"reduce", kGoodScene.string(), "--out", (tmp / "existing").string()}, needles, tmp);
+  // A --json file in a folder not yet made: refused for another reason (here no Vulkan) and the
+  // folder made for it is removed again.
+  const std::vector<std::string> args = {"compare", kGoodScene.string(), "--json", (tmp / "new" / "c.json").string()};
+  EXPECT_EQ(run_cli(args, kNoVulkanLoader).exit_code, 3);
+  EXPECT_FALSE(fs::exists(tmp / "new"));
+}
+
+TEST(CliErrors, VersionPrintsTheProjectVersion) {
+  const RunResult r = run_cli({"--version"});
+  EXPECT_EQ(r.exit_code, 0) << describe({"--version"}, r);
+  EXPECT_EQ(r.out, std::string("rastercmp ") + RASTERCMP_VERSION + "\n");
+}
+
+// --- no Vulkan loader at all ------------------------------------------------------------------
+
+// The executable opens libvulkan.so.1 at run time: without it the CPU path works and every Vulkan
+// command is exit 3 with the hint (not 127 from the dynamic linker), leaving no output behind.
+TEST(CliErrors, WithoutTheVulkanLoaderCpuWorksAndVulkanCommandsExitThree) {
+  const TempDir tmp;
+  const std::vector<std::string> cpu = {"render", kGoodScene.string(),   "--backend", "cpu",
+                                        "--out",  (tmp / "cpu").string()};
+  const RunResult r = run_cli(cpu, kNoVulkanLoader);
+  ASSERT_EQ(r.exit_code, 0) << describe(cpu, r);
+  EXPECT_TRUE(fs::is_regular_file(tmp / "cpu" / "owner.tif"));
+
+  const std::vector<std::vector<std::string>> vulkan = {
+      {"devices"},
+      {"render", kGoodScene.string(), "--backend", "vulkan", "--out", (tmp / "vk").string()},
+      {"compare", kGoodScene.string()},
+      {"compare", kGoodScene.string(), "--json", (tmp / "compare.json").string()},
+  };
+  for (const std::vector<std::string>& args : vulkan) {
+    const RunResult v = run_cli(args, kNoVulkanLoader);
+    expect_no_vulkan(args, kNoVulkanLoader);
+    EXPECT_NE(v.err.find("/nonexistent/libvulkan.so.1"), std::string::npos) << "the loader is not named\n"
+                                                                            << describe(args, v);
+  }
+  EXPECT_FALSE(fs::exists(tmp / "vk")) << "render left an output folder";
+  EXPECT_FALSE(fs::exists(tmp / "compare.json"));
+
+  const fs::path suite = tmp / "suite";
+  fs::create_directories(suite);
+  fs::copy_file(kGoodScene, suite / "shared_edge.json");
+  expect_no_vulkan({"conformance", "--suite", suite.string(), "--out", (tmp / "conf").string()}, kNoVulkanLoader);
 }
 
 }  // namespace

@@ -38,6 +38,10 @@ using EnvEdits = std::vector<std::pair<std::string, std::string>>;
 inline const EnvEdits kNoVulkanDriver = {{"VK_ICD_FILENAMES", "/nonexistent/rastercmp_no_icd.json"},
                                          {"VK_DRIVER_FILES", "/nonexistent/rastercmp_no_icd.json"}};
 
+// Naming a loader library that does not exist (RASTERCMP_VULKAN_LOADER, vk_reference/vk_loader.hpp)
+// is a machine without the Vulkan loader: libvulkan.so.1 is opened at run time, never linked.
+inline const EnvEdits kNoVulkanLoader = {{"RASTERCMP_VULKAN_LOADER", "/nonexistent/libvulkan.so.1"}};
+
 inline std::string read_file(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
   std::ostringstream text;

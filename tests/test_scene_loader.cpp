@@ -2,6 +2,7 @@
 // tests/data/scenes/good/, and the catalogue of bad files in tests/data/bad_scenes/ whose
 // expected JSON path and message are listed in tests/data/bad_scenes/expected.tsv.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <bit>
@@ -400,6 +401,42 @@ TEST(SceneLoader, UnreadableFilesAreInputErrors) {
   } catch (const InputError& error) {
     EXPECT_EQ(error.expected(), "expected a scene file, found a directory");
   }
+}
+
+// Scene files are read with a cap (model/scene_io.hpp kMaxSceneFileBytes, docs/scene-format.md):
+// a file one byte over it (a sparse file), or one that never ends, is refused before parsing.
+TEST(SceneLoader, FilesAboveTheSizeLimitAreRefusedBeforeParsing) {
+  const fs::path dir = fs::temp_directory_path() / ("rastercmp_size_" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  const auto sparse_file = [&](const std::string& name, size_t size) {
+    std::ofstream(dir / name, std::ios::binary).close();
+    fs::resize_file(dir / name, size);
+    return (dir / name).string();
+  };
+  const std::string over_limit = sparse_file("over_limit.json", kMaxSceneFileBytes + 1);
+  for (const std::string& path : {over_limit, std::string("/dev/zero")}) {
+    try {
+      load_scene_file(path);
+      ADD_FAILURE() << path << " loaded";
+    } catch (const InputError& error) {
+      EXPECT_EQ(error.file(), path);
+      EXPECT_EQ(error.json_path(), "$");
+      EXPECT_EQ(error.expected(), "expected a scene file of at most 64 MiB, found more");
+    }
+  }
+  fs::remove_all(dir);
+}
+
+// A long key or string is cut in messages, with its size: a megabyte key is not echoed whole.
+TEST(SceneLoader, LongKeysAndStringsAreCutInMessages) {
+  const std::string key(1 << 20, 'k');
+  const std::string unknown = error_of("{\"" + key + "\": 1, \"draws\": []}");
+  EXPECT_LT(unknown.size(), 400u) << unknown.substr(0, 400);
+  EXPECT_NE(unknown.find("... (1048576 bytes)"), std::string::npos) << unknown.substr(0, 400);
+  EXPECT_NE(unknown.find("inline.json: $[\"kkkk"), std::string::npos) << unknown.substr(0, 400);
+  const std::string value = error_of("{\"name\": \"" + std::string(100000, 'A') + "\", \"draws\": []}");
+  EXPECT_LT(value.size(), 400u) << value.substr(0, 400);
+  EXPECT_NE(value.find("... (100000 bytes)"), std::string::npos) << value.substr(0, 400);
 }
 
 TEST(SceneLoader, SyntaxErrorsGiveLineColumnAndByteOffset) {

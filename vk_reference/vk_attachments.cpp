@@ -6,6 +6,7 @@
 
 #include "model/errors.hpp"
 #include "vk_reference/vk_check.hpp"
+#include "vk_reference/vk_loader.hpp"
 #include "vk_reference/vk_translate.hpp"
 
 namespace rastercmp::vk {
@@ -37,7 +38,7 @@ bool multisampled_depth_readable(const Context& context, const AttachmentConfig&
                                  uint32_t height) {
   if (config.samples == 1 || config.depth_format == DepthFormat::None) return false;
   VkFormatProperties features{};
-  vkGetPhysicalDeviceFormatProperties(context.physical_device(), to_vk_format(config.depth_format), &features);
+  api().vkGetPhysicalDeviceFormatProperties(context.physical_device(), to_vk_format(config.depth_format), &features);
   if (!(features.optimalTilingFeatures & VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT)) return false;
   try {
     require_image_support(context, depth_image_spec(config, width, height, /*sampled_depth=*/true), "sampled depth");
@@ -81,8 +82,8 @@ Attachments create_attachments(const Context& context, VkRenderPass render_pass,
   info.height = height;
   info.layers = 1;
   VkFramebuffer framebuffer = VK_NULL_HANDLE;
-  check(vkCreateFramebuffer(context.device(), &info, nullptr, &framebuffer), "vkCreateFramebuffer");
-  attachments.framebuffer = own(context.device(), vkDestroyFramebuffer, framebuffer);
+  check(api().vkCreateFramebuffer(context.device(), &info, nullptr, &framebuffer), "vkCreateFramebuffer");
+  attachments.framebuffer = own(context.device(), api().vkDestroyFramebuffer, framebuffer);
   return attachments;
 }
 

@@ -4,15 +4,16 @@
 
 #include "model/errors.hpp"
 #include "vk_reference/vk_check.hpp"
+#include "vk_reference/vk_loader.hpp"
 
 namespace rastercmp::vk {
 namespace {
 
 uint32_t graphics_compute_family(VkPhysicalDevice device, const std::string& name) {
   uint32_t count = 0;
-  vkGetPhysicalDeviceQueueFamilyProperties(device, &count, nullptr);
+  api().vkGetPhysicalDeviceQueueFamilyProperties(device, &count, nullptr);
   std::vector<VkQueueFamilyProperties> families(count);
-  vkGetPhysicalDeviceQueueFamilyProperties(device, &count, families.data());
+  api().vkGetPhysicalDeviceQueueFamilyProperties(device, &count, families.data());
   constexpr VkQueueFlags kNeeded = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
   for (uint32_t i = 0; i < count; ++i) {
     if ((families[i].queueFlags & kNeeded) == kNeeded) return i;
@@ -52,7 +53,7 @@ Context::Context(const VkOptions& options) : instance_(options.validate) {
   physical_device_ = devices[chosen];
   info_ = infos[chosen];
   enabled_ = features_to_enable(query_capabilities(physical_device_), info_.name);
-  vkGetPhysicalDeviceMemoryProperties(physical_device_, &memory_);
+  api().vkGetPhysicalDeviceMemoryProperties(physical_device_, &memory_);
   queue_family_ = graphics_compute_family(physical_device_, info_.name);
   create_device();
 }
@@ -94,16 +95,16 @@ void Context::create_device() {
   info.enabledExtensionCount = static_cast<uint32_t>(extensions.size());
   info.ppEnabledExtensionNames = extensions.data();
   VkDevice device = VK_NULL_HANDLE;
-  check(vkCreateDevice(physical_device_, &info, nullptr, &device), "vkCreateDevice");
-  device_ = Owned<VkDevice>(device, [](VkDevice h) { vkDestroyDevice(h, nullptr); });
-  vkGetDeviceQueue(device, queue_family_, 0, &queue_);
+  check(api().vkCreateDevice(physical_device_, &info, nullptr, &device), "vkCreateDevice");
+  device_ = Owned<VkDevice>(device, [](VkDevice h) { api().vkDestroyDevice(h, nullptr); });
+  api().vkGetDeviceQueue(device, queue_family_, 0, &queue_);
 
   VkCommandPoolCreateInfo pool_info{};
   pool_info.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO;
   pool_info.queueFamilyIndex = queue_family_;
   VkCommandPool pool = VK_NULL_HANDLE;
-  check(vkCreateCommandPool(device, &pool_info, nullptr, &pool), "vkCreateCommandPool");
-  command_pool_ = own(device, vkDestroyCommandPool, pool);
+  check(api().vkCreateCommandPool(device, &pool_info, nullptr, &pool), "vkCreateCommandPool");
+  command_pool_ = own(device, api().vkDestroyCommandPool, pool);
 }
 
 uint32_t Context::memory_type(uint32_t type_bits, VkMemoryPropertyFlags required) const {

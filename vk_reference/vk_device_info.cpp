@@ -10,6 +10,7 @@
 #include "model/errors.hpp"
 #include "model/host.hpp"
 #include "vk_reference/vk_check.hpp"
+#include "vk_reference/vk_loader.hpp"
 #include "vk_reference/vk_translate.hpp"
 
 namespace rastercmp::vk {
@@ -38,7 +39,7 @@ std::vector<DepthFormat> renderable_depth_formats(VkPhysicalDevice device) {
   std::vector<DepthFormat> formats;
   for (DepthFormat format : kDepthFormats) {
     VkFormatProperties properties{};
-    vkGetPhysicalDeviceFormatProperties(device, to_vk_format(format), &properties);
+    api().vkGetPhysicalDeviceFormatProperties(device, to_vk_format(format), &properties);
     if (properties.optimalTilingFeatures & VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT) {
       formats.push_back(format);
     }
@@ -66,9 +67,10 @@ bool contains_ignoring_case(const std::string& text, const std::string& part) {
 
 bool has_device_extension(VkPhysicalDevice device, const char* name) {
   uint32_t count = 0;
-  check(vkEnumerateDeviceExtensionProperties(device, nullptr, &count, nullptr), "vkEnumerateDeviceExtensionProperties");
+  check(api().vkEnumerateDeviceExtensionProperties(device, nullptr, &count, nullptr),
+        "vkEnumerateDeviceExtensionProperties");
   std::vector<VkExtensionProperties> extensions(count);
-  check(vkEnumerateDeviceExtensionProperties(device, nullptr, &count, extensions.data()),
+  check(api().vkEnumerateDeviceExtensionProperties(device, nullptr, &count, extensions.data()),
         "vkEnumerateDeviceExtensionProperties");
   return std::any_of(extensions.begin(), extensions.end(),
                      [name](const VkExtensionProperties& e) { return std::strcmp(e.extensionName, name) == 0; });
@@ -77,7 +79,7 @@ bool has_device_extension(VkPhysicalDevice device, const char* name) {
 DeviceCapabilities query_capabilities(VkPhysicalDevice device) {
   DeviceCapabilities caps;
   VkPhysicalDeviceProperties properties{};
-  vkGetPhysicalDeviceProperties(device, &properties);
+  api().vkGetPhysicalDeviceProperties(device, &properties);
   caps.api_version = properties.apiVersion;
   caps.limits = properties.limits;
   caps.line_rasterization_ext = has_device_extension(device, VK_EXT_LINE_RASTERIZATION_EXTENSION_NAME);
@@ -97,7 +99,7 @@ DeviceCapabilities query_capabilities(VkPhysicalDevice device) {
     depth_clip.pNext = features.pNext;
     features.pNext = &depth_clip;
   }
-  vkGetPhysicalDeviceFeatures2(device, &features);
+  api().vkGetPhysicalDeviceFeatures2(device, &features);
   caps.core = features.features;
   caps.rectangular_lines = line.rectangularLines;
   caps.bresenham_lines = line.bresenhamLines;
@@ -112,10 +114,10 @@ DeviceInfo describe_device(VkPhysicalDevice device, uint32_t index) {
   VkPhysicalDeviceProperties2 properties{};
   properties.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2;
   VkPhysicalDeviceProperties basic{};
-  vkGetPhysicalDeviceProperties(device, &basic);
+  api().vkGetPhysicalDeviceProperties(device, &basic);
   const bool has_driver = driver_properties_available(device, basic.apiVersion);
   if (has_driver) properties.pNext = &driver;
-  vkGetPhysicalDeviceProperties2(device, &properties);
+  api().vkGetPhysicalDeviceProperties2(device, &properties);
   const VkPhysicalDeviceProperties& p = properties.properties;
 
   DeviceInfo info;

@@ -11,6 +11,7 @@
 
 #include "model/errors.hpp"
 #include "vk_reference/vk_check.hpp"
+#include "vk_reference/vk_loader.hpp"
 #include "vk_reference/vk_translate.hpp"
 
 namespace rastercmp::vk {
@@ -82,19 +83,19 @@ Owned<VkCommandBuffer> allocate_commands(const Context& context) {
   info.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
   info.commandBufferCount = 1;
   VkCommandBuffer commands = VK_NULL_HANDLE;
-  check(vkAllocateCommandBuffers(context.device(), &info, &commands), "vkAllocateCommandBuffers");
+  check(api().vkAllocateCommandBuffers(context.device(), &info, &commands), "vkAllocateCommandBuffers");
   const VkDevice device = context.device();
   const VkCommandPool pool = context.command_pool();
   return Owned<VkCommandBuffer>(commands,
-                                [device, pool](VkCommandBuffer h) { vkFreeCommandBuffers(device, pool, 1, &h); });
+                                [device, pool](VkCommandBuffer h) { api().vkFreeCommandBuffers(device, pool, 1, &h); });
 }
 
 Owned<VkFence> create_fence(const Context& context) {
   VkFenceCreateInfo info{};
   info.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO;
   VkFence fence = VK_NULL_HANDLE;
-  check(vkCreateFence(context.device(), &info, nullptr, &fence), "vkCreateFence");
-  return own(context.device(), vkDestroyFence, fence);
+  check(api().vkCreateFence(context.device(), &info, nullptr, &fence), "vkCreateFence");
+  return own(context.device(), api().vkDestroyFence, fence);
 }
 
 // The viewport must be one Vulkan accepts (VkViewport valid usage): lavapipe does not reject an
@@ -164,24 +165,24 @@ Frame::Frame(const Context& context, PipelineCache& pipelines, const Gathers& ga
 
   VkCommandBufferBeginInfo begin{};
   begin.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
-  check(vkBeginCommandBuffer(commands_.get(), &begin), "vkBeginCommandBuffer");
+  check(api().vkBeginCommandBuffer(commands_.get(), &begin), "vkBeginCommandBuffer");
   record_frame(commands_.get(), scene, render_pass, pipelines.graphics_layout(), attachments_, geometry_, read_back_,
                gathers);
-  check(vkEndCommandBuffer(commands_.get()), "vkEndCommandBuffer");
+  check(api().vkEndCommandBuffer(commands_.get()), "vkEndCommandBuffer");
 }
 
 double Frame::submit_and_wait() {
   const VkDevice device = context_.device();
   const VkFence fence = fence_.get();
   const VkCommandBuffer commands = commands_.get();
-  check(vkResetFences(device, 1, &fence), "vkResetFences");
+  check(api().vkResetFences(device, 1, &fence), "vkResetFences");
   VkSubmitInfo submit{};
   submit.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
   submit.commandBufferCount = 1;
   submit.pCommandBuffers = &commands;
   const auto start = std::chrono::steady_clock::now();
-  check(vkQueueSubmit(context_.queue(), 1, &submit, fence), "vkQueueSubmit");
-  check(vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+  check(api().vkQueueSubmit(context_.queue(), 1, &submit, fence), "vkQueueSubmit");
+  check(api().vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
   const auto stop = std::chrono::steady_clock::now();
   submitted_ = true;
   return std::chrono::duration<double>(stop - start).count();

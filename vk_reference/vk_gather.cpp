@@ -11,6 +11,7 @@
 #include "shaders/gather_depth_ms_comp.h"
 #include "shaders/gather_owner_ms_comp.h"
 #include "vk_reference/vk_check.hpp"
+#include "vk_reference/vk_loader.hpp"
 #include "vk_reference/vk_pipeline.hpp"
 
 namespace rastercmp::vk {
@@ -48,8 +49,8 @@ Owned<VkSampler> create_sampler(VkDevice device) {
   info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
   info.maxLod = 0.0f;
   VkSampler sampler = VK_NULL_HANDLE;
-  check(vkCreateSampler(device, &info, nullptr, &sampler), "vkCreateSampler");
-  return own(device, vkDestroySampler, sampler);
+  check(api().vkCreateSampler(device, &info, nullptr, &sampler), "vkCreateSampler");
+  return own(device, api().vkDestroySampler, sampler);
 }
 
 Owned<VkDescriptorSetLayout> create_set_layout(VkDevice device) {
@@ -61,8 +62,8 @@ Owned<VkDescriptorSetLayout> create_set_layout(VkDevice device) {
   info.bindingCount = 2;
   info.pBindings = bindings;
   VkDescriptorSetLayout layout = VK_NULL_HANDLE;
-  check(vkCreateDescriptorSetLayout(device, &info, nullptr, &layout), "vkCreateDescriptorSetLayout");
-  return own(device, vkDestroyDescriptorSetLayout, layout);
+  check(api().vkCreateDescriptorSetLayout(device, &info, nullptr, &layout), "vkCreateDescriptorSetLayout");
+  return own(device, api().vkDestroyDescriptorSetLayout, layout);
 }
 
 Owned<VkPipelineLayout> create_layout(VkDevice device, VkDescriptorSetLayout set_layout) {
@@ -74,8 +75,8 @@ Owned<VkPipelineLayout> create_layout(VkDevice device, VkDescriptorSetLayout set
   info.pushConstantRangeCount = 1;
   info.pPushConstantRanges = &constants;
   VkPipelineLayout layout = VK_NULL_HANDLE;
-  check(vkCreatePipelineLayout(device, &info, nullptr, &layout), "vkCreatePipelineLayout");
-  return own(device, vkDestroyPipelineLayout, layout);
+  check(api().vkCreatePipelineLayout(device, &info, nullptr, &layout), "vkCreatePipelineLayout");
+  return own(device, api().vkDestroyPipelineLayout, layout);
 }
 
 Owned<VkPipeline> create_pipeline(VkDevice device, VkPipelineLayout layout, VkShaderModule shader) {
@@ -87,8 +88,9 @@ Owned<VkPipeline> create_pipeline(VkDevice device, VkPipelineLayout layout, VkSh
   info.stage.pName = "main";
   info.layout = layout;
   VkPipeline pipeline = VK_NULL_HANDLE;
-  check(vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline), "vkCreateComputePipelines");
-  return own(device, vkDestroyPipeline, pipeline);
+  check(api().vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline),
+        "vkCreateComputePipelines");
+  return own(device, api().vkDestroyPipeline, pipeline);
 }
 
 VkDescriptorSet allocate_set(VkDevice device, VkDescriptorPool pool, VkDescriptorSetLayout layout) {
@@ -98,7 +100,7 @@ VkDescriptorSet allocate_set(VkDevice device, VkDescriptorPool pool, VkDescripto
   alloc.descriptorSetCount = 1;
   alloc.pSetLayouts = &layout;
   VkDescriptorSet set = VK_NULL_HANDLE;
-  check(vkAllocateDescriptorSets(device, &alloc, &set), "vkAllocateDescriptorSets");
+  check(api().vkAllocateDescriptorSets(device, &alloc, &set), "vkAllocateDescriptorSets");
   return set;
 }
 
@@ -116,7 +118,7 @@ void write_set(VkDevice device, VkDescriptorSet set, const VkDescriptorImageInfo
   writes[1].dstBinding = 1;
   writes[1].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
   writes[1].pBufferInfo = &buffer;
-  vkUpdateDescriptorSets(device, 2, writes, 0, nullptr);
+  api().vkUpdateDescriptorSets(device, 2, writes, 0, nullptr);
 }
 
 Owned<VkShaderModule> create_gather_shader(VkDevice device, GatherKind kind) {
@@ -150,9 +152,9 @@ SampleGather::Binding SampleGather::bind(VkImageView image_ms, const Buffer& sam
   pool_info.poolSizeCount = 2;
   pool_info.pPoolSizes = sizes;
   VkDescriptorPool pool = VK_NULL_HANDLE;
-  check(vkCreateDescriptorPool(device, &pool_info, nullptr, &pool), "vkCreateDescriptorPool");
+  check(api().vkCreateDescriptorPool(device, &pool_info, nullptr, &pool), "vkCreateDescriptorPool");
   Binding binding;
-  binding.pool = own(device, vkDestroyDescriptorPool, pool);
+  binding.pool = own(device, api().vkDestroyDescriptorPool, pool);
   binding.width = width;
   binding.samples = samples;
   for (uint32_t first_row = 0; first_row < height; first_row += band_rows) {
@@ -166,13 +168,13 @@ SampleGather::Binding SampleGather::bind(VkImageView image_ms, const Buffer& sam
 }
 
 void SampleGather::record(VkCommandBuffer commands, const Binding& binding) const {
-  vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.get());
+  api().vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.get());
   for (const Band& band : binding.bands) {
     const GatherConstants constants{binding.width, binding.samples, band.first_row, band.rows};
-    vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0, 1, &band.set, 0, nullptr);
-    vkCmdPushConstants(commands, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof constants, &constants);
-    vkCmdDispatch(commands, (binding.width + kLocalSize - 1) / kLocalSize, (band.rows + kLocalSize - 1) / kLocalSize,
-                  1);
+    api().vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0, 1, &band.set, 0, nullptr);
+    api().vkCmdPushConstants(commands, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof constants, &constants);
+    api().vkCmdDispatch(commands, (binding.width + kLocalSize - 1) / kLocalSize,
+                        (band.rows + kLocalSize - 1) / kLocalSize, 1);
   }
 }
 

@@ -4,6 +4,7 @@
 
 #include "model/errors.hpp"
 #include "vk_reference/vk_check.hpp"
+#include "vk_reference/vk_loader.hpp"
 
 namespace rastercmp::vk {
 namespace {
@@ -12,9 +13,9 @@ constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
 
 bool layer_present(const char* name) {
   uint32_t count = 0;
-  check(vkEnumerateInstanceLayerProperties(&count, nullptr), "vkEnumerateInstanceLayerProperties");
+  check(api().vkEnumerateInstanceLayerProperties(&count, nullptr), "vkEnumerateInstanceLayerProperties");
   std::vector<VkLayerProperties> layers(count);
-  check(vkEnumerateInstanceLayerProperties(&count, layers.data()), "vkEnumerateInstanceLayerProperties");
+  check(api().vkEnumerateInstanceLayerProperties(&count, layers.data()), "vkEnumerateInstanceLayerProperties");
   for (const VkLayerProperties& layer : layers) {
     if (std::strcmp(layer.layerName, name) == 0) return true;
   }
@@ -52,7 +53,8 @@ VkDebugUtilsMessengerCreateInfoEXT messenger_info(MessageLog* log) {
 
 uint32_t instance_api_version() {
   uint32_t version = VK_API_VERSION_1_0;
-  check(vkEnumerateInstanceVersion(&version), "vkEnumerateInstanceVersion");
+  if (api().vkEnumerateInstanceVersion == nullptr) return VK_API_VERSION_1_1;  // a Vulkan 1.0 loader
+  check(api().vkEnumerateInstanceVersion(&version), "vkEnumerateInstanceVersion");
   // Vulkan 1.2 for VkPhysicalDeviceDriverProperties; a 1.1 loader still serves 1.1 devices.
   return version >= VK_API_VERSION_1_2 ? VK_API_VERSION_1_2 : VK_API_VERSION_1_1;
 }
@@ -83,19 +85,19 @@ Instance::Instance(bool validate) {
     info.ppEnabledExtensionNames = extensions;
   }
   VkInstance instance = VK_NULL_HANDLE;
-  const VkResult created = vkCreateInstance(&info, nullptr, &instance);
+  const VkResult created = api().vkCreateInstance(&info, nullptr, &instance);
   if (created == VK_ERROR_INCOMPATIBLE_DRIVER) {
     throw EnvironmentError(std::string("no Vulkan driver found (vkCreateInstance: ") + result_name(created) + "); " +
                            kInstallVulkanHint);
   }
   check(created, "vkCreateInstance");
-  instance_ = Owned<VkInstance>(instance, [](VkInstance h) { vkDestroyInstance(h, nullptr); });
+  instance_ = Owned<VkInstance>(instance, [](VkInstance h) { api().vkDestroyInstance(h, nullptr); });
 
   if (validate) {
     auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
-        vkGetInstanceProcAddr(instance, "vkCreateDebugUtilsMessengerEXT"));
+        api().vkGetInstanceProcAddr(instance, "vkCreateDebugUtilsMessengerEXT"));
     auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
-        vkGetInstanceProcAddr(instance, "vkDestroyDebugUtilsMessengerEXT"));
+        api().vkGetInstanceProcAddr(instance, "vkDestroyDebugUtilsMessengerEXT"));
     if (create == nullptr || destroy == nullptr) {
       throw EnvironmentError("VK_EXT_debug_utils is unavailable: apt-get install vulkan-validationlayers");
     }
@@ -108,9 +110,9 @@ Instance::Instance(bool validate) {
 
 std::vector<VkPhysicalDevice> Instance::physical_devices() const {
   uint32_t count = 0;
-  check(vkEnumeratePhysicalDevices(get(), &count, nullptr), "vkEnumeratePhysicalDevices");
+  check(api().vkEnumeratePhysicalDevices(get(), &count, nullptr), "vkEnumeratePhysicalDevices");
   std::vector<VkPhysicalDevice> devices(count);
-  check(vkEnumeratePhysicalDevices(get(), &count, devices.data()), "vkEnumeratePhysicalDevices");
+  check(api().vkEnumeratePhysicalDevices(get(), &count, devices.data()), "vkEnumeratePhysicalDevices");
   devices.resize(count);
   if (devices.empty()) {
     throw EnvironmentError(std::string("no Vulkan device found; ") + kInstallVulkanHint);

@@ -10,6 +10,7 @@
 #include <vulkan/vulkan.h>
 
 #include "vk_reference/vk_handle.hpp"
+#include "vk_reference/vk_loader.hpp"
 
 namespace rastercmp::vk {
 
@@ -35,9 +36,5 @@ class Instance {
   Owned<VkInstance> instance_;
   Owned<VkDebugUtilsMessengerEXT> messenger_;
 };
-
-// What to install when there is no usable Vulkan driver.
-inline constexpr const char* kInstallVulkanHint =
-    "install the Vulkan loader and lavapipe: apt-get install libvulkan1 mesa-vulkan-drivers";
 
 }  // namespace rastercmp::vk

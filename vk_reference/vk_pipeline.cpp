@@ -10,6 +10,7 @@
 #include "shaders/passthrough_points_vert.h"
 #include "shaders/passthrough_vert.h"
 #include "vk_reference/vk_check.hpp"
+#include "vk_reference/vk_loader.hpp"
 #include "vk_reference/vk_pipeline_state.hpp"
 #include "vk_reference/vk_translate.hpp"
 
@@ -70,8 +71,8 @@ Owned<VkRenderPass> create_render_pass(VkDevice device, const AttachmentConfig& 
   info.dependencyCount = 1;
   info.pDependencies = &after_read_back;
   VkRenderPass pass = VK_NULL_HANDLE;
-  check(vkCreateRenderPass(device, &info, nullptr, &pass), "vkCreateRenderPass");
-  return own(device, vkDestroyRenderPass, pass);
+  check(api().vkCreateRenderPass(device, &info, nullptr, &pass), "vkCreateRenderPass");
+  return own(device, api().vkDestroyRenderPass, pass);
 }
 
 Owned<VkPipelineLayout> create_graphics_layout(VkDevice device) {
@@ -81,8 +82,8 @@ Owned<VkPipelineLayout> create_graphics_layout(VkDevice device) {
   info.pushConstantRangeCount = 1;
   info.pPushConstantRanges = &draw_index;
   VkPipelineLayout layout = VK_NULL_HANDLE;
-  check(vkCreatePipelineLayout(device, &info, nullptr, &layout), "vkCreatePipelineLayout");
-  return own(device, vkDestroyPipelineLayout, layout);
+  check(api().vkCreatePipelineLayout(device, &info, nullptr, &layout), "vkCreatePipelineLayout");
+  return own(device, api().vkDestroyPipelineLayout, layout);
 }
 
 VkPipelineShaderStageCreateInfo stage(VkShaderStageFlagBits which, VkShaderModule module) {
@@ -102,8 +103,8 @@ Owned<VkShaderModule> create_shader_module(VkDevice device, const uint32_t* code
   info.codeSize = size_bytes;
   info.pCode = code;
   VkShaderModule module = VK_NULL_HANDLE;
-  check(vkCreateShaderModule(device, &info, nullptr, &module), "vkCreateShaderModule");
-  return own(device, vkDestroyShaderModule, module);
+  check(api().vkCreateShaderModule(device, &info, nullptr, &module), "vkCreateShaderModule");
+  return own(device, api().vkDestroyShaderModule, module);
 }
 
 PipelineKey make_pipeline_key(const AttachmentConfig& attachments, Topology topology, const RasterState& state) {
@@ -217,9 +218,9 @@ VkPipeline PipelineCache::graphics_pipeline(const AttachmentConfig& config, Topo
   info.renderPass = render_pass(config);
   info.subpass = 0;
   VkPipeline pipeline = VK_NULL_HANDLE;
-  check(vkCreateGraphicsPipelines(context_.device(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline),
+  check(api().vkCreateGraphicsPipelines(context_.device(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline),
         "vkCreateGraphicsPipelines");
-  return pipelines_.emplace(key, own(context_.device(), vkDestroyPipeline, pipeline)).first->second.get();
+  return pipelines_.emplace(key, own(context_.device(), api().vkDestroyPipeline, pipeline)).first->second.get();
 }
 
 }  // namespace rastercmp::vk

@@ -2,6 +2,7 @@
 #include <vector>
 
 #include "vk_reference/vk_frame.hpp"
+#include "vk_reference/vk_loader.hpp"
 #include "vk_reference/vk_translate.hpp"
 
 namespace rastercmp::vk {
@@ -20,11 +21,11 @@ void begin_render_pass(VkCommandBuffer commands, const Scene& scene, VkRenderPas
   begin.renderArea = {{0, 0}, {scene.width, scene.height}};
   begin.clearValueCount = attachments.depth ? 2 : 1;
   begin.pClearValues = clears;
-  vkCmdBeginRenderPass(commands, &begin, VK_SUBPASS_CONTENTS_INLINE);
+  api().vkCmdBeginRenderPass(commands, &begin, VK_SUBPASS_CONTENTS_INLINE);
   const VkViewport viewport = to_vk(scene.effective_viewport());
   const VkRect2D scissor = to_vk_scissor(scene.effective_scissor());
-  vkCmdSetViewport(commands, 0, 1, &viewport);
-  vkCmdSetScissor(commands, 0, 1, &scissor);
+  api().vkCmdSetViewport(commands, 0, 1, &viewport);
+  api().vkCmdSetScissor(commands, 0, 1, &scissor);
 }
 
 // One vkCmdDraw / vkCmdDrawIndexed per Draw; the draw index reaches owner.frag as a push constant.
@@ -35,16 +36,16 @@ void record_draws(VkCommandBuffer commands, VkPipelineLayout layout, const Geome
     const DrawCall& call = geometry.calls[draw_index];
     if (call.vertex_count == 0) continue;
     if (call.pipeline != bound) {
-      vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_GRAPHICS, call.pipeline);
+      api().vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_GRAPHICS, call.pipeline);
       bound = call.pipeline;
     }
-    vkCmdPushConstants(commands, layout, VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof draw_index, &draw_index);
-    vkCmdBindVertexBuffers(commands, 0, 1, &vertices, &call.vertex_offset);
+    api().vkCmdPushConstants(commands, layout, VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof draw_index, &draw_index);
+    api().vkCmdBindVertexBuffers(commands, 0, 1, &vertices, &call.vertex_offset);
     if (call.indexed) {
-      vkCmdBindIndexBuffer(commands, geometry.indices->buffer.get(), call.index_offset, VK_INDEX_TYPE_UINT32);
-      vkCmdDrawIndexed(commands, call.vertex_count, 1, 0, 0, 0);
+      api().vkCmdBindIndexBuffer(commands, geometry.indices->buffer.get(), call.index_offset, VK_INDEX_TYPE_UINT32);
+      api().vkCmdDrawIndexed(commands, call.vertex_count, 1, 0, 0, 0);
     } else {
-      vkCmdDraw(commands, call.vertex_count, 1, 0, 0);
+      api().vkCmdDraw(commands, call.vertex_count, 1, 0, 0);
     }
   }
 }
@@ -69,7 +70,7 @@ void host_read_barrier(VkCommandBuffer commands, VkPipelineStageFlags src_stage,
   barrier.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
   barrier.srcAccessMask = src_access;
   barrier.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-  vkCmdPipelineBarrier(commands, src_stage, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &barrier, 0, nullptr, 0, nullptr);
+  api().vkCmdPipelineBarrier(commands, src_stage, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &barrier, 0, nullptr, 0, nullptr);
 }
 
 VkBufferImageCopy whole_image(const Scene& scene, VkImageAspectFlags aspect) {
@@ -97,15 +98,15 @@ void record_copies(VkCommandBuffer commands, const Scene& scene, const Attachmen
   const VkPipelineStageFlags attachment_stages = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT |
                                                  VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT |
                                                  VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
-  vkCmdPipelineBarrier(commands, attachment_stages, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0, nullptr,
-                       static_cast<uint32_t>(barriers.size()), barriers.data());
+  api().vkCmdPipelineBarrier(commands, attachment_stages, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0, nullptr,
+                             static_cast<uint32_t>(barriers.size()), barriers.data());
   const VkBufferImageCopy owner_region = whole_image(scene, VK_IMAGE_ASPECT_COLOR_BIT);
-  vkCmdCopyImageToBuffer(commands, attachments.owner.image.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                         read_back.owner.buffer.get(), 1, &owner_region);
+  api().vkCmdCopyImageToBuffer(commands, attachments.owner.image.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                               read_back.owner.buffer.get(), 1, &owner_region);
   if (attachments.depth) {
     const VkBufferImageCopy depth_region = whole_image(scene, VK_IMAGE_ASPECT_DEPTH_BIT);
-    vkCmdCopyImageToBuffer(commands, attachments.depth->image.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                           read_back.depth->buffer.get(), 1, &depth_region);
+    api().vkCmdCopyImageToBuffer(commands, attachments.depth->image.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                                 read_back.depth->buffer.get(), 1, &depth_region);
   }
   host_read_barrier(commands, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
 }
@@ -125,8 +126,8 @@ void record_gather(VkCommandBuffer commands, const Attachments& attachments, con
                                       VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL));
     src_stages |= VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
   }
-  vkCmdPipelineBarrier(commands, src_stages, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, nullptr, 0, nullptr,
-                       static_cast<uint32_t>(barriers.size()), barriers.data());
+  api().vkCmdPipelineBarrier(commands, src_stages, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, nullptr, 0, nullptr,
+                             static_cast<uint32_t>(barriers.size()), barriers.data());
   gathers.owner->record(commands, *read_back.gather);
   if (read_back.depth_gather) gathers.depth->record(commands, *read_back.depth_gather);
   host_read_barrier(commands, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT);
@@ -139,7 +140,7 @@ void record_frame(VkCommandBuffer commands, const Scene& scene, VkRenderPass ren
                   const Gathers& gathers) {
   begin_render_pass(commands, scene, render_pass, attachments);
   record_draws(commands, layout, geometry);
-  vkCmdEndRenderPass(commands);
+  api().vkCmdEndRenderPass(commands);
   if (read_back.gather) {
     record_gather(commands, attachments, read_back, gathers);
   } else {

@@ -4,6 +4,7 @@
 
 #include "model/errors.hpp"
 #include "vk_reference/vk_check.hpp"
+#include "vk_reference/vk_loader.hpp"
 
 namespace rastercmp::vk {
 namespace {
@@ -15,8 +16,8 @@ Owned<VkDeviceMemory> allocate(const Context& context, const VkMemoryRequirement
   info.allocationSize = requirements.size;
   info.memoryTypeIndex = context.memory_type(requirements.memoryTypeBits, properties);
   VkDeviceMemory memory = VK_NULL_HANDLE;
-  check(vkAllocateMemory(context.device(), &info, nullptr, &memory), "vkAllocateMemory");
-  return own(context.device(), vkFreeMemory, memory);
+  check(api().vkAllocateMemory(context.device(), &info, nullptr, &memory), "vkAllocateMemory");
+  return own(context.device(), api().vkFreeMemory, memory);
 }
 
 }  // namespace
@@ -29,18 +30,18 @@ Buffer create_host_buffer(const Context& context, VkDeviceSize size, VkBufferUsa
   info.usage = usage;
   info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
   VkBuffer handle = VK_NULL_HANDLE;
-  check(vkCreateBuffer(device, &info, nullptr, &handle), "vkCreateBuffer");
+  check(api().vkCreateBuffer(device, &info, nullptr, &handle), "vkCreateBuffer");
   Buffer buffer;
-  buffer.buffer = own(device, vkDestroyBuffer, handle);
+  buffer.buffer = own(device, api().vkDestroyBuffer, handle);
   buffer.size = size;
   VkMemoryRequirements requirements{};
-  vkGetBufferMemoryRequirements(device, handle, &requirements);
+  api().vkGetBufferMemoryRequirements(device, handle, &requirements);
   // Coherent memory: host writes before vkQueueSubmit and reads after the fence need no
   // flush or invalidate. Every device has such a type (Vulkan spec, "Memory Types").
   buffer.memory =
       allocate(context, requirements, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
-  check(vkBindBufferMemory(device, handle, buffer.memory.get(), 0), "vkBindBufferMemory");
-  check(vkMapMemory(device, buffer.memory.get(), 0, VK_WHOLE_SIZE, 0, &buffer.mapped), "vkMapMemory");
+  check(api().vkBindBufferMemory(device, handle, buffer.memory.get(), 0), "vkBindBufferMemory");
+  check(api().vkMapMemory(device, buffer.memory.get(), 0, VK_WHOLE_SIZE, 0, &buffer.mapped), "vkMapMemory");
   return buffer;
 }
 
@@ -59,14 +60,14 @@ Image create_image(const Context& context, const ImageSpec& spec) {
   info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
   info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
   VkImage handle = VK_NULL_HANDLE;
-  check(vkCreateImage(device, &info, nullptr, &handle), "vkCreateImage");
+  check(api().vkCreateImage(device, &info, nullptr, &handle), "vkCreateImage");
   Image image;
-  image.image = own(device, vkDestroyImage, handle);
+  image.image = own(device, api().vkDestroyImage, handle);
   image.format = spec.format;
   VkMemoryRequirements requirements{};
-  vkGetImageMemoryRequirements(device, handle, &requirements);
+  api().vkGetImageMemoryRequirements(device, handle, &requirements);
   image.memory = allocate(context, requirements, 0);
-  check(vkBindImageMemory(device, handle, image.memory.get(), 0), "vkBindImageMemory");
+  check(api().vkBindImageMemory(device, handle, image.memory.get(), 0), "vkBindImageMemory");
 
   VkImageViewCreateInfo view_info{};
   view_info.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO;
@@ -75,14 +76,14 @@ Image create_image(const Context& context, const ImageSpec& spec) {
   view_info.format = spec.format;
   view_info.subresourceRange = {spec.aspect, 0, 1, 0, 1};
   VkImageView view = VK_NULL_HANDLE;
-  check(vkCreateImageView(device, &view_info, nullptr, &view), "vkCreateImageView");
-  image.view = own(device, vkDestroyImageView, view);
+  check(api().vkCreateImageView(device, &view_info, nullptr, &view), "vkCreateImageView");
+  image.view = own(device, api().vkDestroyImageView, view);
   return image;
 }
 
 void require_image_support(const Context& context, const ImageSpec& spec, const std::string& role) {
   VkImageFormatProperties properties{};
-  const VkResult result = vkGetPhysicalDeviceImageFormatProperties(
+  const VkResult result = api().vkGetPhysicalDeviceImageFormatProperties(
       context.physical_device(), spec.format, VK_IMAGE_TYPE_2D, VK_IMAGE_TILING_OPTIMAL, spec.usage, 0, &properties);
   const std::string what = fmt::format("{} on {} (usage {:#x})", role, context.info().name, spec.usage);
   if (result == VK_ERROR_FORMAT_NOT_SUPPORTED) throw NotSupportedError(what + " is not supported");

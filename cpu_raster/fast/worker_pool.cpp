@@ -7,8 +7,11 @@
 #include <chrono>
 #include <map>
 #include <memory>
+#include <string>
+#include <system_error>
 
 #include "cpu_raster/exact/float_ops.hpp"
+#include "model/errors.hpp"
 
 namespace rastercmp::cpu::fast {
 namespace {
@@ -27,10 +30,22 @@ bool spin_until(Done done) {
 }  // namespace
 
 WorkerPool::WorkerPool(uint32_t workers) {
-  for (uint32_t i = 1; i < workers; ++i) threads_.emplace_back([this, i] { thread_loop(i); });
+  try {
+    for (uint32_t i = 1; i < workers; ++i) threads_.emplace_back([this, i] { thread_loop(i); });
+  } catch (const std::system_error& e) {
+    // A process or memory limit refused a thread: stop the ones started (a joinable std::thread
+    // destroyed would end the process in std::terminate) and say so (exit 3).
+    const size_t started = threads_.size();
+    stop_workers();
+    throw EnvironmentError("cannot start " + std::to_string(workers - 1) + " CPU worker threads (started " +
+                           std::to_string(started) + ": " + e.what() +
+                           "); use a smaller --threads or raise the process or memory limit (ulimit -u, ulimit -v)");
+  }
 }
 
-WorkerPool::~WorkerPool() {
+WorkerPool::~WorkerPool() { stop_workers(); }
+
+void WorkerPool::stop_workers() {
   {
     const std::lock_guard<std::mutex> lock(mutex_);
     stop_ = true;

@@ -40,6 +40,7 @@ class WorkerPool {
   void thread_loop(uint32_t index);
   void call(const std::function<void(uint32_t)>& job, uint32_t index);
   void keep_off_caller_cpu();
+  void stop_workers();  // stops and joins every thread started
 
   std::mutex run_mutex_;  // one run at a time
   std::mutex mutex_;
