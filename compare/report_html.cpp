@@ -77,7 +77,7 @@ data case_data(const CaseRecord& c) {
   d.set("cpu_method", c.cpu_method);
   d.set("status", c.status);
   d.set("verdict", to_string(c.verdict));
-  d.set("expectation", to_string(c.expectation));
+  d.set("expectation", c.expectation);
   d.set("message", c.message);
   d.set("row_class", c.fails_run ? "fails" : "ok");
   d.set("width", std::to_string(c.width));
@@ -103,7 +103,10 @@ data page_data(const RunInfo& info, const std::vector<CaseRecord>& records) {
   page.set("fma", info.fma ? "yes" : "no");
   page.set("interrupted", info.interrupted);
   page.set("not_run_count", std::to_string(info.not_run.size()));
-  page.set("run_verdict", info.interrupted ? "interrupted" : run_passed(info, records) ? "pass" : "fail");
+  page.set("run_verdict", info.interrupted            ? "interrupted"
+                          : !info.complete            ? "incomplete"
+                          : run_passed(info, records) ? "pass"
+                                                      : "fail");
   page.set("case_count", std::to_string(records.size()));
   data counts{data::type::list};
   const auto statuses = count_statuses(records);

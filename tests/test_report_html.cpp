@@ -171,7 +171,7 @@ std::vector<CaseRecord> write_report(const fs::path& report) {
   }
   records[0].explains.push_back({{2, 2, 0}, "cases/rastercmp.t.fail/explain_2_2_s0.txt"});
   records[1].cpu_method = "fill=even_odd";
-  write_report_html(report.string(), RunInfo{"lavapipe", "llvmpipe <test>", "Mesa", true, false, {}}, records);
+  write_report_html(report.string(), RunInfo{"lavapipe", "llvmpipe <test>", "Mesa", true, true, false, {}}, records);
   return records;
 }
 
@@ -179,7 +179,7 @@ TEST(ReportHtml, IsDeterministicAndEscapesText) {
   const ScratchDir scratch_page("page");
   const fs::path& report = scratch_page.path();
   const auto records = write_report(report);
-  const RunInfo info{"lavapipe", "llvmpipe <test>", "Mesa", true, false, {}};
+  const RunInfo info{"lavapipe", "llvmpipe <test>", "Mesa", true, true, false, {}};
   const std::string html = render_report_html(info, records);
   EXPECT_EQ(html, render_report_html(info, records));
   EXPECT_NE(html.find("llvmpipe &lt;test&gt;"), std::string::npos);
