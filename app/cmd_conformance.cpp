@@ -21,7 +21,6 @@
 #include "compare/case_worker.hpp"
 #include "compare/conformance.hpp"
 #include "model/errors.hpp"
-#include "model/image_io.hpp"
 
 namespace rastercmp::app {
 namespace {
@@ -134,10 +133,8 @@ int run_conformance_command(ConformanceArgs& args) {
   const std::vector<std::string> render = render_arguments(args.options);
   o.worker_command.insert(o.worker_command.end(), render.begin(), render.end());
 
-  if (o.out_dir.empty()) throw UsageError("--out: expected an output folder");
-  ensure_output_dir(o.out_dir);
-  const OutputLock lock(o.out_dir);  // a second run into the same folder: exit 2 naming this one
-  const ConformancePlan plan = plan_conformance(o);
+  const ConformancePlan plan = plan_conformance(o);  // bad input: exit 2 before any file is written
+  const OutputLock lock(o.out_dir);                  // a second run into the same folder: exit 2 naming this one
   if (const size_t stale = remove_stale_temporaries(o.out_dir); stale != 0)
     fmt::print(stderr, "note: removed {} temporary file(s) an earlier run left in {}\n", stale, o.out_dir);
   fmt::print("conformance: {} case(s) of {} in the suite (shard {}/{}) → {}\n", plan.cases.size(), plan.suite_size,

@@ -156,7 +156,12 @@ OutputLock::OutputLock(const std::string& out_dir) {
 }
 
 OutputLock::~OutputLock() {
-  if (fd_ >= 0) close(fd_);  // releases the lock; the file stays (another run may hold it now)
+  if (fd_ < 0) return;
+  // Emptied, then released: the file stays (another run may hold it next), naming no one, so a
+  // finished run's folder is the same whoever ran it.
+  if (ftruncate(fd_, 0) != 0) {
+  }
+  close(fd_);
 }
 
 size_t remove_stale_temporaries(const std::string& out_dir) {

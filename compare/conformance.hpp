@@ -64,7 +64,8 @@ struct ConformanceResult {
 };
 
 // Holds --out for one run: an exclusive flock on OUT/.rastercmp.lock, which names the holder's
-// pid. Throws UsageError naming that pid when another run holds it.
+// pid while held and is emptied on release. Throws UsageError naming that pid when another run
+// holds it.
 class OutputLock {
  public:
   explicit OutputLock(const std::string& out_dir);

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <sys/file.h>
 
+#include <cstdlib>
 #include <nlohmann/json.hpp>
 #include <regex>
 
@@ -123,13 +124,40 @@ TEST(CliChildren, ASecondRunIntoALockedFolderExits2NamingTheHolder) {
   ASSERT_EQ(flock(fd, LOCK_EX | LOCK_NB), 0);
   const std::string pid = "31337\n";
   ASSERT_EQ(write(fd, pid.data(), pid.size()), ssize_t(pid.size()));
-  const TreeSnapshot before = snapshot_tree(out);
+  const TreeSnapshot before = files_of(snapshot_tree(out));
   const std::vector<std::string> args = {"conformance", "--suite", (tmp / "suite").string(), "--out", out.string()};
   const RunResult r = run_cli(args, kNoVulkanDriver);  // exit 2 before any Vulkan: the lock comes first
   close(fd);
   EXPECT_EQ(r.exit_code, 2) << describe(args, r);
   EXPECT_NE(r.err.find("pid 31337"), std::string::npos) << describe(args, r);
-  EXPECT_EQ(snapshot_tree(out), before);
+  EXPECT_EQ(files_of(snapshot_tree(out)), before);
+}
+
+// A full disk, made with a file-size limit (ulimit -f; SIGXFSZ ignored, so a write past it fails
+// with EFBIG as one past a full disk fails with ENOSPC): the command fails with exit 2 and leaves
+// no file under a final name that is not whole, and no temporary file.
+TEST(CliChildren, AFullDiskLeavesNoHalfFileUnderAFinalName) {
+  const TempDir tmp;
+  write_file(tmp / "big.json", R"({"name": "t.big", "width": 256, "height": 256, "depth_format": "d32_sfloat",
+    "draws": [{"positions": [[-0.9, -0.9, 0.2], [0.9, -0.8, 0.6], [-0.1, 0.9, 0.9]]}]})");
+  for (const int kib : {1, 8, 40}) {
+    const fs::path out = tmp / ("out" + std::to_string(kib));
+    const std::string command = "trap '' XFSZ; ulimit -f " + std::to_string(kib) + "; exec " + kBinary.string() +
+                                " render " + (tmp / "big.json").string() + " --backend cpu --out " + out.string() +
+                                " >" + (tmp / "log").string() + " 2>&1";
+    const int status = std::system(("sh -c \"" + command + "\"").c_str());
+    ASSERT_TRUE(WIFEXITED(status)) << command;
+    EXPECT_EQ(WEXITSTATUS(status), 2) << command << "\n" << read_file(tmp / "log");
+    EXPECT_NE(read_file(tmp / "log").find("could not write"), std::string::npos) << read_file(tmp / "log");
+    ASSERT_TRUE(fs::is_directory(out));
+    EXPECT_TRUE(temporaries_below(out).empty()) << temporaries_below(out).front();
+    // What is there is whole: what a run without the limit writes, byte for byte.
+    const fs::path whole = tmp / ("whole" + std::to_string(kib));
+    ASSERT_EQ(run_cli({"render", (tmp / "big.json").string(), "--backend", "cpu", "--out", whole.string()}).exit_code,
+              0);
+    for (const auto& e : fs::directory_iterator(out))
+      EXPECT_EQ(read_file(e.path()), read_file(whole / e.path().filename())) << e.path() << " is not whole";
+  }
 }
 
 }  // namespace
