@@ -80,7 +80,8 @@ int run_compare(const CompareArgs& args) {
 
   CaseRunner runner(
       profile, [&](const Scene& s) { return make_cpu_options(args.options, &s); }, make_vk_options(args.options));
-  const RunInfo info = run_info_for(runner);
+  RunInfo info = run_info_for(runner);
+  info.complete = true;  // the report is written once every scene is compared
   std::vector<CaseRecord> records;
   for (const SuiteCase& c : cases) {
     const CaseResult result = runner.run(c.scene);
