@@ -1,6 +1,7 @@
 #include "compare/case_worker.hpp"
 
 #include <fmt/core.h>
+#include <sys/prctl.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -69,6 +70,8 @@ void write_all(int fd, const std::string& text) {
 
 int run_case_worker(const WorkerOptions& o, const std::atomic<int>& stop) {
   std::signal(SIGPIPE, SIG_IGN);  // a parent gone is a write error, not a silent death
+  // A parent killed outright (kill -9) takes its children with it: none keeps writing into --out.
+  prctl(PR_SET_PDEATHSIG, SIGKILL);
   CaseRunner runner(o.profile, o.cpu_options, o.vk);
   for (size_t i = 0; i < o.scene_files.size() && stop.load() == 0; ++i) {
     const Scene scene = load_scene_file(o.scene_files[i]);
