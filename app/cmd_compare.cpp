@@ -99,7 +99,8 @@ int run_compare(const CompareArgs& args) {
       from_capture ? std::make_unique<CaseRunner>(profile, cpu_options, device_of_capture(args.capture_dir))
                    : std::make_unique<CaseRunner>(profile, cpu_options, make_vk_options(args.options));
   CaseRunner& runner = *runner_ptr;
-  const RunInfo info = run_info_for(runner);
+  RunInfo info = run_info_for(runner);
+  info.complete = true;  // the report is written once every scene is compared
   std::vector<CaseRecord> records;
   for (const SuiteCase& c : cases) {
     const CaseResult result = from_capture ? runner.run_capture(c.scene, args.capture_dir) : runner.run(c.scene);

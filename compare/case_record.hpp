@@ -37,9 +37,9 @@ struct CaseRecord {
   std::string message;
   std::optional<DiffSummary> diff;
   // Against the expectations (conformance); compare leaves expectation Pass and judges alone.
-  Verdict expectation = Verdict::Pass;
-  std::string expectation_reason;  // the baseline entry's comment (compare/expectations.hpp), "" when none
-  std::string status;              // runner status, e.g. "Pass", "ExpectedFail", "UnexpectedImprovement(Pass)"
+  std::string expectation = "Pass";  // the baseline's runner status for the case (compare/expectations.hpp)
+  std::string expectation_reason;    // the baseline entry's comment (compare/expectations.hpp), "" when none
+  std::string status;                // runner status, e.g. "Pass", "ExpectedFail", "UnexpectedImprovement(Pass)"
   bool fails_run = false;
   double duration_s = 0;  // written only to results.csv and junit.xml
   CaseImages images;

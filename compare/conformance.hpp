@@ -1,8 +1,11 @@
-// `rastercmp conformance`: runs a suite of scenes through compare, judges each result against
-// the expectations (baseline, flakes, skips) and keeps every output readable at every moment:
-// results.csv is appended and flushed per case, the other files are rewritten atomically after
-// each case. A stop request (SIGINT) finishes the current case, writes everything, lists what
-// is left in not_run.txt and ends with exit 130.
+// `rastercmp conformance`: runs a suite of scenes through compare, each case in a child process
+// with a timeout (compare/case_children.hpp), judges each result against the expectations
+// (baseline, flakes, skips; compare/expectations.hpp), re-runs the cases that fail the run to
+// tell a Flake from a failure, and keeps every output whole and honest at every moment: they are
+// rewritten atomically after each case, in case order, with "complete": false and the cases
+// without a result listed as Missing until the very end. --out is locked for the run. A stop
+// request (SIGINT, SIGTERM, SIGHUP) finishes the running cases, writes everything, lists what is
+// left in not_run.txt and ends with 128 + the signal's number.
 #pragma once
 
 #include <atomic>
@@ -20,7 +23,8 @@
 
 namespace rastercmp {
 
-inline constexpr int kExitInterrupted = 130;  // 128 + SIGINT, as a shell reports it
+inline constexpr int kExitInterrupted = 130;        // 128 + SIGINT, as a shell reports it
+inline constexpr double kDefaultCaseTimeoutS = 60;  // the slowest built-in case takes about 2 s
 
 struct ConformanceOptions {
   std::string suite_dir;  // empty: default_suite_dir()
@@ -35,10 +39,17 @@ struct ConformanceOptions {
   // Not empty: judge the renders recorded below this folder (rastercmp capture --out) instead of
   // rendering on a device; case PATH's capture is capture_dir_for(captures_root, suite, PATH).
   std::string captures_root;
+  // The child command: the executable, "conformance-worker" and the render options (the same
+  // profile and CPU options as above: the children render, this process only names the device).
+  std::vector<std::string> worker_command;
+  unsigned jobs = 1;                        // children at a time
+  double timeout_s = kDefaultCaseTimeoutS;  // per case
+  unsigned flake_retries = 1;               // re-runs of a case that fails the run
 };
 
 struct ConformancePlan {
-  std::vector<SuiteCase> cases;  // in run order (case name order, then the shard's stride)
+  std::vector<SuiteCase> cases;         // in run order (case name order, then the shard's stride)
+  std::vector<std::string> skipped_by;  // per case: the --skips pattern it matches, "" to run it
   Expectations expectations;
   Shard shard;
   size_t suite_size = 0;  // cases in the suite before any filter
@@ -46,27 +57,48 @@ struct ConformancePlan {
 };
 
 // Checks the output folder (writable, or InputError before any work), reads the expectation
-// files and the suite and selects the cases. Throws InputError / UsageError.
+// files and the suite and selects the cases: case list, globs, shard, then the skips (a skipped
+// case gets a Skip row, as in deqp-runner). Throws InputError / UsageError.
 ConformancePlan plan_conformance(const ConformanceOptions& options);
 
 struct ConformanceResult {
   RunInfo info;
   std::vector<CaseRecord> records;
-  int exit_code = 0;  // 0 all as expected, 1 not, 130 interrupted
+  int exit_code = 0;  // 0 all as expected, 1 not, 128 + signal when stopped
 };
+
+// Holds --out for one run: an exclusive flock on OUT/.rastercmp.lock, which names the holder's
+// pid while held and is emptied on release. Throws UsageError naming that pid when another run
+// holds it.
+class OutputLock {
+ public:
+  explicit OutputLock(const std::string& out_dir);
+  ~OutputLock();
+  OutputLock(const OutputLock&) = delete;
+  OutputLock& operator=(const OutputLock&) = delete;
+
+ private:
+  int fd_ = -1;
+};
+
+// Removes what an earlier run killed mid-write left in --out: temporary files (".NAME.tmpPID.EXT")
+// and the re-run folder. Returns how many it removed.
+size_t remove_stale_temporaries(const std::string& out_dir);
 
 // Receives one progress line (with its newline) after each case: case n of N, its status, the
 // counts so far, the time spent and an estimate of the time left.
 using ProgressFn = std::function<void(const std::string& line)>;
 
-// Runs the plan. `stop` is polled between cases. Throws EnvironmentError when no Vulkan device
-// can be created, InputError when judging captures of which none has a readable render.json.
+// Runs the plan. `stop_signal` is polled between cases: non-zero, the number of the signal that
+// asks to stop. Throws EnvironmentError when no Vulkan device can be created, InputError when
+// judging captures of which none has a readable render.json.
 ConformanceResult run_conformance(const ConformanceOptions& options, const ConformancePlan& plan,
-                                  const std::atomic<bool>& stop, const ProgressFn& progress);
+                                  const std::atomic<int>& stop_signal, const ProgressFn& progress);
 
-// The closing summary: counts per status, the slowest cases, the report's path, and how to
-// resume when interrupted.
-void print_conformance_summary(std::FILE* out, const ConformanceResult& result, const std::string& out_dir);
+// The closing summary: counts per status, the slowest cases, the report's path, and, when
+// interrupted, `resume_hint` (the commands to paste).
+void print_conformance_summary(std::FILE* out, const ConformanceResult& result, const std::string& out_dir,
+                               const std::string& resume_hint);
 
 // The run's description: profile, device, driver and whether the CPU model fuses.
 RunInfo run_info_for(const CaseRunner& runner);

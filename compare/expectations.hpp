@@ -3,16 +3,25 @@
 // are ignored. A case not in the baseline is expected to pass. The `#` lines directly above a
 // baseline entry (no blank line between) are its reason, which the report shows beside it.
 //
-// Outcome of a case (its runner status):
-//   result == expectation             → the result's name ("Pass", ...), or "ExpectedFail" for a failure
-//   result differs, name matches a flake pattern → "KnownFlake"  (never fails the run)
-//   failure expected, result is not a failure → "UnexpectedImprovement(<result>)" (fails the run)
-//   result is a failure                → the result's name (fails the run)
-//   otherwise (e.g. expected QualityWarning, got Pass) → the result's name
-// QualityWarning and NotSupported are not failures (CTS / deqp-runner: Warn and Skip succeed).
+// Statuses are deqp-runner's RunnerStatus names (src/runner_results.rs): a case's verdict
+// becomes Pass, Fail (Fail, ResourceError, InternalError), Warn (QualityWarning), Skip
+// (NotSupported), Crash or Timeout, and is then judged against the baseline exactly as
+// deqp-runner's with_baseline does:
+//   Fail    with baseline Fail or ExpectedFail → ExpectedFail; Crash or Timeout → UnexpectedImprovement(Fail)
+//   Pass    with baseline Fail, Crash, Missing or Timeout → UnexpectedImprovement(Pass)
+//   Crash   with baseline Crash or ExpectedFail → ExpectedFail
+//   Warn    with baseline Fail or Crash → UnexpectedImprovement(Warn); Warn → ExpectedFail
+//   Skip    with baseline Fail, Crash, Missing or Timeout → UnexpectedImprovement(Skip)
+//   Timeout with baseline Timeout → ExpectedFail
+//   otherwise the status itself.
+// A status that fails the run (Fail, Crash, Timeout, Missing, UnexpectedImprovement(...)) on a
+// case whose name matches a flakes pattern becomes KnownFlake. Pass, Skip, Warn, Flake,
+// KnownFlake and ExpectedFail do not fail the run. Flake (a case whose re-run gave another
+// status) and Missing (a case that gave no result) are set by the runner (compare/conformance.hpp).
 #pragma once
 
 #include <map>
+#include <optional>
 #include <regex>
 #include <string>
 #include <string_view>
@@ -27,19 +36,29 @@ struct Pattern {
   std::regex regex;
 };
 
+// deqp-runner's name for a verdict's result (RunnerStatus::from_deqp).
+std::string runner_status(Verdict verdict);
+// deqp-runner's RunnerStatus::is_success: false for Fail, Crash, Timeout, Missing and
+// UnexpectedImprovement(...).
+bool is_success_status(std::string_view status);
+// A RunnerStatus name, or one of the CTS names a baseline of older rastercmp versions used
+// (QualityWarning → Warn, NotSupported → Skip, ResourceError and InternalError → Fail).
+std::optional<std::string> parse_runner_status(std::string_view name);
+
 struct Expectations {
-  std::map<std::string, Verdict> baseline;
-  std::map<std::string, std::string> reasons;  // baseline entry → its comment, "" when none
+  std::map<std::string, std::string> baseline;  // name → runner status
+  std::map<std::string, std::string> reasons;   // baseline entry → its comment, "" when none
   std::vector<Pattern> flakes;
   std::vector<Pattern> skips;
 
-  Verdict expected(const std::string& name) const;
+  // The baseline's status, "Pass" for a case it does not list.
+  std::string expected(const std::string& name) const;
   std::string reason(const std::string& name) const;
 };
 
 // Throws InputError(file, "line N", expected) on a malformed line, an unknown status or a
 // duplicate name.
-std::map<std::string, Verdict> parse_baseline(std::string_view text, const std::string& file);
+std::map<std::string, std::string> parse_baseline(std::string_view text, const std::string& file);
 // Entry name → the text of the `#` lines directly above it (without the `#`, joined by a space);
 // entries without such lines are left out. Reads only what parse_baseline accepts.
 std::map<std::string, std::string> parse_baseline_reasons(std::string_view text);
@@ -58,7 +77,11 @@ struct Outcome {
   bool fails_run = false;
 };
 
+// The status of a result against the baseline (with_baseline), then KnownFlake when it fails the
+// run and the name matches a flakes pattern.
 Outcome judge_outcome(const std::string& name, Verdict result, const Expectations& expectations);
+// with_baseline alone: `status` from runner_status(), `baseline` a RunnerStatus name ("" = not listed).
+std::string with_baseline(const std::string& status, const std::string& baseline);
 
 // Reads a whole text file. Throws InputError(path, "", ...) when it cannot.
 std::string read_text_file(const std::string& path);

@@ -258,7 +258,7 @@ std::string render_case_html(const std::string& report_dir, const RunInfo& info,
   d.set("colour", std::string(style.colour));
   d.set("status_meaning", std::string(style.meaning));
   d.set("verdict", to_string(c.verdict));
-  d.set("expectation", to_string(c.expectation));
+  d.set("expectation", c.expectation);
   d.set("message", c.message);
   d.set("reason", optional_text(c.expectation_reason));
   d.set("cpu_method", c.cpu_method);

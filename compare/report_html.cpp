@@ -20,7 +20,8 @@ namespace {
 using kainjow::mustache::data;
 using kainjow::mustache::mustache;
 
-// One row per runner status (compare/expectations.hpp, deqp-runner's names). Colours: failures
+// One row per runner status (compare/expectations.hpp, deqp-runner's names; a verdict's status is
+// runner_status(): NotSupported is Skip, QualityWarning Warn, ResourceError and InternalError Fail). Colours: failures
 // in reds and browns, warnings yellow, expected failures blue, flakes lavender, passes green,
 // cases not run on this device grey.
 constexpr StatusStyle kStatusStyles[] = {
@@ -29,19 +30,16 @@ constexpr StatusStyle kStatusStyles[] = {
     {"Crash", 0, "#5b0f00", "#ffffff", "the case's process died before it reported a result"},
     {"Timeout", 0, "#b45f06", "#ffffff", "the case ran past its time limit"},
     {"Missing", 0, "#434343", "#ffffff", "the case left no result"},
-    {"InternalError", 0, "#741b47", "#ffffff",
-     "an error inside the case: device lost, validation messages or an exception"},
-    {"ResourceError", 0, "#c27ba0", "#000000", "the device ran out of memory"},
     {"UnexpectedImprovement", 0, "#ff9900", "#000000",
      "the baseline expects a failure, the case passed: update the baseline"},
-    {"QualityWarning", 1, "#ffd966", "#000000",
-     "spec profile: a wrong owner or depth beyond the tolerance; does not fail the run"},
+    {"Warn", 1, "#ffd966", "#000000",
+     "a QualityWarning (spec profile: what the specification leaves to quality); does not fail the run"},
     {"ExpectedFail", 2, "#9fc5e8", "#000000", "fails as the baseline expects (its reason beside it)"},
     {"KnownFlake", 2, "#b4a7d6", "#000000", "differs from its expectation, and its name matches a flake pattern"},
     {"Flake", 2, "#d9d2e9", "#000000", "failed, then passed when run again"},
     {"Pass", 3, "#93c47d", "#000000", "the judged renderer matches the reference"},
-    {"NotSupported", 4, "#d9d9d9", "#000000", "the CPU profile or the device does not support the scene"},
-    {"Skip", 4, "#efefef", "#000000", "left out by a skips pattern"},
+    {"Skip", 4, "#d9d9d9", "#000000",
+     "not run: the CPU profile or the device does not support the scene, or a skips pattern left it out"},
     {"Other", 3, "#ffffff", "#000000", "a status this report has no colour for"},
 };
 
@@ -104,7 +102,10 @@ data page_data(const RunInfo& info, const std::vector<CaseRecord>& records) {
   page.set("fma", info.fma ? "yes" : "no");
   page.set("interrupted", info.interrupted);
   page.set("not_run_count", std::to_string(info.not_run.size()));
-  page.set("run_verdict", info.interrupted ? "interrupted" : run_passed(info, records) ? "pass" : "fail");
+  page.set("run_verdict", info.interrupted            ? "interrupted"
+                          : !info.complete            ? "incomplete"
+                          : run_passed(info, records) ? "pass"
+                                                      : "fail");
   page.set("case_count", std::to_string(records.size()));
   page.set("styles", styles_data());
   data counts{data::type::list};

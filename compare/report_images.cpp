@@ -18,7 +18,7 @@ namespace {
 // Written to a temporary name in the same folder, then renamed: a reader never sees half a PNG.
 void write_png_atomic(const OIIO::ImageBuf& image, const fs::path& path) {
   const fs::path tmp = path.parent_path() / fmt::format(".{}.tmp{}.png", path.stem().string(), getpid());
-  if (!image.write(tmp.string(), OIIO::TypeDesc::UINT8, "png")) {
+  if (!image.write(tmp.string(), OIIO::TypeDesc::UINT8, "png") || image.has_error()) {
     std::error_code ec;
     fs::remove(tmp, ec);
     throw InputError(path.string(), "", "could not write the image: " + image.geterror());

@@ -16,7 +16,8 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr Verdict kVerdictOrder[] = {Verdict::Pass,         Verdict::Fail,          Verdict::QualityWarning,
-                                     Verdict::NotSupported, Verdict::ResourceError, Verdict::InternalError};
+                                     Verdict::NotSupported, Verdict::ResourceError, Verdict::InternalError,
+                                     Verdict::Crash,        Verdict::Timeout};
 
 std::string xml_escape(std::string_view text) {
   std::string out;
@@ -44,12 +45,12 @@ std::string junit_testcase(const CaseRecord& c) {
   const std::string leaf = dot == std::string::npos ? c.name : c.name.substr(dot + 1);
   std::string xml = fmt::format("    <testcase classname=\"{}\" name=\"{}\" time=\"{:.3f}\">\n", xml_escape(classname),
                                 xml_escape(leaf), c.duration_s);
-  const std::string detail = xml_escape(fmt::format("{} (verdict {}, expected {}): {}", c.status, to_string(c.verdict),
-                                                    to_string(c.expectation), c.message));
+  const std::string detail = xml_escape(
+      fmt::format("{} (verdict {}, expected {}): {}", c.status, to_string(c.verdict), c.expectation, c.message));
   if (c.fails_run) {
-    const char* element = c.verdict == Verdict::Fail || !is_failure(c.verdict) ? "failure" : "error";
+    const char* element = c.status == "Crash" ? "error" : "failure";
     xml += fmt::format("      <{0} type=\"{1}\" message=\"{2}\">{2}</{0}>\n", element, xml_escape(c.status), detail);
-  } else if (c.verdict == Verdict::NotSupported) {
+  } else if (c.status == "Skip") {
     xml += fmt::format("      <skipped message=\"{}\"/>\n", detail);
   } else if (c.status != "Pass") {
     xml += fmt::format("      <system-out>{}</system-out>\n", detail);
@@ -64,6 +65,7 @@ RunInfo run_info_from_json(const nlohmann::json& j, const std::string& file) {
     info.device = j.at("device").get<std::string>();
     info.driver = j.at("driver").get<std::string>();
     info.fma = j.at("fma").get<bool>();
+    info.complete = j.at("complete").get<bool>();
     info.interrupted = j.at("interrupted").get<bool>();
     info.not_run = j.at("not_run").get<std::vector<std::string>>();
   } catch (const nlohmann::json::exception& e) {
@@ -74,22 +76,15 @@ RunInfo run_info_from_json(const nlohmann::json& j, const std::string& file) {
 
 }  // namespace
 
-ResultsCsvWriter::ResultsCsvWriter(const std::string& path) : path_(path), file_(std::fopen(path.c_str(), "wb")) {
-  if (file_ == nullptr) throw InputError(path, "", std::string("expected a writable file: ") + std::strerror(errno));
-}
-
-ResultsCsvWriter::~ResultsCsvWriter() {
-  if (file_ != nullptr) std::fclose(file_);
-}
-
-void ResultsCsvWriter::append(const CaseRecord& record) {
-  const std::string line = results_csv_line(record);
-  if (std::fputs(line.c_str(), file_) < 0 || std::fflush(file_) != 0)
-    throw InputError(path_, "", "could not append to the file");
-}
-
 std::string results_csv_line(const CaseRecord& c) {
   return fmt::format("{},{},{:.3f}\n", c.name, c.status, c.duration_s);
+}
+
+std::string results_csv(const RunInfo& info, const std::vector<CaseRecord>& records) {
+  std::string csv;
+  for (const CaseRecord& c : records) csv += results_csv_line(c);
+  for (const std::string& name : info.not_run) csv += fmt::format("{},Missing,0.000\n", name);
+  return csv;
 }
 
 std::map<std::string, double> parse_results_csv(std::string_view text, const std::string& file) {
@@ -114,36 +109,46 @@ std::map<std::string, double> parse_results_csv(std::string_view text, const std
   return durations;
 }
 
-std::string failures_csv(const std::vector<CaseRecord>& records) {
-  std::vector<const CaseRecord*> failing;
+std::string failures_csv(const RunInfo& info, const std::vector<CaseRecord>& records) {
+  std::vector<std::pair<std::string, std::string>> failing;
   for (const CaseRecord& c : records)
-    if (is_failure(c.verdict) && c.status != "KnownFlake") failing.push_back(&c);
-  std::sort(failing.begin(), failing.end(), [](auto* a, auto* b) { return a->name < b->name; });
+    if (!is_success_status(c.status)) failing.emplace_back(c.name, c.status);
+  for (const std::string& name : info.not_run) failing.emplace_back(name, "Missing");
+  std::sort(failing.begin(), failing.end());
   std::string csv;
-  for (const CaseRecord* c : failing) csv += fmt::format("{},{}\n", c->name, to_string(c->verdict));
+  for (const auto& [name, status] : failing) csv += fmt::format("{},{}\n", name, status);
   return csv;
 }
 
-std::string junit_xml(const std::vector<CaseRecord>& records) {
-  size_t failures = 0, errors = 0, skipped = 0;
+std::string junit_xml(const RunInfo& info, const std::vector<CaseRecord>& records) {
+  size_t failures = info.not_run.size(), errors = 0, skipped = 0;
   double total_s = 0;
   for (const CaseRecord& c : records) {
     total_s += c.duration_s;
-    if (c.fails_run && (c.verdict == Verdict::Fail || !is_failure(c.verdict)))
-      ++failures;
-    else if (c.fails_run)
+    if (c.fails_run && c.status == "Crash")
       ++errors;
-    else if (c.verdict == Verdict::NotSupported)
+    else if (c.fails_run)
+      ++failures;
+    else if (c.status == "Skip")
       ++skipped;
   }
+  const size_t tests = records.size() + info.not_run.size();
   std::string xml = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
   xml += fmt::format("<testsuites name=\"rastercmp\" tests=\"{0}\" failures=\"{1}\" errors=\"{2}\" time=\"{3:.3f}\">\n",
-                     records.size(), failures, errors, total_s);
+                     tests, failures, errors, total_s);
   xml += fmt::format(
       "  <testsuite name=\"rastercmp\" tests=\"{0}\" failures=\"{1}\" errors=\"{2}\" skipped=\"{3}\" "
       "time=\"{4:.3f}\">\n",
-      records.size(), failures, errors, skipped, total_s);
+      tests, failures, errors, skipped, total_s);
   for (const CaseRecord& c : records) xml += junit_testcase(c);
+  for (const std::string& name : info.not_run) {
+    CaseRecord missing;
+    missing.name = name;
+    missing.status = "Missing";
+    missing.fails_run = true;
+    missing.message = info.complete ? "no result" : "no result: the run did not reach this case (yet)";
+    xml += junit_testcase(missing);
+  }
   return xml + "  </testsuite>\n</testsuites>\n";
 }
 
@@ -153,6 +158,7 @@ std::string summary_json(const RunInfo& info, const std::vector<CaseRecord>& rec
   j["device"] = info.device;
   j["driver"] = info.driver;
   j["fma"] = info.fma;
+  j["complete"] = info.complete;
   j["interrupted"] = info.interrupted;
   j["not_run"] = info.not_run;
   j["passed"] = run_passed(info, records);
@@ -161,7 +167,9 @@ std::string summary_json(const RunInfo& info, const std::vector<CaseRecord>& rec
   for (Verdict v : kVerdictOrder)
     verdicts[to_string(v)] = std::count_if(records.begin(), records.end(), [&](auto& c) { return c.verdict == v; });
   j["verdicts"] = verdicts;
-  j["statuses"] = count_statuses(records);
+  auto statuses = count_statuses(records);
+  if (!info.not_run.empty()) statuses["Missing"] += info.not_run.size();
+  j["statuses"] = statuses;
   nlohmann::ordered_json cases = nlohmann::ordered_json::array();
   for (const CaseRecord& c : records) cases.push_back(case_to_json(c, true));
   j["cases"] = cases;
@@ -184,8 +192,9 @@ ParsedSummary parse_summary_json(std::string_view text, const std::string& file)
 
 void write_run_files(const std::string& out_dir, const RunInfo& info, const std::vector<CaseRecord>& records) {
   const fs::path out(out_dir);
-  write_text_file_atomic((out / "failures.csv").string(), failures_csv(records));
-  write_text_file_atomic((out / "junit.xml").string(), junit_xml(records));
+  write_text_file_atomic((out / "results.csv").string(), results_csv(info, records));
+  write_text_file_atomic((out / "failures.csv").string(), failures_csv(info, records));
+  write_text_file_atomic((out / "junit.xml").string(), junit_xml(info, records));
   write_text_file_atomic((out / "summary.json").string(), summary_json(info, records));
 }
 

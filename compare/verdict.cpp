@@ -12,7 +12,8 @@ namespace rastercmp {
 namespace {
 
 constexpr Verdict kAllVerdicts[] = {Verdict::Pass,         Verdict::Fail,          Verdict::QualityWarning,
-                                    Verdict::NotSupported, Verdict::ResourceError, Verdict::InternalError};
+                                    Verdict::NotSupported, Verdict::ResourceError, Verdict::InternalError,
+                                    Verdict::Crash,        Verdict::Timeout};
 
 // Spec "Depth Bias": interpolation precision is implementation-dependent; 2 r is one UNORM
 // conversion step either way plus one more, and one float binade step either way.
@@ -57,6 +58,8 @@ const char* to_string(Verdict v) {
     case Verdict::NotSupported: return "NotSupported";
     case Verdict::ResourceError: return "ResourceError";
     case Verdict::InternalError: return "InternalError";
+    case Verdict::Crash: return "Crash";
+    case Verdict::Timeout: return "Timeout";
   }
   return "?";
 }
@@ -67,7 +70,10 @@ std::optional<Verdict> parse_verdict(std::string_view name) {
   return std::nullopt;
 }
 
-bool is_failure(Verdict v) { return v == Verdict::Fail || v == Verdict::ResourceError || v == Verdict::InternalError; }
+bool is_failure(Verdict v) {
+  return v == Verdict::Fail || v == Verdict::ResourceError || v == Verdict::InternalError || v == Verdict::Crash ||
+         v == Verdict::Timeout;
+}
 
 double spec_depth_tolerance_r(const Scene& scene) {
   double largest_constant = 0;

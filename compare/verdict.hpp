@@ -11,12 +11,14 @@
 
 namespace rastercmp {
 
-enum class Verdict { Pass, Fail, QualityWarning, NotSupported, ResourceError, InternalError };
+// Crash and Timeout are given by the conformance runner, not by a diff: the case's child process
+// died or ran past --timeout (CTS: the test process died or its watchdog fired).
+enum class Verdict { Pass, Fail, QualityWarning, NotSupported, ResourceError, InternalError, Crash, Timeout };
 
 const char* to_string(Verdict);
 std::optional<Verdict> parse_verdict(std::string_view name);
 
-// Fail, ResourceError and InternalError; Pass, QualityWarning and NotSupported are not failures
+// Fail, ResourceError, InternalError, Crash and Timeout; Pass, QualityWarning and NotSupported are not failures
 // (as in the CTS, where a warning or an unsupported feature does not fail a run).
 bool is_failure(Verdict);
 

@@ -1,6 +1,9 @@
 #include "model/image_io.hpp"
 
+#include <fcntl.h>
 #include <unistd.h>
+
+#include <cerrno>
 
 #include <cstdio>
 #include <cstring>
@@ -40,14 +43,15 @@ void write_image_atomic(const std::string& path, OIIO::ImageSpec spec, const voi
   spec.attribute("DateTime", "1970:01:01 00:00:00");
   const std::string tmp = temp_name_for(path);
   auto out = OIIO::ImageOutput::create(path);  // format from the final extension
-  if (!out || !out->open(tmp, spec) || !out->write_image(spec.format, pixels)) {
+  // Renamed only when every step, the close (the last flush) included, succeeded.
+  const bool written = out && out->open(tmp, spec) && out->write_image(spec.format, pixels);
+  const bool closed = out && out->close();
+  if (!written || !closed) {
     const std::string why = out ? out->geterror() : OIIO::geterror();
-    if (out) out->close();
     std::error_code ec;
     fs::remove(tmp, ec);
-    throw InputError(path, "", "could not write the image: " + why);
+    throw InputError(path, "", "could not write the image: " + (why.empty() ? std::string("write failed") : why));
   }
-  out->close();
   commit_temp(tmp, path);
 }
 
@@ -109,15 +113,26 @@ void ensure_output_dir(const std::string& dir) {
 
 void write_text_file_atomic(const std::string& path, const std::string& text) {
   const std::string tmp = temp_name_for(path);
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    out << text;
-    out.flush();
-    if (!out) {
-      std::error_code ec;
-      fs::remove(tmp, ec);
-      throw InputError(path, "", "could not write the file");
-    }
+  // Plain write(2) and close(2), each checked: a full disk (ENOSPC, EFBIG, EIO) leaves no file
+  // under the final name.
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) throw InputError(path, "", std::string("could not write the file: ") + std::strerror(errno));
+  size_t done = 0;
+  int error = 0;
+  while (done < text.size() && error == 0) {
+    const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
+    if (n > 0)
+      done += size_t(n);
+    else if (n < 0 && errno != EINTR)
+      error = errno;
+    else if (n == 0)
+      error = EIO;
+  }
+  if (::close(fd) != 0 && error == 0) error = errno;
+  if (error != 0) {
+    std::error_code ec;
+    fs::remove(tmp, ec);
+    throw InputError(path, "", std::string("could not write the file: ") + std::strerror(error));
   }
   commit_temp(tmp, path);
 }

@@ -1,11 +1,14 @@
 // SIGINT during `rastercmp conformance` (docs/compare.md "Conformance runs"): the current case
 // finishes, every output is written and parses, not_run.txt lists the rest, the run says how to
-// resume and exits 130; resuming from not_run.txt and merging gives the whole run's results.
+// resume and exits 130; pasting the printed commands (resume, then merge) gives the whole run's
+// results. SIGTERM and SIGHUP do the same (exit 143, 129); after kill -9 every output still
+// reads as not passed.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
 
 #include <chrono>
+#include <cstdlib>
 #include <set>
 #include <string>
 #include <thread>
@@ -19,11 +22,12 @@ namespace {
 constexpr int kExitInterrupted = 130;
 const char* const kCases = "rastercmp.depth.compare.*";  // 11 small cases
 
-// The case rows of results.csv (`name,status,duration`, the header line skipped).
+// The rows of results.csv (`name,status,duration`) of finished cases: not the Missing rows of
+// the cases without a result yet.
 std::vector<std::string> result_rows(const fs::path& results_csv) {
   std::vector<std::string> rows;
   for (const std::string& line : lines_of(read_file(results_csv)))
-    if (!line.empty() && line.rfind("name,", 0) != 0) rows.push_back(line);
+    if (!line.empty() && line.find(",Missing,") == std::string::npos) rows.push_back(line);
   return rows;
 }
 
@@ -82,23 +86,70 @@ TEST(CliInterrupt, SigintFinishesTheCaseWritesEverythingAndSaysHowToResume) {
 
   const std::string said = r.out + r.err;
   EXPECT_NE(said.find("--caselist " + (out / "not_run.txt").string()), std::string::npos) << what;
-  EXPECT_NE(said.find("rastercmp merge"), std::string::npos) << what;
+  EXPECT_EQ(summary.at("complete"), false);
+  EXPECT_EQ(summary.at("passed"), false);
 
-  // Resume as told, merge, and compare with one uninterrupted run.
-  const fs::path resumed = tmp / "resumed", merged = tmp / "merged", whole = tmp / "whole";
-  const std::vector<std::string> resume = {
-      "conformance", "--case", kCases, "--caselist", (out / "not_run.txt").string(), "--out", resumed.string()};
-  const RunResult rr = run_cli(resume);
-  ASSERT_TRUE(rr.exit_code == 0 || rr.exit_code == 1) << describe(resume, rr);
-  const std::vector<std::string> merge = {"merge", merged.string(), out.string(), resumed.string()};
-  const RunResult rm = run_cli(merge);
-  ASSERT_TRUE(rm.exit_code == 0 || rm.exit_code == 1) << describe(merge, rm);
+  // Paste the two printed commands as they are (a shell runs them), then compare with one
+  // uninterrupted run.
+  const std::vector<std::string> out_lines = lines_of(r.out);
+  std::vector<std::string> pasted;
+  for (size_t i = 0; i + 1 < out_lines.size(); ++i)
+    if (out_lines[i] == "resume with:" || out_lines[i] == "then merge:") pasted.push_back(out_lines[i + 1]);
+  ASSERT_EQ(pasted.size(), 2u) << what;
+  for (const std::string& command : pasted) {
+    const int status = std::system((command + " >/dev/null 2>&1").c_str());
+    ASSERT_TRUE(WIFEXITED(status) && (WEXITSTATUS(status) == 0 || WEXITSTATUS(status) == 1)) << command;
+  }
+  const fs::path merged = out.string() + "-merged", whole = tmp / "whole";
   const std::vector<std::string> full = {"conformance", "--case", kCases, "--out", whole.string()};
   const RunResult rf = run_cli(full);
   ASSERT_TRUE(rf.exit_code == 0 || rf.exit_code == 1) << describe(full, rf);
-  EXPECT_EQ(rm.exit_code, rf.exit_code);
   for (const char* name : {"summary.json", "failures.csv", "report/index.html"})
     EXPECT_TRUE(read_file(merged / name) == read_file(whole / name)) << name << " of the merge differs";
+}
+
+// A CI cancel (SIGTERM) or a closed terminal (SIGHUP) stops the run as SIGINT does.
+TEST(CliInterrupt, SigtermAndSighupStopTheRunHonestly) {
+  RASTERCMP_SKIP_WITHOUT_VULKAN();
+  for (const int signal : {SIGTERM, SIGHUP}) {
+    const TempDir tmp;
+    const fs::path out = tmp / "out";
+    const std::vector<std::string> args = {"conformance", "--case", kCases, "--out", out.string()};
+    Child child(args);
+    ASSERT_TRUE(wait_for_first_case(out / "results.csv", std::chrono::seconds(120))) << "no case finished";
+    child.send_signal(signal);
+    const RunResult r = child.wait();
+    const std::string what = describe(args, r);
+    ASSERT_EQ(r.signal, 0) << what;
+    EXPECT_EQ(r.exit_code, 128 + signal) << what;
+    const nlohmann::json summary = nlohmann::json::parse(read_file(out / "summary.json"));
+    EXPECT_EQ(summary.at("interrupted"), true) << what;
+    EXPECT_EQ(summary.at("complete"), false);
+    EXPECT_EQ(summary.at("passed"), false);
+    EXPECT_FALSE(summary.at("not_run").empty()) << what;
+    EXPECT_TRUE(fs::exists(out / "not_run.txt"));
+    EXPECT_NE(read_file(out / "failures.csv").find(",Missing\n"), std::string::npos);
+  }
+}
+
+// kill -9 leaves no chance to write anything: what is there must already read as not passed.
+TEST(CliInterrupt, AKilledRunNeverReadsAsAPass) {
+  RASTERCMP_SKIP_WITHOUT_VULKAN();
+  const TempDir tmp;
+  const fs::path out = tmp / "out";
+  const std::vector<std::string> args = {"conformance", "--case", kCases, "--out", out.string()};
+  Child child(args);
+  ASSERT_TRUE(wait_for_first_case(out / "results.csv", std::chrono::seconds(120))) << "no case finished";
+  child.send_signal(SIGKILL);
+  child.wait();
+  const nlohmann::json summary = nlohmann::json::parse(read_file(out / "summary.json"));
+  EXPECT_EQ(summary.at("complete"), false);
+  EXPECT_EQ(summary.at("passed"), false);
+  EXPECT_EQ(summary.at("not_run").size() + summary.at("cases").size(), 11u);
+  const std::string junit = read_file(out / "junit.xml");
+  EXPECT_NE(junit.find("tests=\"11\""), std::string::npos) << junit;
+  EXPECT_NE(junit.find("type=\"Missing\""), std::string::npos);
+  EXPECT_EQ(lines_of(read_file(out / "results.csv")).size(), 11u);  // every case: a result or Missing
 }
 
 }  // namespace

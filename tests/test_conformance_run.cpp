@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <OpenImageIO/detail/pugixml/pugixml.hpp>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -88,11 +89,14 @@ class ConformanceRun : public ::testing::Test {
       cpu.threads = cpu_threads;
       return cpu;
     };
+    // The cases run in children: the built executable (tests/CMakeLists.txt builds it first).
+    o.worker_command = {(fs::path(RASTERCMP_BINARY_DIR) / "app" / "rastercmp").string(), "conformance-worker",
+                        "--validate", "--threads", std::to_string(cpu_threads)};
     return o;
   }
 
   static ConformanceResult run(const ConformanceOptions& o, const ProgressFn& progress = {}) {
-    std::atomic<bool> stop{false};
+    std::atomic<int> stop{0};
     return run_conformance(o, plan_conformance(o), stop, progress);
   }
 
@@ -122,10 +126,11 @@ TEST_F(ConformanceRun, SmallSuitePassesWithOneNotSupported) {
   ASSERT_EQ(r.records.size(), 3u);
   EXPECT_EQ(r.records[0].status, "Pass") << r.records[0].message;
   EXPECT_EQ(r.records[1].status, "Pass") << r.records[1].message;
-  EXPECT_EQ(r.records[2].status, "NotSupported");
+  EXPECT_EQ(r.records[2].status, "Skip");  // deqp-runner's name for NotSupported
+  EXPECT_EQ(r.records[2].verdict, Verdict::NotSupported);
   EXPECT_EQ(r.records[2].message.rfind("cpu profile", 0), 0u) << r.records[2].message;
   ASSERT_EQ(progress.size(), 3u);
-  EXPECT_EQ(progress[2].rfind("[3/3] rcmptest.c.polygon_line NotSupported", 0), 0u) << progress[2];
+  EXPECT_EQ(progress[2].rfind("[3/3] rcmptest.c.polygon_line Skip", 0), 0u) << progress[2];
 
   const fs::path out = test_root() / "full";
   const auto durations = parse_results_csv(read_file(out / "results.csv"), "results.csv");
@@ -136,6 +141,7 @@ TEST_F(ConformanceRun, SmallSuitePassesWithOneNotSupported) {
   EXPECT_EQ(junit.child("testsuites").child("testsuite").attribute("tests").as_int(), 3);
   const nlohmann::json summary = nlohmann::json::parse(read_file(out / "summary.json"));
   EXPECT_EQ(summary["passed"], true);
+  EXPECT_EQ(summary["complete"], true);
   EXPECT_EQ(summary["verdicts"]["NotSupported"], 1);
   EXPECT_EQ(summary["cases"][0]["coverage_mismatches"], 0);
   EXPECT_GT(summary["cases"][0]["covered_match"].get<int>(), 50);
@@ -145,7 +151,7 @@ TEST_F(ConformanceRun, SmallSuitePassesWithOneNotSupported) {
   EXPECT_FALSE(fs::exists(out / "report/cases/rcmptest.b.quad/depth.png"));
   EXPECT_NE(read_file(out / "report/cases/rcmptest.b.quad/index.html").find("Depth identical"), std::string::npos);
   const std::string html = read_file(out / "report/index.html");
-  EXPECT_NE(html.find("data-status=\"NotSupported\""), std::string::npos);
+  EXPECT_NE(html.find("data-status=\"Skip\""), std::string::npos);
   EXPECT_NE(read_file(out / "report/cases/rcmptest.c.polygon_line/index.html").find("cpu profile"), std::string::npos);
 }
 
@@ -166,9 +172,14 @@ TEST_F(ConformanceRun, BaselineFlakesAndSkipsDecideTheExitCode) {
   o.baseline_file = (test_root() / "fails.txt").string();
   o.skips_file = (test_root() / "skips.txt").string();
   const ConformanceResult improved = run(o);
-  ASSERT_EQ(improved.records.size(), 2u);
+  ASSERT_EQ(improved.records.size(), 3u);  // a case removed by --skips has a Skip row
   EXPECT_EQ(improved.records[0].status, "UnexpectedImprovement(Pass)");
+  EXPECT_EQ(improved.records[2].status, "Skip");
+  EXPECT_NE(improved.records[2].message.find("polygon_line$"), std::string::npos) << improved.records[2].message;
   EXPECT_EQ(improved.exit_code, 1);
+  // failures.csv holds what failed the run, the improvement included.
+  EXPECT_EQ(read_file(test_root() / "baseline/failures.csv"), "rcmptest.a.triangle,UnexpectedImprovement(Pass)\n");
+  EXPECT_NE(read_file(test_root() / "baseline/results.csv").find("rcmptest.c.polygon_line,Skip,"), std::string::npos);
   write_file(test_root() / "flakes.txt", "rcmptest\\.a\\.\n");
   o.flakes_file = (test_root() / "flakes.txt").string();
   const ConformanceResult flaky = run(o);
@@ -179,6 +190,7 @@ TEST_F(ConformanceRun, BaselineFlakesAndSkipsDecideTheExitCode) {
 TEST_F(ConformanceRun, SpecProfileRunsTheSameSuite) {
   ConformanceOptions o = options("spec");
   o.profile = CompareProfile::Spec;
+  o.worker_command.insert(o.worker_command.end(), {"--profile", "spec"});
   const ConformanceResult r = run(o);
   EXPECT_EQ(r.info.profile, "spec");
   ASSERT_EQ(r.records.size(), 3u);
@@ -192,16 +204,20 @@ TEST_F(ConformanceRun, SpecProfileRunsTheSameSuite) {
 }
 
 TEST_F(ConformanceRun, InterruptedRunWritesEverythingAndResumes) {
-  std::atomic<bool> stop{false};
+  std::atomic<int> stop{0};
   const ConformanceOptions o = options("interrupted");
   const ConformanceResult r =
-      run_conformance(o, plan_conformance(o), stop, [&](const std::string&) { stop.store(true); });
+      run_conformance(o, plan_conformance(o), stop, [&](const std::string&) { stop.store(SIGINT); });
   EXPECT_EQ(r.exit_code, kExitInterrupted);
   ASSERT_EQ(r.records.size(), 1u);
   const fs::path out = test_root() / "interrupted";
-  EXPECT_EQ(parse_results_csv(read_file(out / "results.csv"), "results.csv").size(), 1u);
+  // The finished case, then the two without a result as Missing.
+  EXPECT_EQ(read_file(out / "results.csv").substr(read_file(out / "results.csv").find('\n') + 1),
+            "rcmptest.b.quad,Missing,0.000\nrcmptest.c.polygon_line,Missing,0.000\n");
   const nlohmann::json summary = nlohmann::json::parse(read_file(out / "summary.json"));
   EXPECT_EQ(summary["interrupted"], true);
+  EXPECT_EQ(summary["complete"], false);
+  EXPECT_EQ(summary["passed"], false);
   EXPECT_EQ(summary["not_run"], (std::vector<std::string>{"rcmptest.b.quad", "rcmptest.c.polygon_line"}));
   ASSERT_TRUE(fs::exists(out / "not_run.txt"));
 

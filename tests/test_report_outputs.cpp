@@ -79,20 +79,20 @@ std::vector<CaseRecord> sample_records() {
   r.push_back(record("rastercmp.a.pass", Verdict::Pass, "Pass", false, 0.25));
   r.push_back(record("rastercmp.b.fail", Verdict::Fail, "Fail", true, 1.5));
   r.push_back(record("rastercmp.c.expected", Verdict::Fail, "ExpectedFail", false, 0.5));
-  r.back().expectation = Verdict::Fail;
+  r.back().expectation = "Fail";
   r.back().expectation_reason = "no tie rule, \"quoted\"";  // parses back with the rest
   r.back().cpu_method = "fill=scanline depth=bilinear";
   r.push_back(record("rastercmp.d.flaky", Verdict::Fail, "KnownFlake", false, 0.125));
-  r.push_back(record("rastercmp.e.unsupported", Verdict::NotSupported, "NotSupported", false, 0.01));
+  r.push_back(record("rastercmp.e.unsupported", Verdict::NotSupported, "Skip", false, 0.01));
   r.push_back(record("rastercmp.f.improved", Verdict::Pass, "UnexpectedImprovement(Pass)", true, 0.75));
-  r.back().expectation = Verdict::Fail;
-  r.push_back(record("rastercmp.g.lost", Verdict::InternalError, "InternalError", true, 2.0));
+  r.back().expectation = "Fail";
+  r.push_back(record("rastercmp.g.lost", Verdict::InternalError, "Fail", true, 2.0));
   r.back().diff.reset();
   return r;
 }
 
 RunInfo sample_info() {
-  return RunInfo{"lavapipe", "llvmpipe (LLVM 15.0.6, 256 bits)", "Mesa 22.3.6", true, false, {}};
+  return RunInfo{"lavapipe", "llvmpipe (LLVM 15.0.6, 256 bits)", "Mesa 22.3.6", true, true, false, {}};
 }
 
 // A fresh folder for one test, removed when the test ends (one per process: ctest runs tests in
@@ -127,24 +127,42 @@ TEST(ResultsCsv, LinesParseBackWithDurations) {
   EXPECT_THROW(parse_results_csv("name-only\n", "results.csv"), InputError);
 }
 
-TEST(ResultsCsv, WriterAppendsAndFlushesEachCase) {
-  const ScratchDir scratch_csv("csv");
-  const fs::path& dir = scratch_csv.path();
-  const std::string path = (dir / "results.csv").string();
-  ResultsCsvWriter writer(path);
-  writer.append(sample_records()[0]);
-  // Readable before the writer closes: an interrupted run leaves what it finished.
-  EXPECT_EQ(read_text_file(path), "rastercmp.a.pass,Pass,0.250\n");
-  writer.append(sample_records()[1]);
-  EXPECT_EQ(parse_results_csv(read_text_file(path), path).size(), 2u);
+// A run not finished (or killed) lists the cases without a result as Missing, everywhere.
+TEST(ResultsCsv, CasesWithoutAResultAreMissingRows) {
+  RunInfo running = sample_info();
+  running.complete = false;
+  running.not_run = {"rastercmp.z.later"};
+  const auto records = sample_records();
+  const std::string csv = results_csv(running, records);
+  EXPECT_TRUE(csv.ends_with("\nrastercmp.z.later,Missing,0.000\n")) << csv;
+  EXPECT_EQ(parse_results_csv(csv, "results.csv").size(), records.size() + 1);
+  EXPECT_NE(failures_csv(running, records).find("rastercmp.z.later,Missing\n"), std::string::npos);
+  const nlohmann::json j = nlohmann::json::parse(summary_json(running, records));
+  EXPECT_EQ(j["complete"], false);
+  EXPECT_EQ(j["passed"], false);
+  EXPECT_EQ(j["statuses"]["Missing"], 1);
+  // Even with every finished case passing, a run that is not complete does not pass.
+  std::vector<CaseRecord> passing = {records[0]};
+  RunInfo unfinished = sample_info();
+  unfinished.complete = false;
+  EXPECT_FALSE(run_passed(unfinished, passing));
+  EXPECT_TRUE(run_passed(sample_info(), passing));
+  pugi::xml_document doc;
+  ASSERT_TRUE(doc.load_string(junit_xml(running, records).c_str()));
+  const pugi::xml_node later =
+      doc.child("testsuites").child("testsuite").find_child_by_attribute("testcase", "name", "later");
+  EXPECT_STREQ(later.child("failure").attribute("type").value(), "Missing");
 }
 
-TEST(FailuresCsv, ListsTheFailuresAndServesAsTheNextBaseline) {
+// failures.csv is deqp-runner's: the cases whose status fails the run (never ExpectedFail,
+// Flake, KnownFlake or Skip), with that status; added to the baseline, the run passes.
+TEST(FailuresCsv, ListsWhatFailsTheRunAndServesAsTheNextBaseline) {
   const auto records = sample_records();
-  const std::string csv = failures_csv(records);
-  EXPECT_EQ(csv, "rastercmp.b.fail,Fail\nrastercmp.c.expected,Fail\nrastercmp.g.lost,InternalError\n");
+  const std::string csv = failures_csv(sample_info(), records);
+  EXPECT_EQ(csv, "rastercmp.b.fail,Fail\nrastercmp.f.improved,UnexpectedImprovement(Pass)\nrastercmp.g.lost,Fail\n");
   Expectations next;
-  next.baseline = parse_baseline(csv, "failures.csv");
+  next.baseline = parse_baseline("rastercmp.c.expected,Fail\n", "fails.txt");
+  for (const auto& [name, status] : parse_baseline(csv, "failures.csv")) next.baseline[name] = status;
   for (const CaseRecord& c : records) {
     if (c.status != "KnownFlake") {
       EXPECT_FALSE(judge_outcome(c.name, c.verdict, next).fails_run) << c.name;
@@ -154,29 +172,32 @@ TEST(FailuresCsv, ListsTheFailuresAndServesAsTheNextBaseline) {
 
 TEST(JUnit, IsWellFormedAndCountsFailures) {
   const auto records = sample_records();
-  const std::string xml = junit_xml(records);
+  RunInfo info = sample_info();
+  info.not_run = {"rastercmp.h.missing"};
+  const std::string xml = junit_xml(info, records);
   pugi::xml_document doc;
   const pugi::xml_parse_result parsed = doc.load_string(xml.c_str());
   ASSERT_TRUE(parsed) << parsed.description();
   const pugi::xml_node suite = doc.child("testsuites").child("testsuite");
-  EXPECT_EQ(suite.attribute("tests").as_int(), 7);
-  EXPECT_EQ(suite.attribute("failures").as_int(), 2);  // Fail, UnexpectedImprovement
-  EXPECT_EQ(suite.attribute("errors").as_int(), 1);    // InternalError
-  EXPECT_EQ(suite.attribute("skipped").as_int(), 1);   // NotSupported
+  EXPECT_EQ(suite.attribute("tests").as_int(), 8);
+  EXPECT_EQ(suite.attribute("failures").as_int(), 4);  // Fail, UnexpectedImprovement, Fail (InternalError), Missing
+  EXPECT_EQ(suite.attribute("errors").as_int(), 0);    // Crash only
+  EXPECT_EQ(suite.attribute("skipped").as_int(), 1);   // Skip
   int cases = 0;
   for (pugi::xml_node tc : suite.children("testcase")) {
     ++cases;
     EXPECT_FALSE(std::string(tc.attribute("classname").value()).empty());
     EXPECT_TRUE(tc.attribute("time"));
   }
-  EXPECT_EQ(cases, 7);
+  EXPECT_EQ(cases, 8);
   const pugi::xml_node fail = suite.find_child_by_attribute("testcase", "name", "fail");
   EXPECT_STREQ(fail.attribute("classname").value(), "rastercmp.b");
   EXPECT_STREQ(fail.child("failure").attribute("type").value(), "Fail");
   EXPECT_NE(std::string(fail.child("failure").attribute("message").value()).find("<rastercmp.b.fail> & \"quoted\""),
             std::string::npos);
   EXPECT_TRUE(suite.find_child_by_attribute("testcase", "name", "unsupported").child("skipped"));
-  EXPECT_TRUE(suite.find_child_by_attribute("testcase", "name", "lost").child("error"));
+  EXPECT_TRUE(suite.find_child_by_attribute("testcase", "name", "lost").child("failure"));
+  EXPECT_TRUE(suite.find_child_by_attribute("testcase", "name", "missing").child("failure"));
 }
 
 TEST(SummaryJson, IsDeterministicAndParsesBack) {
@@ -282,6 +303,7 @@ TEST(Merge, AResumedRunCompletesAnInterruptedOne) {
   auto records = sample_records();
   records.resize(2);
   RunInfo interrupted = sample_info();
+  interrupted.complete = false;
   interrupted.interrupted = true;
   interrupted.not_run = {records[1].name};
   write_shard(root / "first", interrupted, {records[0]});

@@ -1,0 +1,164 @@
+// Cases in child processes (compare/case_children.hpp): a crashing case and a hanging one cost
+// that case only, are recorded as Crash and Timeout with what happened, and fail the run; a case
+// that fails once and passes on its re-run is a Flake; --out is locked; temporary files an
+// earlier run left are removed. The faults come from the test-only hook RASTERCMP_TEST_CASE_FAULT
+// (compare/case_worker.hpp) on a suite of four tiny scenes.
+#include <gtest/gtest.h>
+#include <sys/file.h>
+
+#include <cstdlib>
+#include <nlohmann/json.hpp>
+#include <regex>
+
+#include "tests/test_cli_support.hpp"
+
+namespace rastercmp::cli_test {
+namespace {
+
+std::string scene(const std::string& name) {
+  return R"({"name": ")" + name +
+         R"(", "width": 12, "height": 10,
+            "draws": [{"positions": [[-0.8, -0.7, 0.2], [0.9, -0.3, 0.6], [-0.1, 0.85, 0.9]]}]})";
+}
+
+// Four cases: a, crash, hang, once (in that order).
+void write_suite(const fs::path& dir) {
+  fs::create_directories(dir);
+  for (const char* name : {"t.a", "t.crash", "t.hang", "t.once"})
+    write_file(dir / (std::string(name) + ".json"), scene(name));
+}
+
+std::map<std::string, nlohmann::json> cases_by_name(const nlohmann::json& summary) {
+  std::map<std::string, nlohmann::json> cases;
+  for (const nlohmann::json& c : summary.at("cases")) cases[c.at("scene").get<std::string>()] = c;
+  return cases;
+}
+
+// Files an interrupted write would leave: ".STEM.tmpPID.EXT".
+std::vector<std::string> temporaries_below(const fs::path& dir) {
+  static const std::regex temporary(R"(\..*\.tmp[0-9]+(\.[A-Za-z0-9]+)?)");
+  std::vector<std::string> found;
+  for (const auto& e : fs::recursive_directory_iterator(dir))
+    if (std::regex_match(e.path().filename().string(), temporary)) found.push_back(e.path().string());
+  return found;
+}
+
+TEST(CliChildren, ARunSurvivesACrashAndAHangAndTellsAFlakeFromAFailure) {
+  RASTERCMP_SKIP_WITHOUT_VULKAN();
+  const TempDir tmp;
+  write_suite(tmp / "suite");
+  fs::create_directories(tmp / "faults");
+  const EnvEdits faults = {{"RASTERCMP_TEST_CASE_FAULT", "crash:t.crash;hang:t.hang;fail_once:t.once"},
+                           {"RASTERCMP_TEST_FAULT_DIR", (tmp / "faults").string()}};
+  const fs::path out = tmp / "out";
+  write_file(tmp / "stale", "");
+  fs::create_directories(out / "report");
+  write_file(out / ".summary.tmp4242.json", "{\"passed\": tr");  // a run killed mid-write left these
+  write_file(out / "report" / ".cpu.tmp99.png", "half a PNG");
+  const std::vector<std::string> args = {"conformance", "--suite",   (tmp / "suite").string(), "--timeout", "4",
+                                         "--out",       out.string()};
+  const RunResult r = run_cli(args, faults);
+  const std::string what = describe(args, r);
+  ASSERT_EQ(r.signal, 0) << what;
+  ASSERT_EQ(r.exit_code, 1) << what;
+
+  EXPECT_EQ(read_file(out / "results.csv").find("t.a,Pass,"), 0u) << read_file(out / "results.csv");
+  const nlohmann::json summary = nlohmann::json::parse(read_file(out / "summary.json"));
+  EXPECT_EQ(summary.at("complete"), true);
+  EXPECT_EQ(summary.at("passed"), false);
+  auto cases = cases_by_name(summary);
+  ASSERT_EQ(cases.size(), 4u) << summary.dump(1);
+  EXPECT_EQ(cases["t.a"]["status"], "Pass");
+  EXPECT_EQ(cases["t.crash"]["status"], "Crash");
+  EXPECT_EQ(cases["t.crash"]["verdict"], "Crash");
+  const std::string crash = cases["t.crash"]["message"];
+  EXPECT_NE(crash.find("signal 11 (SIGSEGV"), std::string::npos) << crash;
+  EXPECT_NE(crash.find("| test-only fault: crash in t.crash"), std::string::npos) << "the child's last stderr lines\n"
+                                                                                  << crash;
+  EXPECT_EQ(cases["t.hang"]["status"], "Timeout");
+  const std::string hang = cases["t.hang"]["message"];
+  EXPECT_NE(hang.find("ran past --timeout 4 s"), std::string::npos) << hang;
+  EXPECT_NE(hang.find("| test-only fault: hang in t.hang"), std::string::npos) << hang;
+  EXPECT_EQ(cases["t.once"]["status"], "Flake");
+  EXPECT_NE(cases["t.once"]["message"].get<std::string>().find("re-run 1: Pass"), std::string::npos);
+  EXPECT_EQ(read_file(out / "failures.csv"), "t.crash,Crash\nt.hang,Timeout\n");
+  const std::string junit = read_file(out / "junit.xml");
+  EXPECT_NE(junit.find("tests=\"4\" failures=\"1\" errors=\"1\""), std::string::npos) << junit;
+  EXPECT_TRUE(temporaries_below(out).empty()) << temporaries_below(out).front();
+  EXPECT_FALSE(fs::exists(out / ".retry"));
+  EXPECT_NE(r.err.find("removed 2 temporary file(s)"), std::string::npos) << what;
+
+  // A baseline that expects them passes; two jobs at a time give the same records.
+  write_file(tmp / "fails.txt", "t.crash,Crash\nt.hang,Timeout\n");
+  const fs::path two = tmp / "two_jobs";
+  const std::vector<std::string> again = {"conformance",
+                                          "--suite",
+                                          (tmp / "suite").string(),
+                                          "--timeout",
+                                          "4",
+                                          "--baseline",
+                                          (tmp / "fails.txt").string(),
+                                          "--jobs",
+                                          "2",
+                                          "--flake-retries",
+                                          "0",
+                                          "--out",
+                                          two.string()};
+  const RunResult r2 = run_cli(again, faults);
+  EXPECT_EQ(r2.exit_code, 0) << describe(again, r2);
+  auto cases2 = cases_by_name(nlohmann::json::parse(read_file(two / "summary.json")));
+  EXPECT_EQ(cases2["t.crash"]["status"], "ExpectedFail");
+  EXPECT_EQ(cases2["t.hang"]["status"], "ExpectedFail");
+  EXPECT_EQ(cases2["t.once"]["status"], "Pass");  // its one failure was spent above
+  EXPECT_EQ(read_file(two / "failures.csv"), "");
+}
+
+TEST(CliChildren, ASecondRunIntoALockedFolderExits2NamingTheHolder) {
+  const TempDir tmp;
+  write_suite(tmp / "suite");
+  const fs::path out = tmp / "out";
+  fs::create_directories(out);
+  // Hold the lock as a running conformance would.
+  const int fd = open((out / ".rastercmp.lock").c_str(), O_RDWR | O_CREAT, 0644);
+  ASSERT_GE(fd, 0);
+  ASSERT_EQ(flock(fd, LOCK_EX | LOCK_NB), 0);
+  const std::string pid = "31337\n";
+  ASSERT_EQ(write(fd, pid.data(), pid.size()), ssize_t(pid.size()));
+  const TreeSnapshot before = files_of(snapshot_tree(out));
+  const std::vector<std::string> args = {"conformance", "--suite", (tmp / "suite").string(), "--out", out.string()};
+  const RunResult r = run_cli(args, kNoVulkanDriver);  // exit 2 before any Vulkan: the lock comes first
+  close(fd);
+  EXPECT_EQ(r.exit_code, 2) << describe(args, r);
+  EXPECT_NE(r.err.find("pid 31337"), std::string::npos) << describe(args, r);
+  EXPECT_EQ(files_of(snapshot_tree(out)), before);
+}
+
+// A full disk, made with a file-size limit (ulimit -f; SIGXFSZ ignored, so a write past it fails
+// with EFBIG as one past a full disk fails with ENOSPC): the command fails with exit 2 and leaves
+// no file under a final name that is not whole, and no temporary file.
+TEST(CliChildren, AFullDiskLeavesNoHalfFileUnderAFinalName) {
+  const TempDir tmp;
+  write_file(tmp / "big.json", R"({"name": "t.big", "width": 256, "height": 256, "depth_format": "d32_sfloat",
+    "draws": [{"positions": [[-0.9, -0.9, 0.2], [0.9, -0.8, 0.6], [-0.1, 0.9, 0.9]]}]})");
+  for (const int kib : {1, 8, 40}) {
+    const fs::path out = tmp / ("out" + std::to_string(kib));
+    const std::string command = "trap '' XFSZ; ulimit -f " + std::to_string(kib) + "; exec " + kBinary.string() +
+                                " render " + (tmp / "big.json").string() + " --backend cpu --out " + out.string() +
+                                " >" + (tmp / "log").string() + " 2>&1";
+    const int status = std::system(("sh -c \"" + command + "\"").c_str());
+    ASSERT_TRUE(WIFEXITED(status)) << command;
+    EXPECT_EQ(WEXITSTATUS(status), 2) << command << "\n" << read_file(tmp / "log");
+    EXPECT_NE(read_file(tmp / "log").find("could not write"), std::string::npos) << read_file(tmp / "log");
+    ASSERT_TRUE(fs::is_directory(out));
+    EXPECT_TRUE(temporaries_below(out).empty()) << temporaries_below(out).front();
+    // What is there is whole: what a run without the limit writes, byte for byte.
+    const fs::path whole = tmp / ("whole" + std::to_string(kib));
+    ASSERT_EQ(run_cli({"render", (tmp / "big.json").string(), "--backend", "cpu", "--out", whole.string()}).exit_code,
+              0);
+    for (const auto& e : fs::directory_iterator(out))
+      EXPECT_EQ(read_file(e.path()), read_file(whole / e.path().filename())) << e.path() << " is not whole";
+  }
+}
+
+}  // namespace
+}  // namespace rastercmp::cli_test
