@@ -206,6 +206,11 @@ void BandWorker::clipped_triangle(uint32_t d, uint32_t primitive, uint32_t a, ui
       continue;
     const TriangleSetup setup = setup_triangle(window, encode_owner(d, primitive), fd.setup);
     if (setup.fate != SetupFate::Rasterized) continue;
+    if (setup.raster.binned) {  // llvmpipe's wrapping arithmetic: the exact rasterizer, in order
+      if (!batch_.empty()) flush(fd.raster);
+      raster_exact_in_band(setup.raster, fd.raster.depth);
+      continue;
+    }
     const FastTriangle t = from_raster_primitive(setup.raster, exact.region);
     if (t.rect.empty() || !owns_rows(t.rect.y0, t.rect.y1)) continue;
     submit(t, fd.raster);
@@ -310,17 +315,21 @@ size_t BandWorker::first_visible(const PixelRect& tile, const DrawRaster& raster
 void BandWorker::walk_exact(uint32_t d) {
   const DepthTestState& depth = frame_.draws[d].raster.depth;
   run_front_end(frame_.exact, d, [&](const PrimitiveOutcome& outcome) {
-    if (!outcome.rasterized() || outcome.raster.visit.empty()) return;
-    const PixelRect& visit = outcome.raster.visit;
-    for (int32_t ty = visit.y0 >> kTileOrder; ty <= visit.y1 >> kTileOrder; ++ty) {
-      if (!owns_tile_row(ty)) continue;
-      RasterPrimitive band = outcome.raster;
-      band.visit.y0 = std::max(visit.y0, ty * kTileSize);
-      band.visit.y1 = std::min(visit.y1, ty * kTileSize + kTileSize - 1);
-      prepare_tiles(band.visit, depth.write);
-      rasterize_primitive(band, depth, frame_.targets);
-    }
+    if (outcome.rasterized()) raster_exact_in_band(outcome.raster, depth);
   });
+}
+
+void BandWorker::raster_exact_in_band(const RasterPrimitive& primitive, const DepthTestState& depth) {
+  const PixelRect& visit = primitive.visit;
+  if (visit.empty()) return;
+  for (int32_t ty = visit.y0 >> kTileOrder; ty <= visit.y1 >> kTileOrder; ++ty) {
+    if (!owns_tile_row(ty)) continue;
+    RasterPrimitive band = primitive;
+    band.visit.y0 = std::max(visit.y0, ty * kTileSize);
+    band.visit.y1 = std::min(visit.y1, ty * kTileSize + kTileSize - 1);
+    prepare_tiles(band.visit, depth.write);
+    rasterize_primitive(band, depth, frame_.targets);
+  }
 }
 
 // Before the exact rasterizer writes into r: its tiles cleared, their bounds dropped if depth is written.
