@@ -72,7 +72,7 @@ void move_to(const BinnedTriangle& t, const std::array<int, 8>& index, uint32_t 
 int64_t wrapped_doubled_area(const std::array<FixedPoint, 3>& v) {
   const int32_t dx01 = sub32(v[0].x.raw, v[1].x.raw), dy01 = sub32(v[0].y.raw, v[1].y.raw);
   const int32_t dx20 = sub32(v[2].x.raw, v[0].x.raw), dy20 = sub32(v[2].y.raw, v[0].y.raw);
-  return int64_t(dx01) * dy20 - int64_t(dx20) * dy01;
+  return sub64(int64_t(dx01) * dy20, int64_t(dx20) * dy01);  // can reach 2^63: wraps as in C
 }
 
 PixelRect wrapped_triangle_bbox(const std::array<FixedPoint, 3>& v) {
