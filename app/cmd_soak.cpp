@@ -1,4 +1,4 @@
-// rastercmp soak --seed S --count N [--family F]... [--out DIR] [--skip-known] [--no-reduce]
+// rastercmp soak --seed S --count N [--family F]... [--out DIR] [--no-reduce]
 // Random scenes from the scene format's corner cases, compared against the Vulkan device until N
 // primitives have run; each failure is reduced and written to DIR (docs/soak.md).
 // Exit: 0 no failure, 1 failures found, 2 bad input, 3 no Vulkan.
@@ -58,8 +58,6 @@ void add_soak_command(CLI::App& app, int& exit_code) {
       ->check(CLI::Range(uint64_t(1), uint64_t(1) << 40));
   cmd->add_option("--family", args->soak.families, "only this family (repeatable); default: all");
   cmd->add_option("--out", args->soak.out_dir, "write every failing scene (original and reduced) into this folder");
-  cmd->add_flag("--skip-known", args->soak.gen.skip_known,
-                "leave out the one class the model does not reproduce: huge w = 1 coordinates (docs/soak.md)");
   cmd->add_flag("--no-reduce", args->no_reduce, "write failing scenes without reducing them");
   add_render_options(*cmd, args->options);
   cmd->callback([args, &exit_code] { exit_code = run_soak_command(*args); });

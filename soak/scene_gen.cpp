@@ -20,7 +20,6 @@ constexpr double kPi = 3.14159265358979323846;
 struct Gen {
   Rng& r;
   Scene& s;
-  const GenOptions& o;
 
   // Framebuffer pixels (x, y), a depth value and the wanted clip w → clip space, through the
   // effective viewport (the inverse viewport transform of docs/scene-format.md "pixels").
@@ -342,7 +341,7 @@ void gen_magnitude(Gen& g) {
       const double w = g.log_uniform(1e4, 1e30);
       for (glm::vec4& v : p) v = v * float(w);
     } else if (kind == 2) {  // a huge triangle with w = 1 around the viewport
-      const double big = g.o.skip_known ? g.log_uniform(1e3, 1e10) : g.log_uniform(1e3, 3e17);
+      const double big = g.log_uniform(1e3, 3e17);
       const float z = float(g.r.unit());
       p = {{float(-big), float(-big), z, 1}, {float(big), float(-big), z, 1}, {0, float(big), z, 1}};
       if (g.r.chance(0.5)) std::swap(p[1], p[2]);
@@ -498,7 +497,7 @@ bool is_family(const std::string& name) {
   return std::find(n.begin(), n.end(), name) != n.end();
 }
 
-Scene generate_scene(const std::string& family, uint64_t seed, uint64_t index, const GenOptions& options) {
+Scene generate_scene(const std::string& family, uint64_t seed, uint64_t index) {
   const auto& list = generators();
   const auto it = std::find_if(list.begin(), list.end(), [&](const auto& e) { return e.first == family; });
   if (it == list.end()) throw UsageError("unknown soak family \"" + family + "\"");
@@ -508,7 +507,7 @@ Scene generate_scene(const std::string& family, uint64_t seed, uint64_t index, c
   Scene scene;
   scene.name = fmt::format("soak.{}.s{}.n{}", family, seed, index);
   scene.description = fmt::format("rastercmp soak --seed {} --family {}: scene {}", seed, family, index);
-  Gen g{rng, scene, options};
+  Gen g{rng, scene};
   it->second(g);
   // Through the writer and the loader: what runs is what a written file reproduces.
   const std::string text = scene_to_json_text(scene);

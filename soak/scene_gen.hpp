@@ -15,16 +15,9 @@ namespace rastercmp::soak {
 const std::vector<std::string>& family_names();
 bool is_family(const std::string& name);
 
-struct GenOptions {
-  // Leave out the mismatch class the model does not reproduce (docs/soak.md "Known classes"):
-  // huge (>= 1e11) coordinates with w = 1, where lavapipe's own fixed-point arithmetic overflows
-  // (docs/lavapipe-rules.md §7.5). Denormals and the 4x classes the soak first found are modelled.
-  bool skip_known = false;
-};
-
 // Scene `index` of family `family` for `seed`: a pure function of its arguments. The scene is
 // named soak.<family>.s<seed>.n<index>. Throws std::logic_error if the generator produced a scene
 // the loader rejects (a generator bug).
-Scene generate_scene(const std::string& family, uint64_t seed, uint64_t index, const GenOptions& options);
+Scene generate_scene(const std::string& family, uint64_t seed, uint64_t index);
 
 }  // namespace rastercmp::soak

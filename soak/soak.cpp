@@ -43,7 +43,7 @@ SoakSummary run_soak(CaseRunner& runner, const SoakOptions& options,
   for (uint64_t index = 0; summary.primitives < options.primitives; ++index) {
     const auto start = Clock::now();
     FamilyTally& tally = summary.families[index % families.size()];
-    const Scene scene = generate_scene(tally.family, options.seed, index, options.gen);
+    const Scene scene = generate_scene(tally.family, options.seed, index);
     const uint64_t prims = primitive_count(scene);
     const CaseResult result = judge(runner, scene);
     const std::string kind = failure_kind(result);

@@ -21,7 +21,6 @@ struct SoakOptions {
   std::string out_dir;                // empty: failures are counted, not written
   bool reduce = true;
   size_t max_reduce_runs = 1500;  // per failing scene
-  GenOptions gen;
 };
 
 struct FamilyTally {

@@ -104,7 +104,7 @@ TEST(CliDeterminism, ConformanceOutputsAreIdenticalAcrossRunsAndThreadCounts) {
   const TreeSnapshot first = conformance(tmp, "first", "1");
   for (const char* name : {"results.csv", "failures.csv", "junit.xml", "summary.json", "report/index.html"})
     EXPECT_EQ(first.count(name), 1u) << name << " missing";
-  EXPECT_EQ(lines_of(first.at("results.csv")).size(), 6u) << first.at("results.csv");  // 4 + 2 cases
+  EXPECT_EQ(lines_of(first.at("results.csv")).size(), 7u) << first.at("results.csv");  // 4 + 3 cases
   expect_same_bytes(first, conformance(tmp, "second", "1"), "second run");
   expect_same_bytes(first, conformance(tmp, "threads2", "2"), "--threads 2");
 }

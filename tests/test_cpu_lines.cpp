@@ -1,5 +1,6 @@
 // Bresenham line set-up at pixel centres (docs/lavapipe-rules.md §5.4): the diamond-exit tests of lines
-// whose start or end lies exactly on a pixel centre, with answers worked out by hand.
+// whose start or end lies exactly on a pixel centre, with answers worked out by hand; and 4x rectangular
+// lines whose rounded-up box is empty (§5.3), which lavapipe drops.
 #include <array>
 
 #include <gtest/gtest.h>
@@ -99,6 +100,36 @@ TEST(CpuBresenhamLine, YMajorDownwardEndOnARowMovesBackHalfAPixel) {
   EXPECT_EQ(setup.raster.vertex_fixed[2].y.wide(), 10112);
   EXPECT_EQ(setup.raster.vertex_fixed[1].x.wide(), 5875 - 128);
   EXPECT_EQ(setup.raster.vertex_fixed[2].x.wide(), 5875 + 128);
+}
+
+// 4x rectangular line (2.5, 2.5) -> (2.5, 3.0), width 1, snap offset 0: the quad is x 512..768,
+// y 640..768, so sample 2 of pixel (2, 2) at (544, 672) is inside all four edges; but the box rounded
+// up is y 3..2 (((640 + 255) >> 8) = 3, ((768 + 255) >> 8) - 1 = 2), empty, and
+// u_rect_test_intersection never lets an empty rectangle intersect, so the line is dropped.
+TEST(CpuRectangularLine, MultisampledLineWithAnEmptyBoxIsDropped) {
+  LineFixture f(1);
+  f.state.line_mode = LineMode::Rectangular;
+  f.context.multisample = true;
+  const LineSetup setup = f.run(WindowVertex{2.5f, 2.5f, 0}, WindowVertex{2.5f, 3.0f, 0});
+  EXPECT_EQ(setup.bbox, (PixelRect{2, 3, 2, 2}));
+  EXPECT_TRUE(setup.bbox.empty());
+  EXPECT_EQ(setup.fate, SetupFate::OutsideRegion);
+  // The same in x: (6.5, 2.5) -> (7.0, 2.5), box x 7..6.
+  const LineSetup across = f.run(WindowVertex{6.5f, 2.5f, 0}, WindowVertex{7.0f, 2.5f, 0});
+  EXPECT_EQ(across.bbox, (PixelRect{7, 2, 6, 2}));
+  EXPECT_EQ(across.fate, SetupFate::OutsideRegion);
+  // Half a pixel longer the box is row 3 and the line is rasterized (row 2's samples 2 and 3 too,
+  // through its tile).
+  const LineSetup longer = f.run(WindowVertex{2.5f, 2.5f, 0}, WindowVertex{2.5f, 3.5f, 0});
+  EXPECT_EQ(longer.bbox, (PixelRect{2, 3, 2, 3}));
+  EXPECT_EQ(longer.fate, SetupFate::Rasterized);
+}
+
+TEST(CpuDrawRegion, EmptyRectanglesNeverTouch) {
+  const PixelRect region{0, 0, 15, 15};
+  EXPECT_TRUE(rects_touch(region, PixelRect{2, 3, 2, 3}));
+  EXPECT_FALSE(rects_touch(region, PixelRect{2, 3, 2, 2}));  // inside the region's bounds, but empty
+  EXPECT_FALSE(rects_touch(PixelRect{5, 5, 4, 15}, PixelRect{0, 0, 15, 15}));
 }
 
 }  // namespace

@@ -83,5 +83,15 @@ TEST_F(FastAgainstLavapipe, DenormalsFlushLikeLavapipe) {
     expect_same(load_scene_file(root + path), true);
 }
 
+// The huge w = 1 triangle whose clipped pieces overflow llvmpipe's int32 set-up (rules §7.5): both
+// sides of the boundary (every sample, nothing), 1x and 4x, exact and fast (which hands such a
+// triangle to the exact rasterizer, in submission order, on each worker's rows). Each covers-all
+// scene fails without the binned model (the plane test covers half the columns).
+TEST_F(FastAgainstLavapipe, WrappingSetupLikeLavapipe) {
+  const std::string root = std::string(RASTERCMP_SOURCE_DIR) + "/scenes/triangle/huge/";
+  for (const char* path : {"wraps_covers_all.json", "wraps_covers_all_4x.json", "wraps_covers_none.json"})
+    expect_same(load_scene_file(root + path), true);
+}
+
 }  // namespace
 }  // namespace rastercmp

@@ -48,56 +48,45 @@ bool same_bits(const Scene& a, const Scene& b) {
 }
 
 TEST(SoakGenerator, SameSeedSameBytesAndEveryFamilyLoads) {
-  GenOptions all, skip;
-  skip.skip_known = true;
   for (const std::string& family : family_names()) {
     std::set<std::string> distinct;
     for (uint64_t i = 0; i < 40; ++i) {
-      for (const GenOptions& o : {all, skip}) {
-        const Scene a = generate_scene(family, 7, i, o);
-        const Scene b = generate_scene(family, 7, i, o);
-        const std::string text = scene_to_json_text(a);
-        EXPECT_EQ(text, scene_to_json_text(b)) << family << " " << i;
-        // What the soak writes loads back to the same bits and the same text.
-        const Scene back = parse_scene(text, "back.json");
-        EXPECT_TRUE(same_bits(a, back)) << text;
-        EXPECT_EQ(scene_to_json_text(back), text);
-        EXPECT_GE(primitive_count(a), 1u);
-        if (!o.skip_known) distinct.insert(text);
-      }
+      const Scene a = generate_scene(family, 7, i);
+      const Scene b = generate_scene(family, 7, i);
+      const std::string text = scene_to_json_text(a);
+      EXPECT_EQ(text, scene_to_json_text(b)) << family << " " << i;
+      // What the soak writes loads back to the same bits and the same text.
+      const Scene back = parse_scene(text, "back.json");
+      EXPECT_TRUE(same_bits(a, back)) << text;
+      EXPECT_EQ(scene_to_json_text(back), text);
+      EXPECT_GE(primitive_count(a), 1u);
+      distinct.insert(text);
     }
     EXPECT_EQ(distinct.size(), 40u) << family << ": the indices do not vary the scenes";
   }
-  EXPECT_NE(scene_to_json_text(generate_scene("tie", 7, 0, all)), scene_to_json_text(generate_scene("tie", 8, 0, all)));
-  EXPECT_THROW(generate_scene("no_such_family", 1, 0, all), UsageError);
+  EXPECT_NE(scene_to_json_text(generate_scene("tie", 7, 0)), scene_to_json_text(generate_scene("tie", 8, 0)));
+  EXPECT_THROW(generate_scene("no_such_family", 1, 0), UsageError);
 }
 
-TEST(SoakGenerator, SkipKnownLeavesOutOnlyTheHugeClass) {
-  GenOptions all, skip;
-  skip.skip_known = true;
-  bool huge_without_skip = false, denormal_with_skip = false, bresenham_4x_with_skip = false;
+// The classes the soak first found, all modelled now, are generated (and so in the make-test slice).
+TEST(SoakGenerator, GeneratesTheClassesItFound) {
+  bool huge = false, denormal = false, bresenham_4x = false;
   for (uint64_t i = 0; i < 300; ++i) {
     for (const std::string& family : {std::string("magnitude"), std::string("msaa")}) {
-      const Scene s = generate_scene(family, 3, i, skip);
+      const Scene s = generate_scene(family, 3, i);
       for (const Draw& d : s.draws) {
         for (const glm::vec4& v : d.positions_clip)
           for (int c = 0; c < 4; ++c) {
-            if (v[c] != 0 && std::fabs(v[c]) < 1.1754944e-38f) denormal_with_skip = true;
-            if (v.w == 1) {
-              EXPECT_LT(std::fabs(v[c]), 1e11f) << s.name;
-            }
+            if (v[c] != 0 && std::fabs(v[c]) < 1.1754944e-38f) denormal = true;
+            if (v.w == 1 && std::fabs(v[c]) >= 1e11f) huge = true;
           }
-        if (s.samples == 4 && d.state.line_mode == LineMode::Bresenham) bresenham_4x_with_skip = true;
+        if (s.samples == 4 && d.state.line_mode == LineMode::Bresenham) bresenham_4x = true;
       }
-      for (const Draw& d : generate_scene(family, 3, i, all).draws)
-        for (const glm::vec4& v : d.positions_clip)
-          if (v.w == 1 && std::fabs(v.x) >= 1e11f) huge_without_skip = true;
     }
   }
-  // The modelled classes stay in the slice; the huge one is generated only without the flag.
-  EXPECT_TRUE(denormal_with_skip);
-  EXPECT_TRUE(bresenham_4x_with_skip);
-  EXPECT_TRUE(huge_without_skip);
+  EXPECT_TRUE(denormal);
+  EXPECT_TRUE(bresenham_4x);
+  EXPECT_TRUE(huge);
 }
 
 TEST(SoakPrimitives, StripAndFanVerticesFollowTheSpecification) {
@@ -118,7 +107,7 @@ TEST(SoakPrimitives, StripAndFanVerticesFollowTheSpecification) {
 // bias) among many draws and primitives is reduced to one draw, one primitive, and the state that
 // matters; the rest goes.
 TEST(SoakReduce, ShrinksASyntheticFailureToWhatMatters) {
-  Scene scene = generate_scene("many", 11, 2, GenOptions{});
+  Scene scene = generate_scene("many", 11, 2);
   ASSERT_GT(scene.draws.size(), 5u);
   Draw culprit;
   culprit.topology = Topology::TriangleStrip;
@@ -179,13 +168,11 @@ class SoakLavapipe : public ::testing::Test {
   static inline std::string skip_reason_;
 };
 
-// The make-test slice: every family, seed 1, the known classes left out (they fail on this
-// lavapipe until their fixes land; docs/soak.md), must pass with no failure of any kind.
+// The make-test slice: every family, seed 1, must pass with no failure of any kind.
 TEST_F(SoakLavapipe, FixedSeedSliceMatchesLavapipe) {
   SoakOptions o;
   o.seed = 1;
   o.primitives = kSlicePrimitives;
-  o.gen.skip_known = true;
   o.reduce = false;
   const SoakSummary summary = run_soak(*runner_, o);
   EXPECT_GE(summary.primitives, kSlicePrimitives);
@@ -193,7 +180,7 @@ TEST_F(SoakLavapipe, FixedSeedSliceMatchesLavapipe) {
   for (const SoakFailure& f : summary.failures)
     ADD_FAILURE() << f.name << ": " << f.kind << "\n"
                   << scene_to_json_text(
-                         generate_scene(f.family, o.seed, std::stoull(f.name.substr(f.name.rfind(".n") + 2)), o.gen));
+                         generate_scene(f.family, o.seed, std::stoull(f.name.substr(f.name.rfind(".n") + 2))));
   std::printf("%s", format_summary(summary).c_str());
 }
 
@@ -204,7 +191,6 @@ TEST_F(SoakLavapipe, BrokenModelIsFoundAndReduced) {
   SoakOptions o;
   o.seed = 1;
   o.primitives = kBrokenPrimitives;
-  o.gen.skip_known = true;
   o.families = {"tie", "fan", "perspective", "depth"};
   o.out_dir = out_dir("broken").string();
   const SoakSummary summary = run_soak(*runner_, o);

@@ -26,7 +26,7 @@ PixelRect intersect(const PixelRect& a, const PixelRect& b) {
 }
 
 bool rects_touch(const PixelRect& a, const PixelRect& b) {
-  return !(a.x1 < b.x0 || b.x1 < a.x0 || a.y1 < b.y0 || b.y1 < a.y0);
+  return !(a.empty() || b.empty() || a.x1 < b.x0 || b.x1 < a.x0 || a.y1 < b.y0 || b.y1 < a.y0);
 }
 
 PixelRect viewport_pixel_rect(const ViewportTransform& v) {

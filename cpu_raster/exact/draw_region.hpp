@@ -26,7 +26,8 @@ struct PixelRect {
 
 PixelRect intersect(const PixelRect& a, const PixelRect& b);
 
-// u_rect_test_intersection: compares the bounds only (an inverted rectangle can "intersect").
+// u_rect_test_intersection: the bounds overlap and neither rectangle is empty (x1 < x0 or
+// y1 < y0): an empty draw region or line box never intersects (docs/lavapipe-rules.md §2.5).
 bool rects_touch(const PixelRect& a, const PixelRect& b);
 
 // lp_setup_set_viewports: the viewport's pixel rectangle, from float translate/scale.

@@ -67,6 +67,7 @@ FragmentRecord base_record(const PrimitiveOutcome& o) {
 void record_planes(FragmentRecord& r, const cpu::RasterPrimitive& raster, const cpu::SampleVerdict& verdict) {
   r.sample_x_fixed = verdict.point.x_fixed;
   r.sample_y_fixed = verdict.point.y_fixed;
+  if (raster.binned) return;  // its planes' values do not decide (binned_triangle.hpp)
   r.edge_count = raster.edge_count;
   r.scissor_plane_count = raster.planes.count - raster.edge_count;
   for (uint32_t i = 0; i < raster.planes.count; ++i) {

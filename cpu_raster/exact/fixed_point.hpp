@@ -56,6 +56,10 @@ enum class SnapRounding {
 // X = round(fl(fl(x_window - pixel_offset) * 256)). nullopt: NaN or beyond the bound.
 std::optional<Fixed24_8> snap_vertex(float x_window, float pixel_offset, SnapRounding rounding);
 
+// The same rounding as cvtps2dq returns it: NaN and values outside int32 become INT32_MIN
+// (0x80000000), which llvmpipe then uses as a coordinate (binned_triangle.hpp, rules §7.5).
+int32_t snap_vertex_saturating(float x_window, float pixel_offset, SnapRounding rounding);
+
 // Mesa util_iround on x86-64 without x87: (int)(f + 0.5f) for f >= 0, (int)(f - 0.5f) otherwise;
 // the add is a float operation, then the value is truncated (rules §5.3).
 std::optional<int32_t> util_iround(float value);

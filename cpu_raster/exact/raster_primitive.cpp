@@ -38,11 +38,12 @@ SamplePoint sample_point(int32_t px, int32_t py, uint32_t sample, bool per_sampl
 }
 
 bool place_in_region(RasterPrimitive& p, const PixelRect& bbox, const PixelRect& region, const PixelRect& framebuffer,
-                     bool multisample) {
-  // An empty draw region (a scissor of width or height 0, a viewport rectangle that rounds to no
-  // pixel) draws nothing, although the multisample planes would pass samples of the column and row
-  // just before it (docs/lavapipe-rules.md §2.5).
-  if (region.empty() || !rects_touch(region, bbox)) return false;
+                     bool multisample, bool binned) {
+  // u_rect_test_intersection rejects empty rectangles: an empty draw region (a scissor of width or
+  // height 0, a viewport rectangle that rounds to no pixel) draws nothing, although the multisample
+  // planes would pass samples of the column and row just before it, and so does a line whose
+  // rounded-up box is empty, although its quad holds samples (docs/lavapipe-rules.md §2.5, §5.3).
+  if (!rects_touch(region, bbox)) return false;
   p.bbox = bbox;
   p.bbox.x0 = std::max(p.bbox.x0, 0);  // "can safely discard negative regions"
   p.bbox.y0 = std::max(p.bbox.y0, 0);
@@ -50,7 +51,8 @@ bool place_in_region(RasterPrimitive& p, const PixelRect& bbox, const PixelRect&
   // Samples outside the region are reachable only in the column and row just before it (the
   // multisample scissor quirk, line boxes rounded up); right and bottom are exact (§2.5).
   const PixelRect region_and_quirk{region.x0 - 1, region.y0 - 1, region.x1, region.y1};
-  p.visit = intersect(intersect(binned_area(p.bbox, region), framebuffer), reachable_pixels(p));
+  p.visit = intersect(binned_area(p.bbox, region), framebuffer);
+  if (!binned) p.visit = intersect(p.visit, reachable_pixels(p));
   p.visit = intersect(p.visit, region_and_quirk);
   return true;
 }

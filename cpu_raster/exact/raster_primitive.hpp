@@ -5,7 +5,9 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 
+#include "cpu_raster/exact/binned_triangle.hpp"
 #include "cpu_raster/exact/depth_plane.hpp"
 #include "cpu_raster/exact/draw_region.hpp"
 #include "cpu_raster/exact/edge_plane.hpp"
@@ -45,14 +47,19 @@ struct RasterPrimitive {
   bool has_depth = false;
   DepthPlane depth;
   DepthOffset offset;
+  // Set for a triangle outside the direct range (binned_triangle.hpp, rules §7.5): its coverage is
+  // llvmpipe's binned and tiled integer arithmetic, not the plane test; `planes` then only carry
+  // the scissor planes' place in `visit`.
+  std::shared_ptr<const BinnedTriangle> binned;
 };
 
 SamplePoint sample_point(int32_t px, int32_t py, uint32_t sample, bool per_sample);
 
 // The common tail of triangle and line set-up: drop a primitive whose bounding box misses the draw
 // region (false), clamp the box at 0, add the scissor planes it needs, and work out the pixels to
-// visit from the binned area, the framebuffer and the extent of the primitive's vertices.
+// visit from the binned area, the framebuffer and the extent of the primitive's vertices (not for a
+// binned triangle, whose wrapping arithmetic may cover samples outside it).
 bool place_in_region(RasterPrimitive& primitive, const PixelRect& bbox, const PixelRect& region,
-                     const PixelRect& framebuffer, bool multisample);
+                     const PixelRect& framebuffer, bool multisample, bool binned = false);
 
 }  // namespace rastercmp::cpu

@@ -22,9 +22,14 @@ SampleVerdict evaluate_sample(const RasterPrimitive& p, const DepthTestState& de
   SampleVerdict verdict;
   // Without multisample rasterization every sample takes the pixel-centre result.
   verdict.point = sample_point(px, py, p.per_sample ? sample : 0, p.per_sample);
-  verdict.failing_plane = frame32 ? first_failing_plane32(*frame32, int32_t(verdict.point.x_fixed - frame32->x0_fixed),
-                                                          int32_t(verdict.point.y_fixed - frame32->y0_fixed))
-                                  : first_failing_plane(p.planes, verdict.point.x_fixed, verdict.point.y_fixed);
+  if (p.binned) {
+    verdict.failing_plane = binned_covers(*p.binned, px, py, p.per_sample ? sample : 0) ? -1 : 0;
+  } else {
+    verdict.failing_plane = frame32
+                                ? first_failing_plane32(*frame32, int32_t(verdict.point.x_fixed - frame32->x0_fixed),
+                                                        int32_t(verdict.point.y_fixed - frame32->y0_fixed))
+                                : first_failing_plane(p.planes, verdict.point.x_fixed, verdict.point.y_fixed);
+  }
   if (!verdict.covered() || !(depth.active || depth.compute_when_inactive)) return verdict;
   verdict.depth =
       sample_depth(p.depth, p.offset.offset, verdict.point.x, verdict.point.y, depth.range, depth.format, depth.fma);
@@ -45,7 +50,7 @@ SampleVerdict evaluate_sample(const RasterPrimitive& p, const DepthTestState& de
 void rasterize_primitive(const RasterPrimitive& p, const DepthTestState& depth, RenderTargets& targets,
                          const WorkSkips& skips) {
   const std::optional<EdgeFrame32> frame32 =
-      skips.edges32_when_box_fits ? make_edge_frame32(p.planes, p.visit) : std::nullopt;
+      skips.edges32_when_box_fits && !p.binned ? make_edge_frame32(p.planes, p.visit) : std::nullopt;
   const EdgeFrame32* edges32 = frame32 ? &*frame32 : nullptr;
   const bool read_stored = (depth.active || depth.compute_when_inactive) && !targets.depth_raw.empty();
   // A primitive rasterized without multisampling in a multisampled framebuffer (a Bresenham line)

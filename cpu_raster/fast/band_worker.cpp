@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <climits>
+#include <cmath>
 
 #include "cpu_raster/exact/assemble.hpp"
 #include "cpu_raster/exact/clip_triangle.hpp"
@@ -20,6 +21,20 @@ namespace rastercmp::cpu::fast {
 namespace {
 
 WindowVertex window_of(const FastVertex& v) { return WindowVertex{v.x, v.y, v.z}; }
+
+// Whether an edge reaches |dx| + |dy| >= 2^23 fixed units (binned_triangle.hpp in_direct_range),
+// which an unclipped triangle can only do corner to corner of a 16384-pixel viewport: a float
+// pre-test (32768 px, less a margin for the snapping), then the snapped values.
+bool edges_leave_direct_range(const FastVertex& v0, const FastVertex& v1, const FastVertex& v2) {
+  const auto near_long = [](const FastVertex& a, const FastVertex& b) {
+    return std::fabs(a.x - b.x) + std::fabs(a.y - b.y) >= 32760.0f;
+  };
+  if (!near_long(v0, v1) && !near_long(v1, v2) && !near_long(v2, v0)) return false;
+  const auto fixed = [](const FastVertex& v) {
+    return FixedPoint{Fixed24_8{snap_fixed(v.x)}, Fixed24_8{snap_fixed(v.y)}};
+  };
+  return !in_direct_range({fixed(v0), fixed(v1), fixed(v2)});
+}
 
 FastTriangle from_raster_primitive(const RasterPrimitive& p, const PixelRect& region) {
   FastTriangle t;
@@ -145,7 +160,19 @@ void BandWorker::triangle(uint32_t d, uint32_t primitive, uint32_t a, uint32_t b
     if (v0.flags & v1.flags & v2.flags & kVertexClipBits) return;  // all outside one plane: ClipFate::Outside
     return clipped_triangle(d, primitive, a, b, c);
   }
-  if (flags & kVertexSnapFailed) return;  // SetupFate::NonFinite
+  if (flags & kVertexSnapFailed) return;       // SetupFate::NonFinite
+  if (edges_leave_direct_range(v0, v1, v2)) {  // llvmpipe's int32 set-up wraps: the exact path's (§7.5)
+    const RasterState& state = frame_.scene->draws[d].state;
+    const std::array<WindowVertex, 3> window{window_of(v0), window_of(v1), window_of(v2)};
+    if (fd.pipelined(primitive) && state.cull_mode != CullMode::None &&
+        pipeline_cull_drops(pipeline_cull_determinant(window), state.cull_mode, state.front_face))
+      return;
+    const TriangleSetup setup = setup_triangle(window, encode_owner(d, primitive), fd.setup);
+    if (setup.fate != SetupFate::Rasterized) return;
+    if (!batch_.empty()) flush(fd.raster);
+    raster_exact_in_band(setup.raster, fd.raster.depth);
+    return;
+  }
   const PixelRect& region = frame_.exact.region;
   const int32_t fy[3] = {snap_fixed(v0.y), snap_fixed(v1.y), snap_fixed(v2.y)};  // §2.2
   // triangle_bbox (x0 = min >> 8, x1 = (max - 1) >> 8) ∩ draw region holds the coverage (§2.5);
@@ -207,6 +234,11 @@ void BandWorker::clipped_triangle(uint32_t d, uint32_t primitive, uint32_t a, ui
       continue;
     const TriangleSetup setup = setup_triangle(window, encode_owner(d, primitive), fd.setup);
     if (setup.fate != SetupFate::Rasterized) continue;
+    if (setup.raster.binned) {  // llvmpipe's wrapping arithmetic: the exact rasterizer, in order
+      if (!batch_.empty()) flush(fd.raster);
+      raster_exact_in_band(setup.raster, fd.raster.depth);
+      continue;
+    }
     const FastTriangle t = from_raster_primitive(setup.raster, exact.region);
     if (t.rect.empty() || !owns_rows(t.rect.y0, t.rect.y1)) continue;
     submit(t, fd.raster);
@@ -312,17 +344,24 @@ size_t BandWorker::first_visible(const PixelRect& tile, const DrawRaster& raster
 void BandWorker::walk_exact(uint32_t d) {
   const DepthTestState& depth = frame_.draws[d].raster.depth;
   run_front_end(frame_.exact, d, [&](const PrimitiveOutcome& outcome) {
-    if (!outcome.rasterized() || outcome.raster.visit.empty()) return;
-    const PixelRect& visit = outcome.raster.visit;
-    for (int32_t ty = visit.y0 >> kTileOrder; ty <= visit.y1 >> kTileOrder; ++ty) {
-      if (!owns_tile_row(ty)) continue;
-      RasterPrimitive band = outcome.raster;
-      band.visit.y0 = std::max(visit.y0, ty * kTileSize);
-      band.visit.y1 = std::min(visit.y1, ty * kTileSize + kTileSize - 1);
-      prepare_tiles(band.visit, depth.write);
-      rasterize_primitive_rows(band, depth, frame_.targets);
-    }
+    if (outcome.rasterized()) raster_exact_in_band(outcome.raster, depth);
   });
+}
+
+void BandWorker::raster_exact_in_band(const RasterPrimitive& primitive, const DepthTestState& depth) {
+  const PixelRect& visit = primitive.visit;
+  if (visit.empty()) return;
+  for (int32_t ty = visit.y0 >> kTileOrder; ty <= visit.y1 >> kTileOrder; ++ty) {
+    if (!owns_tile_row(ty)) continue;
+    RasterPrimitive band = primitive;
+    band.visit.y0 = std::max(visit.y0, ty * kTileSize);
+    band.visit.y1 = std::min(visit.y1, ty * kTileSize + kTileSize - 1);
+    prepare_tiles(band.visit, depth.write);
+    if (band.binned)  // llvmpipe's wrapping set-up: coverage is no plane test, every column is visited
+      rasterize_primitive(band, depth, frame_.targets);
+    else
+      rasterize_primitive_rows(band, depth, frame_.targets);
+  }
 }
 
 // Before the exact rasterizer writes into r: its tiles cleared, their bounds dropped if depth is written.

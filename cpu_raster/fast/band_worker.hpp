@@ -37,6 +37,8 @@ class BandWorker {
   void walk_triangles(uint32_t draw_index);
   void walk_fast(uint32_t draw_index);
   void walk_exact(uint32_t draw_index);
+  // The exact rasterizer for one primitive, on this worker's tile rows.
+  void raster_exact_in_band(const RasterPrimitive& primitive, const DepthTestState& depth);
 
   template <Topology T, bool Indexed>
   void walk_small_blocks(uint32_t draw_index);

@@ -1,0 +1,71 @@
+// llvmpipe's own integer set-up, binning and tile rasterization of a triangle, with its 32-bit
+// wrap-around, for the triangles whose numbers leave the range where "every plane E > 0 at the
+// sample" is what llvmpipe computes (docs/lavapipe-rules.md §7.5). Only a clipper fed vertices
+// around 1e12 w produces those: its float cancellation leaves new vertices millions of pixels out.
+//
+// The steps, each a Mesa 22.3.6 function (gallium/drivers/llvmpipe):
+//  - calc_fixed_position: cvtps2dq saturates to INT32_MIN; coordinate differences are int32 and wrap;
+//  - do_triangle_ccw (SSE branch): dcdx, dcdy int32 differences, c = dcdx*X - dcdy*Y in int64,
+//    c += 1 when dcdx < 0 or (dcdx == 0 and dcdy >= 0), then dcdx, dcdy <<= 8 and eo in int32 (wrap);
+//    the box x0 = min >> 8, x1 = (max - 1) >> 8 in int32;
+//  - lp_setup_bin_triangle: one tile when the box crosses no 64-pixel boundary, otherwise every tile
+//    of box ∩ draw region tested in int64 with the wrapped dcdx, dcdy, eo: "out", "whole tile" or
+//    "partial" with the planes not trivially accepted, and a row left at its first "out" tile after
+//    an "in" one;
+//  - lp_rast_tri_tmp.h with RASTER_64 (lp_rast_triangle_N, do_block_16, do_block_4, and their
+//    MULTISAMPLE forms): 16x16 and 4x4 blocks judged in int32 from c >> 8, the pixels (or samples)
+//    of a partial 4x4 block by the sign of (int32)((c - 1) >> 8) + i*dcdx + j*dcdy.
+// Inside the direct range (in_direct_range) this gives exactly the plane test of rasterize.hpp.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "cpu_raster/exact/draw_region.hpp"
+#include "cpu_raster/exact/edge_plane.hpp"
+#include "cpu_raster/exact/fixed_point.hpp"
+
+namespace rastercmp::cpu {
+
+// struct lp_rast_plane: c in int64, dcdx and dcdy shifted left by 8 (int32), eo (uint32).
+struct LpPlane {
+  int64_t c = 0;
+  int32_t dcdx = 0, dcdy = 0;
+  uint32_t eo = 0;
+};
+
+// A triangle (counter-clockwise, llvmpipe's sense) whose coverage follows llvmpipe's binning.
+struct BinnedTriangle {
+  std::array<LpPlane, 8> plane{};  // 3 edges, then the scissor planes
+  uint32_t plane_count = 0;
+  bool multisample = false;
+  int32_t tiles_x = 0, tiles_y = 0;  // the framebuffer's 64x64 tiles
+  // Per tile, row-major: bit 31 set for a whole tile, else the mask of planes binned (0: not binned).
+  std::vector<uint32_t> tile_planes;
+};
+
+// The doubled area of calc_fixed_position, from int32 differences that wrap.
+int64_t wrapped_doubled_area(const std::array<FixedPoint, 3>& v);
+
+// do_triangle_ccw's box, in int32 (max - 1 wraps at INT32_MIN).
+PixelRect wrapped_triangle_bbox(const std::array<FixedPoint, 3>& v);
+
+// Whether no step above can overflow, so that the direct plane test is exact: every edge has
+// |dcdx| + |dcdy| < 2^23 fixed units (dcdx << 8 and eo fit in int32, and a tile's c >> 8 in int32).
+bool in_direct_range(const std::array<FixedPoint, 3>& v);
+
+// The three edge planes of do_triangle_ccw for a counter-clockwise triangle.
+std::array<LpPlane, 3> lp_edge_planes(const std::array<FixedPoint, 3>& v);
+
+// lp_setup_add_scissor_planes' plane for one of draw_region.hpp's scissor EdgePlanes.
+LpPlane lp_scissor_plane(const EdgePlane& scissor);
+
+// lp_setup_bin_triangle for the planes, with the box clamped at 0 and the draw region.
+BinnedTriangle bin_triangle(const std::array<LpPlane, 8>& planes, uint32_t plane_count, const PixelRect& bbox,
+                            const PixelRect& region, const PixelRect& framebuffer, bool multisample);
+
+// Whether llvmpipe's rasterizer covers the sample (pixel px, py; sample index for 4x, else 0).
+bool binned_covers(const BinnedTriangle& t, int32_t px, int32_t py, uint32_t sample);
+
+}  // namespace rastercmp::cpu
