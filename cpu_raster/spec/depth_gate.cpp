@@ -166,7 +166,11 @@ void set_interval_terms(const Scene& scene, const RasterState& state, const Dept
   j.vertex_error = 3 * eps * (max_abs_z + o_z + p_z) + p.clip_error_z;
   j.reach_precision_px = 3 * eps * (j.coord_max + o_xy) + p.clip_error_px;
   j.reach_px = p.box_half_px + p.snap_px;
-  if (is_line) j.reach_px += 0.5 * std::ceil(p.line_width) + kLineReachMarginPx;
+  j.interval_reach_px = p.sample_half_px + p.snap_px;  // a single sample lies at the pixel centre
+  if (is_line) {
+    j.reach_px += 0.5 * std::ceil(p.line_width) + kLineReachMarginPx;
+    j.interval_reach_px = j.reach_px;
+  }
   const DepthBias& bias = state.depth_bias;
   if (!j.plane_defined || !bias.enable || (bias.constant_factor == 0 && bias.slope_factor == 0)) return;
   SlopeRange m{0, std::fabs(j.dzdx) + std::fabs(j.dzdy), true};  // lines: m is not defined for them
@@ -285,7 +289,7 @@ DepthValueRange fragment_depth_range(const DepthJudge& j, glm::dvec2 pos) {
   }
   constexpr double eps = kSpecRelativeAccuracy;
   const double slope = std::fabs(j.dzdx) + std::fabs(j.dzdy);
-  const double reach = j.reach_px + j.reach_precision_px;
+  const double reach = j.interval_reach_px + j.reach_precision_px;
   const double z = j.z0 + j.dzdx * (pos.x - j.x0) + j.dzdy * (pos.y - j.y0);
   // Triangles: a convex combination of the vertex depths ("Basic Polygon Rasterization").
   // Lines: a device's fragment may project past an end (line_coverage.hpp margin).

@@ -58,6 +58,8 @@ struct DepthPrimitive {
   double box_half_px = 0;            // half-size of the judged pixel box
   double snap_px = 0;                // how far the device may move a vertex (snapping + slack)
   // Depth intervals only:
+  double sample_half_px = 0;    // where in the pixel the device samples: 0 (the centre), or half the
+                                // pixel box for multisampling (sample locations are not fixed)
   double source_max_abs_z = 0;  // largest finite |window z| of the primitive before clipping
   double clip_error_z = 0;      // window-z error the precision allows at vertices made by the clipper
   double clip_error_px = 0;     // and their window x, y error, in pixels
@@ -96,6 +98,7 @@ struct DepthJudge {
   double vertex_error = 0;                 // precision allowance of the vertices' window z
   double coord_max = 0;                    // largest |window x|, |window y| of the vertices
   double reach_precision_px = 0;           // window x, y precision, in pixels
+  double interval_reach_px = 0;            // widening of the plane value, in pixels of slope
 };
 
 DepthJudge make_depth_judge(const Scene& scene, const RasterState& state, const DepthPrimitive& primitive);

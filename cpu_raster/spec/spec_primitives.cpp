@@ -86,6 +86,7 @@ DepthPrimitive depth_primitive(const DrawContext& ctx, std::initializer_list<Win
   p.clip_error_z = clip.z;
   p.clip_error_px = clip.px;
   p.source_max_abs_z = source_max_abs_z;
+  p.sample_half_px = ctx.scene->samples > 1 ? ctx.box_half_px : 0.0;
   return p;
 }
 
