@@ -1,5 +1,7 @@
 // rastercmp compare SCENE.json... [--profile lavapipe|spec] [--json FILE] [--report DIR]
-// Renders each scene on the CPU (expected) and the Vulkan device (actual) and diffs them.
+//                  [--capture DIR]
+// Renders each scene on the CPU (expected) and the Vulkan device (actual) and diffs them; with
+// --capture, the one scene's actual is the render recorded in DIR (rastercmp capture / render).
 // Exit: 0 every scene Pass / QualityWarning / NotSupported, 1 any Fail / ResourceError /
 // InternalError, 2 bad input, 3 no Vulkan (docs/compare.md).
 #include <fmt/core.h>
@@ -28,6 +30,7 @@ struct CompareArgs {
   std::vector<std::string> scene_paths;
   std::string json_file;
   std::string report_dir;
+  std::string capture_dir;
   RenderOptions options;
 };
 
@@ -66,6 +69,18 @@ std::string compare_json(const RunInfo& info, const std::vector<CaseRecord>& rec
   return j.dump(2) + "\n";
 }
 
+// The capture's device; a render.json that cannot be read is the case's ResourceError (run_capture
+// names the file), so the run goes on with a device known only by its folder.
+DeviceInfo device_of_capture(const std::string& dir) {
+  try {
+    return capture_device(dir);
+  } catch (const InputError&) {
+    DeviceInfo unknown;
+    unknown.name = "unknown device (capture " + dir + ")";
+    return unknown;
+  }
+}
+
 int run_compare(const CompareArgs& args) {
   const CompareProfile profile = args.options.profile == "spec" ? CompareProfile::Spec : CompareProfile::Lavapipe;
   make_cpu_options(args.options);  // a bad --method is a usage error before any work
@@ -78,12 +93,19 @@ int run_compare(const CompareArgs& args) {
   if (!args.json_file.empty()) check_json_target(args.json_file);
   if (!args.report_dir.empty()) ensure_output_dir(args.report_dir);
 
-  CaseRunner runner(
-      profile, [&](const Scene& s) { return make_cpu_options(args.options, &s); }, make_vk_options(args.options));
+  const bool from_capture = !args.capture_dir.empty();
+  if (from_capture && cases.size() != 1) throw UsageError("--capture: expected exactly one scene");
+  if (from_capture && !args.options.device.empty())
+    throw UsageError("--capture: the device is the capture's, not --device");
+  const CpuOptionsForScene cpu_options = [&](const Scene& s) { return make_cpu_options(args.options, &s); };
+  const std::unique_ptr<CaseRunner> runner_ptr =
+      from_capture ? std::make_unique<CaseRunner>(profile, cpu_options, device_of_capture(args.capture_dir))
+                   : std::make_unique<CaseRunner>(profile, cpu_options, make_vk_options(args.options));
+  CaseRunner& runner = *runner_ptr;
   const RunInfo info = run_info_for(runner);
   std::vector<CaseRecord> records;
   for (const SuiteCase& c : cases) {
-    const CaseResult result = runner.run(c.scene);
+    const CaseResult result = from_capture ? runner.run_capture(c.scene, args.capture_dir) : runner.run(c.scene);
     CaseRecord record = make_case_record(c, result, Expectations{});
     if (!args.report_dir.empty()) {
       record.images = write_case_images(args.report_dir, c.name, result);
@@ -111,6 +133,8 @@ void add_compare_command(CLI::App& app, int& exit_code) {
   cmd->add_option("scenes", args->scene_paths, "scene files (JSON)")->required();
   cmd->add_option("--json", args->json_file, "write per-scene results as JSON to this file");
   cmd->add_option("--report", args->report_dir, "write an HTML report (index.html and images) into this folder");
+  cmd->add_option("--capture", args->capture_dir,
+                  "judge the render recorded in this folder (rastercmp capture / render) instead of rendering");
   add_render_options(*cmd, args->options);
   cmd->callback([args, &exit_code] { exit_code = run_compare(*args); });
 }

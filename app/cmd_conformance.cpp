@@ -1,6 +1,6 @@
 // rastercmp conformance [--suite DIR] [--caselist FILE] [--case GLOB] [--baseline FILE]
 //   [--flakes FILE] [--skips FILE] [--shard I/N] [--out DIR] [--profile ...] [--device ...]
-//   [--validate] [--threads N]
+//   [--validate] [--threads N] [--captures ROOT]
 // Runs a suite through compare (compare/conformance.hpp). SIGINT finishes the current case,
 // writes every output and exits 130 with the command to resume.
 #include <fmt/core.h>
@@ -57,6 +57,8 @@ int run_conformance_command(ConformanceArgs& args) {
   const RenderOptions render_options = args.options;
   o.cpu_options = [render_options](const Scene& scene) { return make_cpu_options(render_options, &scene); };
   o.vk = make_vk_options(args.options);
+  if (!o.captures_root.empty() && !args.options.device.empty())
+    throw UsageError("--captures: the device is the captures', not --device");
   if (!args.shard.empty()) o.shard = parse_shard(args.shard);
 
   const ConformancePlan plan = plan_conformance(o);
@@ -89,6 +91,8 @@ void add_conformance_command(CLI::App& app, int& exit_code) {
                   "run shard I of N (0-based, interleaved); default from GTEST_SHARD_INDEX/GTEST_TOTAL_SHARDS");
   cmd->add_option("--out", o.out_dir, "output folder (results.csv, failures.csv, junit.xml, summary.json, report/)")
       ->capture_default_str();
+  cmd->add_option("--captures", o.captures_root,
+                  "judge the renders recorded below this folder (rastercmp capture --out) instead of rendering");
   add_render_options(*cmd, args->options);
   cmd->callback([args, &exit_code] { exit_code = run_conformance_command(*args); });
 }

@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   int exit_code = kExitOk;
   app::add_devices_command(app, exit_code);
   app::add_render_command(app, exit_code);
+  app::add_capture_command(app, exit_code);
   app::add_compare_command(app, exit_code);
   app::add_explain_command(app, exit_code);
   app::add_conformance_command(app, exit_code);

@@ -3,8 +3,12 @@
 #include <fmt/core.h>
 
 #include <exception>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 
 #include "model/errors.hpp"
+#include "model/image_io.hpp"
 
 namespace rastercmp {
 
@@ -14,17 +18,42 @@ CaseRunner::CaseRunner(CompareProfile profile, CpuOptionsForScene cpu_options, V
   device_ = renderer_->device();
 }
 
+CaseRunner::CaseRunner(CompareProfile profile, CpuOptionsForScene cpu_options, DeviceInfo device)
+    : profile_(profile), cpu_options_(std::move(cpu_options)), device_(std::move(device)), from_captures_(true) {}
+
 CaseRunner::~CaseRunner() = default;
+
+DeviceInfo capture_device(const std::string& capture_dir) {
+  const RenderResult r = read_render_info(capture_dir);
+  DeviceInfo info;
+  info.name = r.device_name.empty() ? r.device : r.device_name;
+  info.driver_info = r.driver;
+  info.limits = r.limits.value_or(DeviceLimits{});
+  info.sub_pixel_precision_bits = info.limits.sub_pixel_precision_bits;
+  info.fma = r.fma;
+  return info;
+}
+
+std::string capture_dir_for(const std::string& root, const std::string& suite_dir, const std::string& scene_path) {
+  namespace fs = std::filesystem;
+  fs::path relative = fs::path(scene_path).lexically_proximate(suite_dir);
+  relative.replace_extension();
+  return (fs::path(root) / relative).string();
+}
 
 CpuOptions CaseRunner::cpu_options(const Scene& scene) const {
   CpuOptions options = cpu_options_ ? cpu_options_(scene) : CpuOptions{};
   options.profile = profile_ == CompareProfile::Spec ? CpuProfile::Spec : CpuProfile::Lavapipe;
   // The spec profile judges the device with its own sub-pixel grid (CTS: subPixelPrecisionBits).
-  if (device_.sub_pixel_precision_bits != 0) options.sub_pixel_bits = device_.sub_pixel_precision_bits;
+  if (from_captures_ && capture_limits_)
+    options.sub_pixel_bits = capture_limits_->sub_pixel_precision_bits;
+  else if (device_.sub_pixel_precision_bits != 0)
+    options.sub_pixel_bits = device_.sub_pixel_precision_bits;
   return options;
 }
 
 VulkanRenderer& CaseRunner::renderer() {
+  if (from_captures_) throw std::logic_error("CaseRunner::run on a runner made from captures");
   if (!renderer_) renderer_ = std::make_unique<VulkanRenderer>(vk_options_);  // after a device loss
   return *renderer_;
 }
@@ -56,10 +85,7 @@ CaseResult CaseRunner::run(const Scene& scene) {
                                    result.validation_messages.front());
       return result;
     }
-    result.diff = diff_results(*result.expected, *result.actual, profile_);
-    const VerdictDecision decision = decide_verdict(result.diff->summary, spec_depth_tolerance_r(scene));
-    result.verdict = decision.verdict;
-    result.message = decision.message;
+    judge(scene, result);
   } catch (const InputError&) {
     throw;
   } catch (const NotSupportedError& e) {
@@ -69,6 +95,92 @@ CaseResult CaseRunner::run(const Scene& scene) {
     result.verdict = e.out_of_memory() ? Verdict::ResourceError : Verdict::InternalError;
     result.message = fmt::format("device: {}", e.what());
     if (!e.out_of_memory()) renderer_.reset();  // device lost: rebuild it for the next case
+  } catch (const std::exception& e) {
+    result.verdict = Verdict::InternalError;
+    result.message = e.what();
+  }
+  return result;
+}
+
+namespace {
+
+std::string read_message_file(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string message = text.str();
+  while (!message.empty() && (message.back() == '\n' || message.back() == '\r')) message.pop_back();
+  return message.empty() ? "not supported" : message;
+}
+
+// Why a capture cannot be the scene's render (empty: it can). `expected` is the CPU's render of
+// the scene: same size, sample count and depth format as the device's would be.
+std::string capture_mismatch(const RenderResult& expected, const RenderResult& capture, const std::string& dir) {
+  const std::string owner = (std::filesystem::path(dir) / "owner.tif").string();
+  const std::string meta = (std::filesystem::path(dir) / "render.json").string();
+  if (capture.width != expected.width || capture.height != expected.height || capture.samples != expected.samples)
+    return fmt::format("{}: expected {}x{} with {} sample(s) as the scene, not {}x{} with {}", owner, expected.width,
+                       expected.height, expected.samples, capture.width, capture.height, capture.samples);
+  if (capture.depth_format != expected.depth_format)
+    return fmt::format("{}: expected depth format {} as the scene, not {}", meta, to_string(expected.depth_format),
+                       to_string(capture.depth_format));
+  return "";
+}
+
+}  // namespace
+
+void CaseRunner::judge(const Scene& scene, CaseResult& result) const {
+  result.diff = diff_results(*result.expected, *result.actual, profile_);
+  const VerdictDecision decision = decide_verdict(result.diff->summary, spec_depth_tolerance_r(scene));
+  result.verdict = decision.verdict;
+  result.message = decision.message;
+}
+
+CaseResult CaseRunner::run_capture(const Scene& scene, const std::string& capture_dir) {
+  namespace fs = std::filesystem;
+  if (!from_captures_) throw std::logic_error("CaseRunner::run_capture on a runner made for a device");
+  CaseResult result;
+  // The capture first: its limits set the CPU options. Its errors wait until the CPU profile has
+  // had its say, so a scene the profile cannot judge is NotSupported whatever was recorded.
+  std::optional<RenderResult> capture;
+  std::string device_not_supported, capture_error;
+  const fs::path not_supported_file = fs::path(capture_dir) / kCaptureNotSupportedFile;
+  if (fs::exists(not_supported_file)) {
+    device_not_supported = read_message_file(not_supported_file.string());
+  } else {
+    try {
+      capture = read_render_outputs(capture_dir);
+    } catch (const InputError& e) {
+      capture_error = e.what();
+    }
+  }
+  capture_limits_ = capture ? capture->limits.value_or(DeviceLimits{}) : DeviceLimits{};
+  result.cpu_method = cpu_method_label(cpu_options(scene));
+  try {
+    result.expected = render_cpu(scene, cpu_options(scene));
+    if (!device_not_supported.empty()) {
+      result.verdict = Verdict::NotSupported;
+      result.message = "device: " + device_not_supported;
+      return result;
+    }
+    if (!capture_error.empty()) {
+      result.verdict = Verdict::ResourceError;
+      result.message = "capture: " + capture_error;
+      return result;
+    }
+    const std::string mismatch = capture_mismatch(*result.expected, *capture, capture_dir);
+    if (!mismatch.empty()) {
+      result.verdict = Verdict::ResourceError;
+      result.message = "capture: " + mismatch;
+      return result;
+    }
+    result.actual = std::move(*capture);
+    judge(scene, result);
+  } catch (const InputError&) {
+    throw;
+  } catch (const NotSupportedError& e) {
+    result.verdict = Verdict::NotSupported;
+    result.message = fmt::format("cpu profile: {}", e.what());
   } catch (const std::exception& e) {
     result.verdict = Verdict::InternalError;
     result.message = e.what();

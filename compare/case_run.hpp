@@ -6,6 +6,11 @@
 //   validation-layer messages during the case  → InternalError
 //   any other exception                        → InternalError
 // InputError is not caught: a bad scene is the caller's to report before the run starts.
+// A runner made from a capture judges recorded renders instead (`rastercmp capture`, docs/compare.md):
+//   capture folder holds not_supported.txt                    → NotSupported (the device's message)
+//   render.json / owner.tif / depth_raw.tif missing, corrupt,
+//   or of another size, sample count or depth format          → ResourceError naming the file
+// and the spec profile takes subPixelPrecisionBits from each capture's limits (8 when absent).
 #pragma once
 
 #include <functional>
@@ -32,6 +37,8 @@ class CaseRunner {
  public:
   // Creates the Vulkan device now. Throws EnvironmentError when there is none.
   CaseRunner(CompareProfile profile, CpuOptionsForScene cpu_options, VkOptions vk_options);
+  // Judges captures: no device is created; `device` describes the recorded one (capture_device).
+  CaseRunner(CompareProfile profile, CpuOptionsForScene cpu_options, DeviceInfo device);
   ~CaseRunner();
 
   CompareProfile profile() const { return profile_; }
@@ -42,16 +49,32 @@ class CaseRunner {
   CpuOptions cpu_options(const Scene& scene) const;
 
   CaseResult run(const Scene& scene);
+  // The same verdicts for the render recorded in `capture_dir` (a runner made from a capture).
+  CaseResult run_capture(const Scene& scene, const std::string& capture_dir);
 
  private:
   VulkanRenderer& renderer();
   void render_both(const Scene& scene, CaseResult& result);
+  void judge(const Scene& scene, CaseResult& result) const;  // diff and verdict of the two renders
 
   CompareProfile profile_;
   CpuOptionsForScene cpu_options_;
   VkOptions vk_options_;
   std::unique_ptr<VulkanRenderer> renderer_;
   DeviceInfo device_;
+  bool from_captures_ = false;
+  std::optional<DeviceLimits> capture_limits_;  // the last capture's, for cpu_options
 };
+
+// The device a capture folder's render.json names (name, driver, limits; sub-pixel bits 8 when
+// it records none). Throws InputError when render.json is missing or unreadable.
+DeviceInfo capture_device(const std::string& capture_dir);
+
+// Where a suite case's capture lies: ROOT/<scene path relative to the suite, without .json>.
+std::string capture_dir_for(const std::string& root, const std::string& suite_dir, const std::string& scene_path);
+
+// What `rastercmp capture` writes into a capture folder in place of a render the device refused
+// (NotSupportedError): its message.
+inline constexpr const char* kCaptureNotSupportedFile = "not_supported.txt";
 
 }  // namespace rastercmp

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
+#include <memory>
 
 #include "compare/case_judge.hpp"
 #include "compare/explain_text.hpp"
@@ -46,15 +47,35 @@ std::string not_run_list(const std::vector<std::string>& names) {
 
 // Renders, judges and reports one case; the record carries its duration.
 CaseRecord run_one_case(CaseRunner& runner, const SuiteCase& suite_case, const Expectations& expectations,
-                        const std::string& report_dir) {
+                        const std::string& report_dir, const std::string& capture_dir) {
   const Clock::time_point start = Clock::now();
-  const CaseResult result = runner.run(suite_case.scene);
+  const CaseResult result =
+      capture_dir.empty() ? runner.run(suite_case.scene) : runner.run_capture(suite_case.scene, capture_dir);
   CaseRecord record = make_case_record(suite_case, result, expectations);
   record.images = write_case_images(report_dir, suite_case.name, result);
   record.explains = write_case_explanations(report_dir, suite_case.name, suite_case.scene,
                                             runner.cpu_options(suite_case.scene), result, runner.profile());
   record.duration_s = seconds_since(start);
   return record;
+}
+
+// The device the captures name: the first case's readable render.json.
+DeviceInfo captured_device(const ConformanceOptions& o, const ConformancePlan& plan) {
+  for (const SuiteCase& c : plan.cases) {
+    try {
+      return capture_device(capture_dir_for(o.captures_root, plan.suite_dir, c.path));
+    } catch (const InputError&) {
+      // a missing or broken capture is that case's ResourceError; the device comes from another
+    }
+  }
+  throw InputError(o.captures_root, "",
+                   "expected the captures of the suite's cases (rastercmp capture --out); none of the selected "
+                   "cases has a readable render.json there");
+}
+
+std::unique_ptr<CaseRunner> make_runner(const ConformanceOptions& o, const ConformancePlan& plan) {
+  if (o.captures_root.empty()) return std::make_unique<CaseRunner>(o.profile, o.cpu_options, o.vk);
+  return std::make_unique<CaseRunner>(o.profile, o.cpu_options, captured_device(o, plan));
 }
 
 }  // namespace
@@ -76,6 +97,7 @@ ConformancePlan plan_conformance(const ConformanceOptions& o) {
   plan.expectations = load_expectations(o.baseline_file, o.flakes_file, o.skips_file);
   plan.shard = o.shard ? *o.shard : shard_from_environment().value_or(Shard{});
   const std::string suite_dir = o.suite_dir.empty() ? default_suite_dir() : o.suite_dir;
+  plan.suite_dir = suite_dir;
   std::vector<SuiteCase> suite = load_suite(suite_dir);
   plan.suite_size = suite.size();
   const CaseFilter filter{read_caselist_file(o.caselist_file), o.case_globs, plan.expectations.skips};
@@ -88,7 +110,8 @@ ConformancePlan plan_conformance(const ConformanceOptions& o) {
 
 ConformanceResult run_conformance(const ConformanceOptions& options, const ConformancePlan& plan,
                                   const std::atomic<bool>& stop, const ProgressFn& progress) {
-  CaseRunner runner(options.profile, options.cpu_options, options.vk);
+  const std::unique_ptr<CaseRunner> runner_ptr = make_runner(options, plan);
+  CaseRunner& runner = *runner_ptr;
   const fs::path out(options.out_dir);
   const std::string report_dir = (out / "report").string();
   ConformanceResult result;
@@ -106,7 +129,9 @@ ConformanceResult run_conformance(const ConformanceOptions& options, const Confo
       for (size_t j = i; j < plan.cases.size(); ++j) info.not_run.push_back(plan.cases[j].name);
       break;
     }
-    CaseRecord record = run_one_case(runner, plan.cases[i], plan.expectations, report_dir);
+    const std::string capture_dir =
+        options.captures_root.empty() ? "" : capture_dir_for(options.captures_root, plan.suite_dir, plan.cases[i].path);
+    CaseRecord record = run_one_case(runner, plan.cases[i], plan.expectations, report_dir, capture_dir);
     results_csv.append(record);
     result.records.push_back(std::move(record));
     write_run_outputs(options.out_dir, info, result.records);

@@ -32,6 +32,9 @@ struct ConformanceOptions {
   CompareProfile profile = CompareProfile::Lavapipe;
   CpuOptionsForScene cpu_options;
   VkOptions vk;
+  // Not empty: judge the renders recorded below this folder (rastercmp capture --out) instead of
+  // rendering on a device; case PATH's capture is capture_dir_for(captures_root, suite, PATH).
+  std::string captures_root;
 };
 
 struct ConformancePlan {
@@ -39,6 +42,7 @@ struct ConformancePlan {
   Expectations expectations;
   Shard shard;
   size_t suite_size = 0;  // cases in the suite before any filter
+  std::string suite_dir;  // the suite folder read
 };
 
 // Checks the output folder (writable, or InputError before any work), reads the expectation
@@ -56,7 +60,7 @@ struct ConformanceResult {
 using ProgressFn = std::function<void(const std::string& line)>;
 
 // Runs the plan. `stop` is polled between cases. Throws EnvironmentError when no Vulkan device
-// can be created.
+// can be created, InputError when judging captures of which none has a readable render.json.
 ConformanceResult run_conformance(const ConformanceOptions& options, const ConformancePlan& plan,
                                   const std::atomic<bool>& stop, const ProgressFn& progress);
 

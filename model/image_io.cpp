@@ -64,6 +64,40 @@ std::vector<uint32_t> read_uint_image(const std::string& path, uint32_t& width, 
   return data;
 }
 
+// render.json "limits"; every field is optional and keeps its DeviceLimits default when absent.
+DeviceLimits read_limits(const nlohmann::json& j, const std::string& file) {
+  DeviceLimits l;
+  if (!j.is_object()) throw InputError(file, "$.limits", "an object");
+  try {
+    l.sub_pixel_precision_bits = j.value("subPixelPrecisionBits", l.sub_pixel_precision_bits);
+    l.viewport_sub_pixel_bits = j.value("viewportSubPixelBits", l.viewport_sub_pixel_bits);
+    l.strict_lines = j.value("strictLines", l.strict_lines);
+    l.standard_sample_locations = j.value("standardSampleLocations", l.standard_sample_locations);
+    if (j.contains("lineWidthRange")) {
+      const auto& range = j.at("lineWidthRange");
+      if (!range.is_array() || range.size() != 2) throw InputError(file, "$.limits.lineWidthRange", "[min, max]");
+      l.line_width_min = range[0].get<float>();
+      l.line_width_max = range[1].get<float>();
+    }
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(file, "$.limits", std::string("device limits of the right types: ") + e.what());
+  }
+  if (l.sub_pixel_precision_bits == 0) throw InputError(file, "$.limits.subPixelPrecisionBits", "a value above 0");
+  return l;
+}
+
+// "NAME (DRIVER)", as render.json's "device" reads when it has no "device_name" (older captures).
+void split_device(const std::string& device, std::string& name, std::string& driver) {
+  const size_t open = device.rfind(" (");
+  if (!device.empty() && device.back() == ')' && open != std::string::npos) {
+    name = device.substr(0, open);
+    driver = device.substr(open + 2, device.size() - open - 3);
+  } else {
+    name = device;
+    driver.clear();
+  }
+}
+
 }  // namespace
 
 void ensure_output_dir(const std::string& dir) {
@@ -129,7 +163,7 @@ void write_render_outputs(const RenderResult& r, const std::string& dir) {
     write_image_atomic((fs::path(dir) / "depth.exr").string(), exr_spec, depth.data());
   }
 
-  const nlohmann::ordered_json meta = {
+  nlohmann::ordered_json meta = {
       {"backend", r.backend},
       {"device", r.device},
       {"fma", r.fma},
@@ -139,13 +173,30 @@ void write_render_outputs(const RenderResult& r, const std::string& dir) {
       {"depth_format", to_string(r.depth_format)},
       {"depth", r.has_depth()},
   };
+  if (!r.device_name.empty()) {
+    meta["device_name"] = r.device_name;
+    meta["driver"] = r.driver;
+  }
+  if (r.limits) {
+    meta["limits"] = {
+        {"subPixelPrecisionBits", r.limits->sub_pixel_precision_bits},
+        {"viewportSubPixelBits", r.limits->viewport_sub_pixel_bits},
+        {"strictLines", r.limits->strict_lines},
+        {"standardSampleLocations", r.limits->standard_sample_locations},
+        {"lineWidthRange", {r.limits->line_width_min, r.limits->line_width_max}},
+    };
+  }
   write_text_file_atomic((fs::path(dir) / "render.json").string(), meta.dump(2) + "\n");
 }
 
-RenderResult read_render_outputs(const std::string& dir) {
+namespace {
+
+// render.json alone; `depth` and the stated size come back apart (0: not stated).
+RenderResult read_render_json(const std::string& dir, bool& depth, uint32_t& width, uint32_t& height,
+                              uint32_t& samples) {
   const std::string meta_path = (fs::path(dir) / "render.json").string();
   std::ifstream in(meta_path);
-  if (!in) throw InputError(meta_path, "", "expected render.json from rastercmp render");
+  if (!in) throw InputError(meta_path, "", "expected render.json (rastercmp render or capture)");
   nlohmann::json meta;
   try {
     meta = nlohmann::json::parse(in);
@@ -153,18 +204,66 @@ RenderResult read_render_outputs(const std::string& dir) {
     throw InputError(meta_path, "", std::string("expected valid JSON: ") + e.what());
   }
   RenderResult r;
-  r.backend = meta.value("backend", "");
-  r.device = meta.value("device", "");
-  r.fma = meta.value("fma", false);
-  const std::string fmt_name = meta.value("depth_format", "none");
+  std::string fmt_name;
+  try {
+    if (!meta.is_object()) throw InputError(meta_path, "", "a JSON object");
+    r.backend = meta.value("backend", "");
+    r.device = meta.value("device", "");
+    r.fma = meta.value("fma", false);
+    fmt_name = meta.value("depth_format", "none");
+    depth = meta.value("depth", false);
+    width = meta.value("width", 0u);
+    height = meta.value("height", 0u);
+    samples = meta.value("samples", 0u);
+    if (meta.contains("device_name")) {
+      r.device_name = meta.at("device_name").get<std::string>();
+      r.driver = meta.value("driver", "");
+    } else if (r.backend == "vulkan") {
+      split_device(r.device, r.device_name, r.driver);
+    }
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(meta_path, "", std::string("expected fields of the right types: ") + e.what());
+  }
+  if (meta.contains("limits")) r.limits = read_limits(meta.at("limits"), meta_path);
+  bool known_format = false;
   for (DepthFormat f : kAllDepthFormats)
-    if (fmt_name == to_string(f)) r.depth_format = f;
+    if (fmt_name == to_string(f)) {
+      r.depth_format = f;
+      known_format = true;
+    }
+  if (!known_format) throw InputError(meta_path, "$.depth_format", "a known depth format, not \"" + fmt_name + "\"");
+  return r;
+}
+
+}  // namespace
+
+RenderResult read_render_info(const std::string& dir) {
+  bool depth = false;
+  uint32_t width = 0, height = 0, samples = 0;
+  return read_render_json(dir, depth, width, height, samples);
+}
+
+RenderResult read_render_outputs(const std::string& dir) {
+  bool depth = false;
+  uint32_t width = 0, height = 0, samples = 0;
+  RenderResult r = read_render_json(dir, depth, width, height, samples);
   uint32_t c = 0;
-  r.owner = read_uint_image((fs::path(dir) / "owner.tif").string(), r.width, r.height, c);
+  const std::string owner_path = (fs::path(dir) / "owner.tif").string();
+  r.owner = read_uint_image(owner_path, r.width, r.height, c);
   r.samples = c;
-  if (meta.value("depth", false)) {
+  // Older outputs may lack the size; when render.json states it, the image must agree.
+  if ((width != 0 && width != r.width) || (height != 0 && height != r.height) || (samples != 0 && samples != c))
+    throw InputError(owner_path, "",
+                     fmt::format("an image of {}x{} with {} sample(s) as render.json states, not {}x{} with {}", width,
+                                 height, samples, r.width, r.height, c));
+  if (depth) {
     uint32_t w2 = 0, h2 = 0, c2 = 0;
-    r.depth_raw = read_uint_image((fs::path(dir) / "depth_raw.tif").string(), w2, h2, c2);
+    const std::string depth_path = (fs::path(dir) / "depth_raw.tif").string();
+    r.depth_raw = read_uint_image(depth_path, w2, h2, c2);
+    if (w2 != r.width || h2 != r.height || c2 != r.samples)
+      throw InputError(depth_path, "",
+                       fmt::format("an image of the owner image's size, {}x{} with {} sample(s), not {}x{} with {}",
+                                   r.width, r.height, r.samples, w2, h2, c2));
   }
   return r;
 }

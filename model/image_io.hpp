@@ -6,7 +6,8 @@
 //   owner.png        false colour for people (background black, each owner a stable hue)
 //   depth.exr        depth value as float (single-sample scenes with depth)
 //   depth_raw.tif    raw stored bits: uint32 (D16 in the low 16 bits, X8_D24 in the low 24)
-//   render.json      backend, device, fma, size, samples, depth format
+//   render.json      backend, device, fma, size, samples, depth format; for a Vulkan render also
+//                    device_name, driver and the device's limits (DeviceLimits, Vulkan names)
 #pragma once
 
 #include <string>
@@ -20,8 +21,12 @@ void ensure_output_dir(const std::string& dir);
 
 void write_render_outputs(const RenderResult&, const std::string& dir);
 
-// Reads owner.tif / depth_raw.tif / render.json back (used by tests and merge).
+// Reads owner.tif / depth_raw.tif / render.json back (tests, merge, judged captures). Throws
+// InputError naming the file that is missing, unreadable or disagrees with render.json.
 RenderResult read_render_outputs(const std::string& dir);
+
+// render.json alone: everything read_render_outputs returns but the images.
+RenderResult read_render_info(const std::string& dir);
 
 // Atomic text write: temp file + rename.
 void write_text_file_atomic(const std::string& path, const std::string& text);

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -36,10 +37,26 @@ struct DepthInterval {
   bool operator==(const DepthInterval&) const = default;
 };
 
+// The device limits the spec profile may read, as a capture's render.json records them ("limits").
+// A capture without them gets these defaults: subPixelPrecisionBits 8 (every device seen so far)
+// and the specification's minimum guarantees for the rest ("Limit Requirements": viewportSubPixelBits
+// 0, strictLines and standardSampleLocations not required, lineWidthRange (1.0, 1.0)).
+struct DeviceLimits {
+  uint32_t sub_pixel_precision_bits = 8;
+  uint32_t viewport_sub_pixel_bits = 0;
+  bool strict_lines = false;
+  bool standard_sample_locations = false;
+  float line_width_min = 1.0f, line_width_max = 1.0f;
+  bool operator==(const DeviceLimits&) const = default;
+};
+
 struct RenderResult {
   std::string backend;  // "cpu" or "vulkan"
   std::string device;   // device or profile description
-  bool fma = false;     // whether the depth/viewport arithmetic was fused
+  // Vulkan only: the device's name and driver apart, and its limits (absent in older captures).
+  std::string device_name, driver;
+  std::optional<DeviceLimits> limits;
+  bool fma = false;  // whether the depth/viewport arithmetic was fused
   uint32_t width = 0, height = 0, samples = 1;
   DepthFormat depth_format = DepthFormat::None;
   std::vector<uint32_t> owner;      // width*height*samples

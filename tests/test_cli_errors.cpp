@@ -68,6 +68,17 @@ TEST(CliErrors, ConformanceRejectsAnUnwritableOutputFolder) {
   }
 }
 
+TEST(CliErrors, CaptureRejectsAnUnwritableOutputFolder) {
+  const TempDir tmp;
+  const fs::path suite = tmp / "suite";
+  fs::create_directories(suite);
+  fs::copy_file(kGoodScene, suite / "shared_edge.json");
+  for (const fs::path& out : unwritable_outputs(tmp)) {
+    SCOPED_TRACE(out.string());
+    expect_unwritable({"capture", "--suite", suite.string(), "--out", out.string()}, out, tmp);
+  }
+}
+
 // --- bad command lines ----------------------------------------------------------------------
 
 TEST(CliErrors, BadOrMissingOptionsExitTwoAndWriteNothing) {
@@ -137,6 +148,8 @@ TEST(CliErrors, WithoutAVulkanDriverTheVulkanCommandsExitThree) {
   expect_no_vulkan({"render", kGoodScene.string(), "--backend", "vulkan", "--out", (tmp / "vk").string()});
   EXPECT_TRUE(files_of(snapshot_tree(tmp / "vk")).empty()) << "render wrote files without a device";
   expect_no_vulkan({"compare", kGoodScene.string()});
+  expect_no_vulkan({"capture", "--suite", kGoodScene.parent_path().string(), "--out", (tmp / "cap").string()});
+  EXPECT_TRUE(files_of(snapshot_tree(tmp / "cap")).empty()) << "capture wrote files without a device";
 }
 
 TEST(CliErrors, WithoutAVulkanDriverTheCpuRendererStillWorks) {

@@ -128,6 +128,12 @@ DeviceInfo describe_device(VkPhysicalDevice device, uint32_t index) {
   }
   info.api_version = version_string(p.apiVersion);
   info.sub_pixel_precision_bits = p.limits.subPixelPrecisionBits;
+  info.limits.sub_pixel_precision_bits = p.limits.subPixelPrecisionBits;
+  info.limits.viewport_sub_pixel_bits = p.limits.viewportSubPixelBits;
+  info.limits.strict_lines = p.limits.strictLines == VK_TRUE;
+  info.limits.standard_sample_locations = p.limits.standardSampleLocations == VK_TRUE;
+  info.limits.line_width_min = p.limits.lineWidthRange[0];
+  info.limits.line_width_max = p.limits.lineWidthRange[1];
   info.depth_formats = renderable_depth_formats(device);
   info.sample_counts = sample_count_list(p.limits.framebufferColorSampleCounts & p.limits.framebufferDepthSampleCounts);
   info.is_lavapipe =

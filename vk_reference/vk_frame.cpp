@@ -193,6 +193,9 @@ RenderResult Frame::read_back() const {
   RenderResult result;
   result.backend = "vulkan";
   result.device = info.driver_info.empty() ? info.name : info.name + " (" + info.driver_info + ")";
+  result.device_name = info.name;
+  result.driver = info.driver_info;
+  result.limits = info.limits;
   result.fma = info.fma;  // is_lavapipe && lavapipe_fuses_on_this_host()
   result.width = width_;
   result.height = height_;

@@ -25,6 +25,7 @@ struct DeviceInfo {
   std::string driver_info;  // e.g. "Mesa 22.3.6"
   std::string api_version;  // "1.3.230"
   uint32_t sub_pixel_precision_bits = 0;
+  DeviceLimits limits;                     // what a capture records (sub_pixel_precision_bits repeated)
   std::vector<DepthFormat> depth_formats;  // renderable with optimal tiling
   std::vector<uint32_t> sample_counts;     // framebuffer colour & depth sample counts, e.g. {1, 4}
   bool is_lavapipe = false;

@@ -1,0 +1,126 @@
+// Captures as an input (docs/compare.md "Captures"): `rastercmp capture` records a small suite on
+// lavapipe, and `conformance --captures` / `compare --capture` judge the recorded renders with the
+// verdicts and outputs of a live run. Captures that do not fit their scene (a missing or corrupt
+// file, another size, sample count or depth format) are that case's ResourceError naming the file,
+// and a render.json without the device's limits (as older captures) still judges.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "tests/test_cli_support.hpp"
+
+namespace rastercmp::cli_test {
+namespace {
+
+// Depth formats, MSAA with lines, a fractional viewport, a scene the device refuses nothing of
+// and one the CPU profiles cannot judge (point_list: NotSupported).
+const std::vector<std::string> kScenes = {
+    "depth/format/d16_unorm.json", "msaa/lines/mixed_modes.json",   "viewport/offset/fractional.json",
+    "clip/all_planes.json",        "not_supported/point_list.json",
+};
+
+// A suite folder holding copies of kScenes, laid out as in scenes/.
+fs::path make_suite(const TempDir& tmp) {
+  const fs::path suite = tmp / "suite";
+  for (const std::string& scene : kScenes) {
+    fs::create_directories((suite / scene).parent_path());
+    fs::copy_file(kSourceDir / "scenes" / scene, suite / scene);
+  }
+  return suite;
+}
+
+RunResult run_ok(const std::vector<std::string>& args, int expected_exit = 0, const EnvEdits& env = {}) {
+  const RunResult r = run_cli(args, env);
+  EXPECT_EQ(r.exit_code, expected_exit) << describe(args, r);
+  return r;
+}
+
+// summary.json has no durations: two runs that judge alike write the same bytes. Judging captures
+// needs no Vulkan driver, so those runs go without one.
+std::string conformance_summary(const fs::path& suite, const fs::path& out, const std::string& profile,
+                                const std::string& captures) {
+  std::vector<std::string> args = {"conformance", "--suite",   suite.string(), "--out",
+                                   out.string(),  "--profile", profile};
+  if (!captures.empty()) args.insert(args.end(), {"--captures", captures});
+  run_ok(args, 0, captures.empty() ? EnvEdits{} : kNoVulkanDriver);
+  return read_file(out / "summary.json");
+}
+
+TEST(CliCapture, CapturedSuiteJudgesLikeALiveRun) {
+  const TempDir tmp;
+  const fs::path suite = make_suite(tmp);
+  const fs::path captures = tmp / "captures";
+  run_ok({"capture", "--suite", suite.string(), "--out", captures.string()});
+  // One folder per scene, as the suite lays them out, with the device's limits recorded.
+  const std::string meta = read_file(captures / "viewport" / "offset" / "fractional" / "render.json");
+  for (const char* key : {"\"limits\"", "\"subPixelPrecisionBits\": 8", "\"viewportSubPixelBits\"", "\"strictLines\"",
+                          "\"standardSampleLocations\"", "\"lineWidthRange\"", "\"device_name\"", "\"driver\""})
+    EXPECT_NE(meta.find(key), std::string::npos) << key << " missing from\n" << meta;
+  EXPECT_TRUE(fs::exists(captures / "msaa" / "lines" / "mixed_modes" / "owner.tif"));
+
+  for (const std::string profile : {"lavapipe", "spec"}) {
+    SCOPED_TRACE(profile);
+    const std::string live = conformance_summary(suite, tmp / ("live_" + profile), profile, "");
+    const std::string judged = conformance_summary(suite, tmp / ("judged_" + profile), profile, captures.string());
+    EXPECT_EQ(judged, live);
+    EXPECT_NE(live.find("NotSupported"), std::string::npos);  // point_list, so the run is not all Pass
+  }
+}
+
+TEST(CliCapture, BrokenCapturesAreResourceErrorsNamingTheFile) {
+  const TempDir tmp;
+  const fs::path suite = make_suite(tmp);
+  const fs::path captures = tmp / "captures";
+  run_ok({"capture", "--suite", suite.string(), "--out", captures.string()});
+
+  const fs::path corrupt = captures / "depth" / "format" / "d16_unorm" / "owner.tif";
+  write_file(corrupt, "II*\0 not a TIFF any more");
+  const fs::path missing = captures / "clip" / "all_planes" / "depth_raw.tif";
+  fs::remove(missing);
+  // Another size: render.json and owner.tif both of a 16x16 render, the scene is not.
+  const fs::path resized_dir = captures / "viewport" / "offset" / "fractional";
+  run_ok({"render", (kSourceDir / "scenes" / "fill" / "top_left" / "shared_edge.json").string(), "--backend", "vulkan",
+          "--out", resized_dir.string()});
+  // No limits in render.json (as `render` wrote it before, and older captures): still judged.
+  const fs::path old_meta = captures / "msaa" / "lines" / "mixed_modes" / "render.json";
+  std::string text = read_file(old_meta);
+  const size_t limits = text.find(",\n  \"device_name\"");
+  ASSERT_NE(limits, std::string::npos) << text;
+  write_file(old_meta, text.substr(0, limits) + "\n}\n");
+
+  const fs::path out = tmp / "out";
+  const RunResult r = run_ok({"conformance", "--suite", suite.string(), "--out", out.string(), "--profile", "spec",
+                              "--captures", captures.string()},
+                             1);
+  const std::string summary = read_file(out / "summary.json");
+  const std::string failures = read_file(out / "failures.csv");
+  EXPECT_NE(failures.find("rastercmp.depth.format.d16_unorm,ResourceError"), std::string::npos) << failures;
+  EXPECT_NE(failures.find("rastercmp.clip.all_planes,ResourceError"), std::string::npos) << failures;
+  EXPECT_NE(failures.find("rastercmp.viewport.offset.fractional,ResourceError"), std::string::npos) << failures;
+  EXPECT_EQ(failures.find("mixed_modes"), std::string::npos) << failures;
+  for (const fs::path& file : {corrupt, missing, resized_dir / "owner.tif"})
+    EXPECT_NE(summary.find(file.string()), std::string::npos) << file << " not named in\n" << summary;
+
+  // compare --capture: the same verdict and file for one scene, and exit 1.
+  const RunResult c = run_ok({"compare", (suite / "clip" / "all_planes.json").string(), "--profile", "spec",
+                              "--capture", missing.parent_path().string()},
+                             1);
+  EXPECT_NE(c.out.find("ResourceError"), std::string::npos) << c.out;
+  EXPECT_NE(c.out.find(missing.string()), std::string::npos) << c.out;
+  // A render.json with impossible limits: the case's ResourceError too, naming render.json.
+  const fs::path bad_limits = captures / "msaa" / "lines" / "mixed_modes" / "render.json";
+  write_file(bad_limits, "{\"backend\": \"vulkan\", \"limits\": {\"subPixelPrecisionBits\": 0}}\n");
+  const RunResult l = run_ok({"compare", (suite / "msaa" / "lines" / "mixed_modes.json").string(), "--profile", "spec",
+                              "--capture", bad_limits.parent_path().string()},
+                             1);
+  EXPECT_NE(l.out.find("ResourceError"), std::string::npos) << l.out;
+  EXPECT_NE(l.out.find(bad_limits.string() + ": $.limits.subPixelPrecisionBits"), std::string::npos) << l.out;
+  // A capture root with nothing in it is a usage error of the whole run (exit 2).
+  const fs::path empty = tmp / "empty";
+  fs::create_directories(empty);
+  run_ok({"conformance", "--suite", suite.string(), "--out", (tmp / "out2").string(), "--captures", empty.string()}, 2);
+}
+
+}  // namespace
+}  // namespace rastercmp::cli_test
