@@ -46,6 +46,19 @@ void add_diff_fields(OJson& j, const DiffSummary* d) {
   put("depth_p95", d ? d->depth.p95_raw : 0);
   put("depth_p50_r", d ? d->depth.p50_r : 0.0);
   put("depth_p95_r", d ? d->depth.p95_r : 0.0);
+  put("depth_intervals_checked", d ? d->depth_intervals_checked : false);
+  put("depth_outside", d ? d->depth_outside : 0);
+  if (d && d->depth_outside != 0) {
+    OJson v = location_json(d->worst_outside.at);
+    v["actual_raw"] = d->worst_outside.actual_raw;
+    v["bound"] = d->worst_outside.above ? "hi" : "lo";
+    v["bound_raw"] = d->worst_outside.bound_raw;
+    v["distance"] = d->worst_outside.distance;
+    v["term"] = to_string(d->worst_outside.term);
+    j["depth_outside_at"] = v;
+  } else {
+    j["depth_outside_at"] = nullptr;
+  }
   if (d) {
     OJson at = location_json(d->depth.max_at);
     at["expected_raw"] = d->depth.max_expected_raw;
@@ -132,6 +145,23 @@ DiffSummary diff_from_json(const Reader& r, const Json& j, const std::string& pa
   d.depth.max_at = r.location(at, path + ".max_depth_at");
   d.depth.max_expected_raw = r.get<uint32_t>(at, path + ".max_depth_at", "expected_raw");
   d.depth.max_actual_raw = r.get<uint32_t>(at, path + ".max_depth_at", "actual_raw");
+  if (j.contains("depth_outside")) {  // records written before the depth intervals lack them
+    d.depth_intervals_checked = r.get<bool>(j, path, "depth_intervals_checked");
+    d.depth_outside = r.get<uint64_t>(j, path, "depth_outside");
+  }
+  if (d.depth_outside != 0) {
+    const std::string vpath = path + ".depth_outside_at";
+    const Json& v = r.at(j, path, "depth_outside_at");
+    d.worst_outside.at = r.location(v, vpath);
+    d.worst_outside.actual_raw = r.get<uint32_t>(v, vpath, "actual_raw");
+    d.worst_outside.above = r.get<std::string>(v, vpath, "bound") == "hi";
+    d.worst_outside.bound_raw = r.get<uint32_t>(v, vpath, "bound_raw");
+    d.worst_outside.distance = r.get<uint64_t>(v, vpath, "distance");
+    const std::string term = r.get<std::string>(v, vpath, "term");
+    for (DepthTerm t : {DepthTerm::Plane, DepthTerm::Snapping, DepthTerm::Bias, DepthTerm::Precision,
+                        DepthTerm::Rounding, DepthTerm::Clear, DepthTerm::Undefined})
+      if (term == to_string(t)) d.worst_outside.term = t;
+  }
   const Json& bad = r.at(j, path, "first_bad");
   for (size_t i = 0; i < bad.size(); ++i)
     d.first_bad.push_back(bad_sample_from_json(r, bad[i], path + ".first_bad[" + std::to_string(i) + "]"));

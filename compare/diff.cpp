@@ -3,6 +3,7 @@
 #include <fmt/core.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <stdexcept>
 
 #include "compare/depth_units.hpp"
@@ -53,7 +54,8 @@ void check_comparable(const RenderResult& expected, const RenderResult& actual) 
   if (expected.owner.size() != n || actual.owner.size() != n ||
       (expected.has_depth() && expected.depth_raw.size() != n) ||
       (actual.has_depth() && actual.depth_raw.size() != n) ||
-      (!expected.coverage_class.empty() && expected.coverage_class.size() != n))
+      (!expected.coverage_class.empty() && expected.coverage_class.size() != n) ||
+      (!expected.depth_interval.empty() && expected.depth_interval.size() != n))
     throw std::invalid_argument("a render's arrays do not match its width * height * samples");
 }
 
@@ -65,6 +67,24 @@ T percentile(std::vector<T>& values, unsigned percent) {
   const size_t index = rank == 0 ? 0 : rank - 1;
   std::nth_element(values.begin(), values.begin() + index, values.end());
   return values[index];
+}
+
+// The spec interval check of one sample: true when its stored depth is outside.
+bool check_interval(const RenderResult& expected, const RenderResult& actual, size_t i, SampleLocation at,
+                    DiffSummary& s) {
+  const CoverageClass cls = coverage_class_at(expected, i);
+  if (cls == CoverageClass::MustNot) return false;
+  const DepthInterval& interval = expected.depth_interval[i];
+  const uint32_t raw = actual.depth_raw[i];
+  if (depth_in_interval(s.depth_format, interval, raw)) return false;
+  ++s.depth_outside;
+  const int64_t key = depth_raw_order(s.depth_format, raw);
+  const bool above = key > depth_raw_order(s.depth_format, interval.hi_raw);
+  const uint32_t bound = above ? interval.hi_raw : interval.lo_raw;
+  const uint64_t distance = uint64_t(std::llabs(key - depth_raw_order(s.depth_format, bound)));
+  if (s.depth_outside == 1 || distance > s.worst_outside.distance)
+    s.worst_outside = {at, raw, bound, above, above ? interval.hi_term : interval.lo_term, distance};
+  return true;
 }
 
 const char* bad_kind(SampleClass c) {
@@ -144,6 +164,8 @@ SceneDiff diff_results(const RenderResult& expected, const RenderResult& actual,
   s.samples_compared = s.pixels * s.samples;
   diff.sample_class.resize(size_t(s.samples_compared));
   if (s.depth_compared) diff.depth_diff_r.assign(size_t(s.samples_compared), 0.0f);
+  s.depth_intervals_checked =
+      profile == CompareProfile::Spec && s.depth_compared && expected.depth_interval.size() == s.samples_compared;
 
   DepthAccumulator acc;
   for (uint32_t y = 0; y < s.height; ++y) {
@@ -177,7 +199,12 @@ SceneDiff diff_results(const RenderResult& expected, const RenderResult& actual,
             acc.r.push_back(bad.depth_diff_r);
           }
         }
-        const bool sample_bad = is_coverage_error(c) || bad.depth_diff_raw != 0;
+        // A missing sample's depth is the clear value: counted once, as coverage.
+        const bool coverage_fails = c == SampleClass::Missing || c == SampleClass::Unexpected;
+        if (s.depth_intervals_checked && !coverage_fails && check_interval(expected, actual, i, bad.at, s) &&
+            c != SampleClass::WrongOwner)
+          bad.kind = "depth_outside";
+        const bool sample_bad = is_coverage_error(c) || bad.depth_diff_raw != 0 || bad.kind == "depth_outside";
         pixel_bad = pixel_bad || sample_bad;
         if (sample_bad && s.first_bad.size() < max_bad_samples) s.first_bad.push_back(bad);
       }

@@ -13,6 +13,9 @@
 // Depth: compared only on samples whose coverage agrees (same owner, or both background), so a
 // coverage difference is never counted twice, and only when both renders carry depth (the
 // Vulkan reference carries none for a multisampled format its device cannot sample).
+// Spec profile with RenderResult::depth_interval: the stored depth of every Must and May sample is
+// checked against its interval, whatever the owners, except where the coverage already fails
+// ("depth_outside", docs/spec-profile.md).
 // Units: compare/depth_units.hpp.
 #pragma once
 
@@ -39,8 +42,9 @@ struct SampleLocation {
   bool operator==(const SampleLocation&) const = default;
 };
 
-// One sample that differs: its coverage class ("missing", "unexpected", "wrong_owner") or
-// "depth" when the coverage agrees and only the stored depth differs.
+// One sample that differs: its coverage class ("missing", "unexpected", "wrong_owner"),
+// "depth_outside" when its stored depth is outside its spec interval, or "depth" when the coverage
+// agrees and only the stored depth differs.
 struct BadSample {
   SampleLocation at;
   std::string kind;
@@ -63,6 +67,17 @@ struct DepthStats {
   bool operator==(const DepthStats&) const = default;
 };
 
+// Spec profile: the sample whose stored depth lies farthest outside its spec interval
+// (RenderResult::depth_interval), in depth_unit_name() units; the first in scan order wins ties.
+struct DepthViolation {
+  SampleLocation at;
+  uint32_t actual_raw = 0, bound_raw = 0;
+  bool above = false;                 // past the upper bound hi (else below lo)
+  DepthTerm term = DepthTerm::Plane;  // what dominated the bound it broke
+  uint64_t distance = 0;
+  bool operator==(const DepthViolation&) const = default;
+};
+
 struct DiffSummary {
   CompareProfile profile = CompareProfile::Lavapipe;
   uint32_t width = 0, height = 0, samples = 1;
@@ -74,6 +89,10 @@ struct DiffSummary {
   uint64_t covered_match = 0;  // covered by the same owner in both
   uint64_t bad_pixels = 0;     // pixels with at least one missing/unexpected/wrong-owner/depth sample
   DepthStats depth;
+  // Spec profile with depth intervals: Must and May samples checked against them.
+  bool depth_intervals_checked = false;
+  uint64_t depth_outside = 0;
+  DepthViolation worst_outside;
   std::vector<BadSample> first_bad;
 
   uint64_t coverage_mismatches() const { return missing + unexpected + wrong_owner; }

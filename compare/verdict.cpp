@@ -37,11 +37,41 @@ VerdictDecision decide_lavapipe(const DiffSummary& d) {
   return {Verdict::Fail, why};
 }
 
+std::string depth_value(DepthFormat format, uint32_t raw) {
+  return fmt::format("{:.9g} (raw {})", depth_raw_to_value(format, raw), raw);
+}
+
+std::string outside_counts(const DiffSummary& d) {
+  const DepthViolation& v = d.worst_outside;
+  return fmt::format(
+      "{} samples store a depth outside the spec interval; farthest at ({}, {}) sample {}: {} is {} {} {} by {} "
+      "{}, a bound set by {}",
+      d.depth_outside, v.at.x, v.at.y, v.at.sample, depth_value(d.depth_format, v.actual_raw),
+      v.above ? "above" : "below", v.above ? "hi" : "lo", depth_value(d.depth_format, v.bound_raw), v.distance,
+      depth_unit_name(d.depth_format), to_string(v.term));
+}
+
 VerdictDecision decide_spec(const DiffSummary& d, double tolerance_r) {
   const std::string allowed = fmt::format("{} allowed (may)", d.allowed);
-  if (d.missing + d.unexpected != 0) return {Verdict::Fail, coverage_counts(d) + ", " + allowed};
+  if (d.missing + d.unexpected != 0) {
+    std::string why = coverage_counts(d) + ", " + allowed;
+    if (d.depth_outside != 0) why += "; " + outside_counts(d);
+    return {Verdict::Fail, why};
+  }
+  if (d.depth_outside != 0) return {Verdict::Fail, outside_counts(d) + "; " + coverage_counts(d) + ", " + allowed};
+  if (d.wrong_owner != 0 && d.depth_intervals_checked)
+    return {Verdict::QualityWarning,
+            coverage_counts(d) +
+                " (the spec does not fix which primitive wins where both may; every stored depth lies inside its "
+                "spec interval), " +
+                allowed};
   if (d.wrong_owner != 0)
     return {Verdict::QualityWarning, coverage_counts(d) + " (the spec does not fix which primitive wins), " + allowed};
+  if (d.depth_intervals_checked)
+    return {Verdict::Pass,
+            fmt::format("within the spec: {}, every stored depth inside its spec interval ({} differ from the lavapipe "
+                        "estimate, max {} {})",
+                        allowed, d.depth.mismatches, d.depth.max_raw, depth_unit_name(d.depth_format))};
   if (d.depth.max_r > tolerance_r)
     return {Verdict::QualityWarning, fmt::format("{} (tolerance {:.6g} r), {}", depth_counts(d), tolerance_r, allowed)};
   return {Verdict::Pass, fmt::format("within the spec: {}, {} depth differences within {:.6g} r", allowed,

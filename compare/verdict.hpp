@@ -35,8 +35,12 @@ struct VerdictDecision {
 double spec_depth_tolerance_r(const Scene& scene);
 
 // Lavapipe profile: Pass only with 0 coverage and 0 depth differences, else Fail.
-// Spec profile: Fail on any missing (Must) or unexpected (MustNot) sample; a wrong owner or a
-// depth difference beyond `depth_tolerance_r` is a QualityWarning; May samples never count.
+// Spec profile: Fail on any missing (Must) or unexpected (MustNot) sample, or, when the expected
+// render carries depth intervals, on any Must or May sample whose stored depth lies outside its
+// interval (the message names the farthest one, the bound it broke and the term that set it). A
+// wrong owner is a QualityWarning (which of two primitives wins is left to the device). Without
+// intervals a depth difference beyond `depth_tolerance_r` is a QualityWarning. May samples never
+// count for coverage.
 VerdictDecision decide_verdict(const DiffSummary& diff, double depth_tolerance_r);
 
 }  // namespace rastercmp

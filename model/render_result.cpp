@@ -19,4 +19,32 @@ double depth_raw_to_value(DepthFormat format, uint32_t raw) {
   throw std::invalid_argument("depth_raw_to_value: the depth format is none, there is no depth to decode");
 }
 
+int64_t depth_raw_order(DepthFormat format, uint32_t raw) {
+  const DepthFormatInfo info = depth_format_info(format);
+  if (info.encoding == DepthEncoding::Float) {
+    const int64_t magnitude = raw & 0x7FFFFFFFu;
+    return (raw & 0x80000000u) ? -magnitude : magnitude;
+  }
+  return int64_t(raw & info.raw_mask);
+}
+
+bool depth_in_interval(DepthFormat format, const DepthInterval& interval, uint32_t raw) {
+  if (interval.any) return true;
+  const int64_t key = depth_raw_order(format, raw);
+  return key >= depth_raw_order(format, interval.lo_raw) && key <= depth_raw_order(format, interval.hi_raw);
+}
+
+const char* to_string(DepthTerm term) {
+  switch (term) {
+    case DepthTerm::Plane: return "the plane through the vertices";
+    case DepthTerm::Snapping: return "vertex snapping";
+    case DepthTerm::Bias: return "depth bias";
+    case DepthTerm::Precision: return "floating-point precision";
+    case DepthTerm::Rounding: return "rounding to the format";
+    case DepthTerm::Clear: return "the clear value";
+    case DepthTerm::Undefined: return "undefined depth";
+  }
+  return "?";
+}
+
 }  // namespace rastercmp

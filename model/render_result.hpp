@@ -22,6 +22,21 @@ inline constexpr uint32_t owner_primitive(uint32_t owner) { return owner & 0x00F
 // Per-pixel classification of the spec profile (three states of the CTS verifier).
 enum class CoverageClass : uint8_t { MustNot = 0, May = 1, Must = 2 };
 
+// Spec profile: which widening of a depth interval dominated one of its bounds
+// (docs/spec-profile.md "Depth intervals").
+enum class DepthTerm : uint8_t { Plane, Snapping, Bias, Precision, Rounding, Clear, Undefined };
+const char* to_string(DepthTerm);
+
+// Spec profile: the raw stored depth values any conformant device may leave at a sample,
+// inclusive, ordered as depth values (depth_raw_order). `any`: the specification leaves the value
+// undefined there, every value is allowed.
+struct DepthInterval {
+  uint32_t lo_raw = 0, hi_raw = 0;
+  DepthTerm lo_term = DepthTerm::Plane, hi_term = DepthTerm::Plane;
+  bool any = false;
+  bool operator==(const DepthInterval&) const = default;
+};
+
 // The device limits the spec profile may read, as a capture's render.json records them ("limits").
 // A capture without them gets these defaults: subPixelPrecisionBits 8 (every device seen so far)
 // and the specification's minimum guarantees for the rest ("Limit Requirements": viewportSubPixelBits
@@ -48,6 +63,8 @@ struct RenderResult {
   std::vector<uint32_t> depth_raw;  // same size, or empty when depth was not produced
   // Spec profile only: per-sample must / may / must-not coverage of the union of all draws.
   std::vector<CoverageClass> coverage_class;
+  // Spec profile only: per-sample interval of allowed stored depth (empty without depth).
+  std::vector<DepthInterval> depth_interval;
 
   size_t index(uint32_t x, uint32_t y, uint32_t sample = 0) const { return (size_t(y) * width + x) * samples + sample; }
   bool has_depth() const { return !depth_raw.empty(); }
@@ -55,5 +72,13 @@ struct RenderResult {
 
 // Raw stored bits → depth value in [0,1] (UNORM k/(2^n-1), D32 reinterpreted).
 double depth_raw_to_value(DepthFormat, uint32_t raw);
+
+// A key ordered like the depth values the raw bits stand for: the UNORM integer, or for float
+// formats the float bits mapped so that integer order is float order (+0 and -0 both 0) and the
+// distance counts the representable floats in between.
+int64_t depth_raw_order(DepthFormat, uint32_t raw);
+
+// Whether `raw` lies in the interval (always, when it is `any`).
+bool depth_in_interval(DepthFormat, const DepthInterval&, uint32_t raw);
 
 }  // namespace rastercmp

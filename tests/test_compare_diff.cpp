@@ -276,6 +276,52 @@ TEST(SpecProfile, WrongOwnerOrDepthBeyondToleranceIsAQualityWarning) {
             Verdict::QualityWarning);
 }
 
+// With depth intervals, a Must or May sample's stored depth is judged by its interval alone: the
+// bound itself passes, one step past it fails and the message names the bound and its term; a
+// wrong owner whose depth is inside stays a QualityWarning; MustNot samples are not checked.
+TEST(SpecProfile, DepthOutsideItsIntervalFailsInsidePasses) {
+  for (const DepthFormat format : {DepthFormat::D16Unorm, DepthFormat::D32Sfloat}) {
+    RenderResult expected = with_classes(half_covered(10, 4, 1, format));
+    const uint32_t lo = raw_of(format, 0.25), hi = raw_of(format, 0.75), clear = raw_of(format, 1.0);
+    expected.depth_interval.assign(expected.owner.size(),
+                                   DepthInterval{lo, hi, DepthTerm::Snapping, DepthTerm::Bias, false});
+    for (uint32_t y = 0; y < 4; ++y)  // the May column 5 is background, MustNot is never checked
+      for (uint32_t x = 5; x < 10; ++x) expected.depth_interval[expected.index(x, y)] = DepthInterval{lo, clear};
+    RenderResult actual = expected;
+    actual.depth_raw[actual.index(0, 0)] = hi;  // on the bounds: inside
+    actual.depth_raw[actual.index(1, 0)] = lo;
+    actual.depth_raw[actual.index(9, 3)] = lo;  // MustNot sample: not checked
+    DiffSummary d = diff_results(expected, actual, CompareProfile::Spec).summary;
+    EXPECT_TRUE(d.depth_intervals_checked);
+    EXPECT_EQ(d.depth_outside, 0u) << to_string(format);
+    EXPECT_EQ(decide_verdict(d, 2).verdict, Verdict::Pass) << decide_verdict(d, 2).message;
+    actual.depth_raw[actual.index(0, 0)] = hi + 1;  // one LSB / ULP above hi
+    d = diff_results(expected, actual, CompareProfile::Spec).summary;
+    EXPECT_EQ(d.depth_outside, 1u);
+    EXPECT_EQ(d.worst_outside.at, (SampleLocation{0, 0, 0}));
+    EXPECT_TRUE(d.worst_outside.above);
+    EXPECT_EQ(d.worst_outside.distance, 1u);
+    VerdictDecision v = decide_verdict(d, 2);
+    EXPECT_EQ(v.verdict, Verdict::Fail);
+    EXPECT_NE(v.message.find("above hi"), std::string::npos) << v.message;
+    EXPECT_NE(v.message.find("depth bias"), std::string::npos) << v.message;
+    ASSERT_FALSE(d.first_bad.empty());
+    EXPECT_EQ(d.first_bad[0].kind, "depth_outside");
+    actual.depth_raw[actual.index(0, 0)] = hi;
+    actual.depth_raw[actual.index(4, 2)] = lo - 1;  // a May sample, one below lo
+    d = diff_results(expected, actual, CompareProfile::Spec).summary;
+    EXPECT_EQ(d.depth_outside, 1u);
+    v = decide_verdict(d, 2);
+    EXPECT_NE(v.message.find("below lo"), std::string::npos) << v.message;
+    EXPECT_NE(v.message.find("vertex snapping"), std::string::npos) << v.message;
+    actual.depth_raw[actual.index(4, 2)] = lo;
+    actual.owner[actual.index(2, 2)] = kOwnerB;  // another primitive won, its depth inside
+    v = decide_verdict(diff_results(expected, actual, CompareProfile::Spec).summary, 2);
+    EXPECT_EQ(v.verdict, Verdict::QualityWarning);
+    EXPECT_NE(v.message.find("does not fix which primitive wins"), std::string::npos) << v.message;
+  }
+}
+
 TEST(SpecProfile, ToleranceGrowsWithTheUnormBiasConstant) {
   Scene scene;
   scene.depth_format = DepthFormat::D16Unorm;

@@ -359,6 +359,93 @@ TEST(SpecProfile, CoarserGridsAreMoreTolerant) {
       }
 }
 
+// One raw step of the format up (+1) or down (-1), for depths in [0, 1].
+uint32_t step_raw(uint32_t raw, int direction) { return direction > 0 ? raw + 1 : raw - 1; }
+
+RenderResult spec_render(const Scene& scene) {
+  return render_spec_profile(scene, spec_options(), render_cpu(scene, lavapipe_options()));
+}
+
+// A sloped triangle: lavapipe's depth is inside every Must and May sample's interval, the bounds
+// themselves are inside and one step past either is outside; inside the triangle vertex snapping
+// sets the bounds, and the clear value is only in the intervals of pixels that may stay clear.
+TEST(SpecProfile, DepthIntervalsHoldLavapipeAndRejectOneStepPastABound) {
+  for (const DepthFormat format : {DepthFormat::D16Unorm, DepthFormat::X8D24Unorm, DepthFormat::D32Sfloat}) {
+    Scene scene = make_scene(16, 16);
+    scene.depth_format = format;
+    Draw draw = window_triangles(scene, {{2, 2}, {14, 2}, {2, 14}}, 0.25f);
+    draw.positions_clip[1].z = 0.75f;
+    scene.draws.push_back(draw);
+    const RenderResult spec = spec_render(scene);
+    const RenderResult exact = render_cpu(scene, lavapipe_options());
+    ASSERT_EQ(spec.depth_interval.size(), exact.depth_raw.size());
+    EXPECT_FALSE(judge(spec, exact).any()) << describe(judge(spec, exact));
+    const size_t i = exact.index(4, 4);
+    ASSERT_EQ(spec.coverage_class[i], CoverageClass::Must);
+    const DepthInterval d = spec.depth_interval[i];
+    EXPECT_FALSE(d.any);
+    EXPECT_EQ(d.lo_term, DepthTerm::Snapping);
+    EXPECT_EQ(d.hi_term, DepthTerm::Snapping);
+    const uint32_t clear = exact.depth_raw[exact.index(15, 15)];
+    EXPECT_FALSE(depth_in_interval(format, d, clear));
+    for (const uint32_t inside : {d.lo_raw, d.hi_raw}) {
+      RenderResult moved = exact;
+      moved.depth_raw[i] = inside;
+      EXPECT_EQ(judge(spec, moved).depth_outside, 0u) << to_string(format);
+    }
+    for (const uint32_t outside : {step_raw(d.lo_raw, -1), step_raw(d.hi_raw, +1)}) {
+      RenderResult moved = exact;
+      moved.depth_raw[i] = outside;
+      EXPECT_EQ(judge(spec, moved).depth_outside, 1u) << to_string(format);
+    }
+    // A pixel on the hypotenuse may keep the clear value.
+    const size_t edge = exact.index(7, 8);  // centre (7.5, 8.5) on x + y = 16
+    ASSERT_EQ(spec.coverage_class[edge], CoverageClass::May);
+    EXPECT_TRUE(depth_in_interval(format, spec.depth_interval[edge], clear));
+  }
+}
+
+// A flat triangle: only precision and rounding widen the interval, a few LSB of D16.
+TEST(SpecProfile, FlatTriangleIntervalIsNarrow) {
+  Scene scene = make_scene(16, 16);
+  scene.depth_format = DepthFormat::D16Unorm;
+  scene.draws.push_back(window_triangles(scene, {{2, 2}, {14, 2}, {2, 14}}, 0.5f));
+  const RenderResult spec = spec_render(scene);
+  const DepthInterval d = spec.depth_interval[spec.index(4, 4)];
+  EXPECT_LE(d.hi_raw - d.lo_raw, 12u);
+  EXPECT_LE(d.lo_raw, 32768u);
+  EXPECT_GE(d.hi_raw, 32767u);
+}
+
+// Depth bias moves the interval by r x constantFactor for every r the spec allows: at least
+// 2^-16 each for D16; without depth clamp a bias that can leave [0, 1] makes the depth undefined
+// (any value), with depth clamp it is clamped to the viewport's range.
+TEST(SpecProfile, DepthBiasShiftsTheIntervalAndCanMakeItUndefined) {
+  Scene scene = make_scene(16, 16);
+  scene.depth_format = DepthFormat::D16Unorm;
+  Draw draw = window_triangles(scene, {{2, 2}, {14, 2}, {2, 14}}, 0.5f);
+  draw.state.depth_bias = DepthBias{true, 1000.0f, 0.0f, 0.0f};
+  draw.state.depth.compare_op = CompareOp::Always;  // written whatever the clear value
+  scene.draws.push_back(draw);
+  const RenderResult spec = spec_render(scene);
+  const DepthInterval d = spec.depth_interval[spec.index(4, 4)];
+  EXPECT_GE(d.lo_raw, uint32_t(0.5 * 65535 + 1000 * 65535.0 / 65536) - 8);
+  EXPECT_LE(d.hi_raw, uint32_t(0.5 * 65535 + 2000) + 8);
+  EXPECT_EQ(d.hi_term, DepthTerm::Bias);
+  EXPECT_FALSE(judge(spec, render_cpu(scene, lavapipe_options())).any());
+
+  scene.draws[0].state.depth_bias.constant_factor = 40000.0f;  // up to 0.5 + 1.22
+  const DepthInterval undefined = spec_render(scene).depth_interval[spec.index(4, 4)];
+  EXPECT_TRUE(undefined.any);
+  EXPECT_EQ(undefined.hi_term, DepthTerm::Undefined);
+  scene.draws[0].state.depth_clamp = true;
+  const RenderResult clamped = spec_render(scene);
+  const DepthInterval c = clamped.depth_interval[clamped.index(4, 4)];
+  EXPECT_FALSE(c.any);
+  EXPECT_EQ(c.hi_raw, 65535u);
+  EXPECT_FALSE(judge(clamped, render_cpu(scene, lavapipe_options())).any());
+}
+
 TEST(SpecProfile, NotSupportedAndBadOptions) {
   Scene scene = make_scene(16, 16);
   scene.draws.push_back(window_triangles(scene, {{2, 2}, {10, 2}, {2, 10}}));

@@ -55,9 +55,10 @@ inline CpuOptions spec_options(uint32_t bits = 8) {
 
 struct Violations {
   uint64_t must_missing = 0, must_not_covered = 0;
+  uint64_t depth_outside = 0;                // Must or May samples whose depth is outside the interval
   uint64_t must = 0, may = 0, must_not = 0;  // the class counts
   std::string first;                         // "" when there is none
-  bool any() const { return must_missing + must_not_covered > 0; }
+  bool any() const { return must_missing + must_not_covered + depth_outside > 0; }
 };
 
 // Judges `owner` (RenderResult layout) by `classes` as the CTS verifier does.
@@ -83,9 +84,33 @@ inline Violations judge(const std::vector<CoverageClass>& classes, const RenderR
   return v;
 }
 
+// judge(classes, render), and the stored depth of every Must and May sample against the spec
+// profile's intervals.
+inline Violations judge(const RenderResult& spec, const RenderResult& render) {
+  Violations v = judge(spec.coverage_class, render);
+  if (spec.depth_interval.empty() || !render.has_depth()) return v;
+  for (size_t i = 0; i < render.depth_raw.size(); ++i) {
+    const bool covered = render.owner[i] != kOwnerBackground;
+    if (spec.coverage_class[i] == CoverageClass::MustNot) continue;
+    if (spec.coverage_class[i] == CoverageClass::Must && !covered) continue;  // missing: counted as coverage
+    const DepthInterval& d = spec.depth_interval[i];
+    if (depth_in_interval(render.depth_format, d, render.depth_raw[i])) continue;
+    if (++v.depth_outside == 1) {
+      const size_t pixel = i / render.samples;
+      v.first +=
+          fmt::format(" depth at ({}, {}) sample {} owner {:#x}: {} outside [{}, {}] (lo: {}, hi: {})",
+                      pixel % render.width, pixel / render.width, i % render.samples, render.owner[i],
+                      depth_raw_to_value(render.depth_format, render.depth_raw[i]),
+                      depth_raw_to_value(render.depth_format, d.lo_raw),
+                      depth_raw_to_value(render.depth_format, d.hi_raw), to_string(d.lo_term), to_string(d.hi_term));
+    }
+  }
+  return v;
+}
+
 inline std::string describe(const Violations& v) {
-  return fmt::format("{} Must-missing, {} MustNot-covered (Must {}, May {}, MustNot {}) {}", v.must_missing,
-                     v.must_not_covered, v.must, v.may, v.must_not, v.first);
+  return fmt::format("{} Must-missing, {} MustNot-covered, {} depth outside (Must {}, May {}, MustNot {}) {}",
+                     v.must_missing, v.must_not_covered, v.depth_outside, v.must, v.may, v.must_not, v.first);
 }
 
 // The scene in a few lines, for a failing property's log.

@@ -34,6 +34,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "model/render_result.hpp"
 #include "model/scene.hpp"
 
 namespace rastercmp::cpu::spec {
@@ -45,12 +46,32 @@ inline Gate weaker(Gate a, Gate b) { return a < b ? a : b; }
 // Absolute slack for interpolation and conversion error, in depth units.
 inline constexpr double kDepthSlack = 1.0 / 1024.0;
 
+// Vulkan "Floating-Point Computation": for computation outside shaders such as the viewport and
+// depth range calculations, "individual results of floating-point operations are accurate to about
+// 1 part in 10^5". The depth intervals allow that relative error per operation.
+inline constexpr double kSpecRelativeAccuracy = 1e-5;
+
 // A primitive as the depth test sees it.
 struct DepthPrimitive {
   std::vector<glm::dvec3> vertices;  // window x, y (pixels), z: 3 for a triangle, 2 for a line
   double line_width = 0;             // lines
   double box_half_px = 0;            // half-size of the judged pixel box
   double snap_px = 0;                // how far the device may move a vertex (snapping + slack)
+  // Depth intervals only:
+  double sample_half_px = 0;    // where in the pixel the device samples: 0 (the centre), or half the
+                                // pixel box for multisampling (sample locations are not fixed)
+  double source_max_abs_z = 0;  // largest finite |window z| of the primitive before clipping
+  double clip_error_z = 0;      // window-z error the precision allows at vertices made by the clipper
+  double clip_error_px = 0;     // and their window x, y error, in pixels
+};
+
+// The depth values a device may compute for a fragment of one primitive at one sample, before the
+// conversion to the format (depth_format_interval), with the widening that dominated each end.
+struct DepthValueRange {
+  double lo = 0, hi = 0;
+  DepthTerm lo_term = DepthTerm::Plane, hi_term = DepthTerm::Plane;
+  double lo_widening = 0, hi_widening = 0;  // the dominating term's amount at each end
+  bool any = false;                         // undefined (outside the depth range without depth clamp, no plane, ...)
 };
 
 struct DepthJudge {
@@ -66,11 +87,34 @@ struct DepthJudge {
   double x0 = 0, y0 = 0, z0 = 0, dzdx = 0, dzdy = 0;  // z(p) = z0 + dzdx (x - x0) + dzdy (y - y0)
   double reach_px = 0;                                // widening of the plane value, in pixels of slope (see above)
   double range_lo = 0, range_hi = 0;                  // what the exact fragment depths can be (plus bias)
+  // Depth intervals (fragment_depth_range):
+  bool writes = false;  // a fragment that passes writes the depth attachment
+  bool line = false;
+  bool plane_defined = false;              // false: a flat triangle or point-like line with varying z
+  DepthFormat format = DepthFormat::None;  // the attachment's format
+  double vertex_lo = 0, vertex_hi = 0;     // the vertices' depths (no bias)
+  double bias_lo = 0, bias_hi = 0;         // o over every r and m the spec allows, after dbclamp
+  bool bias_any = false;                   // the slope term is unbounded (the snapped facing may flip)
+  double vertex_error = 0;                 // precision allowance of the vertices' window z
+  double coord_max = 0;                    // largest |window x|, |window y| of the vertices
+  double reach_precision_px = 0;           // window x, y precision, in pixels
+  double interval_reach_px = 0;            // widening of the plane value, in pixels of slope
 };
 
 DepthJudge make_depth_judge(const Scene& scene, const RasterState& state, const DepthPrimitive& primitive);
 
 // The gate of a fragment of the primitive in the judged box centred on `pos_window`.
 Gate depth_gate_at(const DepthJudge& judge, glm::dvec2 pos_window);
+
+// The depth values a device may compute for a fragment of the primitive at a sample of the pixel
+// box centred on `pos_window` (docs/spec-profile.md "Depth intervals"): the plane through every
+// placement of the snapped vertices, within the vertices' depth range, plus the depth bias over
+// every r and m the spec allows, widened by the spec's floating-point accuracy, then the depth clamp.
+DepthValueRange fragment_depth_range(const DepthJudge& judge, glm::dvec2 pos_window);
+
+// The raw stored values the conversion of `range` to the format may give (Vulkan "Conversion From
+// Floating-Point to Normalized Fixed-Point": one of the two closest values; "Floating-Point Format
+// Conversions": rounded to one or the other), with the same terms.
+DepthInterval depth_format_interval(DepthFormat format, const DepthValueRange& range);
 
 }  // namespace rastercmp::cpu::spec

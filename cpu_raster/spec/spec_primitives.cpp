@@ -41,12 +41,52 @@ Gate state_gate(const Scene& scene, const Draw& draw) {
   return Gate::Certain;
 }
 
-DepthPrimitive depth_primitive(const DrawContext& ctx, std::initializer_list<WindowVertex> vertices) {
+// Depth intervals: what the spec's floating-point accuracy allows at the vertices the clipper made.
+// "P = t P_1 + (1-t) P_2" with t from the plane distances: about four operations, each accurate to
+// kSpecRelativeAccuracy, so a clip coordinate is off by up to 4 eps max|P|, and the divide by w_c
+// scales that by 1/|w_c| (and the viewport by p_z, or p_x/2 and p_y/2).
+struct ClipError {
+  double z = 0, px = 0;
+};
+
+ClipError clip_error(const DrawContext& ctx, std::initializer_list<const ClipVertex*> piece,
+                     std::initializer_list<glm::vec4> source) {
+  ClipError e;
+  double magnitude = 0;
+  for (const glm::vec4& s : source)
+    magnitude = std::max(
+        {magnitude, double(std::fabs(s.x)), double(std::fabs(s.y)), double(std::fabs(s.z)), double(std::fabs(s.w))});
+  const Viewport v = ctx.scene->effective_viewport();
+  const double p_z = std::fabs(double(v.max_depth) - double(v.min_depth));
+  const double p_xy = 0.5 * std::max(std::fabs(double(v.width)), std::fabs(double(v.height)));
+  for (const ClipVertex* c : piece) {
+    if (!c->made_by_clipper) continue;
+    const double w = std::fabs(double(c->pos_clip.w));
+    const double clip = 4 * kSpecRelativeAccuracy * magnitude / w;
+    e.z = std::max(e.z, p_z * clip);
+    e.px = std::max(e.px, p_xy * clip);
+  }
+  return e;
+}
+
+double max_abs_window_z(std::initializer_list<const ClipVertex*> vertices) {
+  double z = 0;
+  for (const ClipVertex* v : vertices)
+    if (std::isfinite(v->window.z)) z = std::max(z, double(std::fabs(v->window.z)));
+  return z;
+}
+
+DepthPrimitive depth_primitive(const DrawContext& ctx, std::initializer_list<WindowVertex> vertices,
+                               const ClipError& clip, double source_max_abs_z) {
   DepthPrimitive p;
   for (const WindowVertex& v : vertices) p.vertices.emplace_back(v.x, v.y, v.z);
   p.line_width = ctx.draw->state.line_width;
   p.box_half_px = ctx.box_half_px;
   p.snap_px = ctx.snap_px;
+  p.clip_error_z = clip.z;
+  p.clip_error_px = clip.px;
+  p.source_max_abs_z = source_max_abs_z;
+  p.sample_half_px = ctx.scene->samples > 1 ? ctx.box_half_px : 0.0;
   return p;
 }
 
@@ -85,7 +125,10 @@ void add_triangle(const DrawContext& ctx, const cpu::AssembledPrimitive& prim, S
                                glm::dvec2(t.window[2].x, t.window[2].y)},
                               ctx.bits);
     t.facing = facing_gate(draw.state, t.snapped.area_sign);
-    t.depth = make_depth_judge(*ctx.scene, draw.state, depth_primitive(ctx, {t.window[0], t.window[1], t.window[2]}));
+    const ClipError error = clip_error(ctx, {&piece[0], &piece[1], &piece[2]}, {source[0], source[1], source[2]});
+    t.depth = make_depth_judge(*ctx.scene, draw.state,
+                               depth_primitive(ctx, {t.window[0], t.window[1], t.window[2]}, error,
+                                               max_abs_window_z({&triangle[0], &triangle[1], &triangle[2]})));
     if (t.facing != Gate::Never) out.triangles.push_back(std::move(t));
   }
 }
@@ -94,13 +137,14 @@ void add_line(const DrawContext& ctx, const cpu::AssembledPrimitive& prim, SpecP
   const Draw& draw = *ctx.draw;
   const bool depth_clip = draw.state.depth_clip_enabled();
   std::array<ClipVertex, 2> line;
+  std::array<glm::vec4, 2> source;
   for (size_t k = 0; k < 2; ++k) {
-    const glm::vec4& source = draw.positions_clip[prim.position[k]];
-    if (!finite(source)) {
+    source[k] = draw.positions_clip[prim.position[k]];
+    if (!finite(source[k])) {
       out.undefined = true;
       return;
     }
-    line[k] = make_clip_vertex(source, ctx.viewport, depth_clip, ctx.fma);
+    line[k] = make_clip_vertex(source[k], ctx.viewport, depth_clip, ctx.fma);
   }
   const ClippedLine clipped = clip_line(line, ctx.viewport);
   if (clipped.fate == ClipFate::Discarded) out.undefined = true;
@@ -118,7 +162,9 @@ void add_line(const DrawContext& ctx, const cpu::AssembledPrimitive& prim, SpecP
   // produced is the device's choice (lavapipe scissors them, docs/lavapipe-rules.md §2.5), so Must stays
   // inside it.
   if (!l.shape.must.empty()) l.shape.must.push_back(viewport_quad(ctx.scene->effective_viewport()));
-  l.depth = make_depth_judge(*ctx.scene, draw.state, depth_primitive(ctx, {a, b}));
+  const ClipError error = clip_error(ctx, {&clipped.line[0], &clipped.line[1]}, {source[0], source[1]});
+  l.depth = make_depth_judge(*ctx.scene, draw.state,
+                             depth_primitive(ctx, {a, b}, error, max_abs_window_z({&line[0], &line[1]})));
   out.lines.push_back(std::move(l));
 }
 

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "cpu_raster/spec/coverage_map.hpp"
+#include "cpu_raster/spec/depth_intervals.hpp"
 #include "cpu_raster/spec/shared_edges.hpp"
 #include "cpu_raster/spec/spec_primitives.hpp"
 #include "model/errors.hpp"
@@ -31,8 +32,18 @@ cpu::PixelRect triangle_pixels(const SnappedTriangle& t, uint32_t bits, bool mul
   return pixels_near(t.x_min, t.x_max, t.y_min, t.y_max, bits, multisample, region);
 }
 
+// The depth a primitive may write at pixel (px, py), where it may cover the pixel with `gate`. A
+// gate of Never (the fragment fails against the clear value) still counts: the fragment may pass
+// against a value an earlier draw wrote (a GREATER probe over a LESS-drawn quad).
+void add_depth(DepthIntervalMap* depths, const DepthJudge& judge, int32_t px, int32_t py, Coverage coverage,
+               Gate gate) {
+  if (depths == nullptr || !judge.writes || coverage == Coverage::None) return;
+  depths->add(px, py, fragment_depth_range(judge, glm::dvec2(px + 0.5, py + 0.5)),
+              coverage == Coverage::Full && gate == Gate::Certain);
+}
+
 // Row by row: whole FULL spans at once, classify_box only near the edges.
-void add_triangle(CoverageMap& map, const SpecTriangle& t, uint32_t bits, bool multisample) {
+void add_triangle(CoverageMap& map, DepthIntervalMap* depths, const SpecTriangle& t, uint32_t bits, bool multisample) {
   const cpu::PixelRect r = triangle_pixels(t.snapped, bits, multisample, map.region());
   for (int32_t py = r.y0; py <= r.y1; ++py) {
     const RowSpans spans = row_spans(t.snapped, py, bits, multisample);
@@ -42,7 +53,10 @@ void add_triangle(CoverageMap& map, const SpecTriangle& t, uint32_t bits, bool m
       const Coverage coverage = (x >= spans.full_first && x <= spans.full_last)
                                     ? Coverage::Full
                                     : classify_box(t.snapped, pixel_box(px, py, bits, multisample));
-      if (coverage != Coverage::None) map.add(px, py, coverage, triangle_gate_at(t, px, py));
+      if (coverage == Coverage::None) continue;
+      const Gate gate = triangle_gate_at(t, px, py);
+      map.add(px, py, coverage, gate);
+      add_depth(depths, t.depth, px, py, coverage, gate);
     }
   }
 }
@@ -61,7 +75,7 @@ void add_shared_edge(CoverageMap& map, const std::vector<SpecTriangle>& triangle
 }
 
 // Row by row: only the columns where the May quads cross the band of the row's grown boxes.
-void add_line(CoverageMap& map, const SpecLine& line, uint32_t bits, bool multisample) {
+void add_line(CoverageMap& map, DepthIntervalMap* depths, const SpecLine& line, uint32_t bits, bool multisample) {
   const double half_px = std::ldexp(double(pixel_box(0, 0, bits, multisample).half), -int(bits));
   const double reach = half_px + kLineMarginPx;  // the grown square's half-size
   const PixelBounds b = may_bounds(line.shape);
@@ -76,7 +90,10 @@ void add_line(CoverageMap& map, const SpecLine& line, uint32_t bits, bool multis
     for (int32_t px = x_first; px <= x_last; ++px) {
       const PixelSquare box{glm::dvec2(px + 0.5, py + 0.5), half_px};
       const Coverage coverage = classify_line_box(line.shape, box);
-      if (coverage != Coverage::None) map.add(px, py, coverage, depth_gate_at(line.depth, box.centre));
+      if (coverage == Coverage::None) continue;
+      const Gate gate = depth_gate_at(line.depth, box.centre);
+      map.add(px, py, coverage, gate);
+      add_depth(depths, line.depth, px, py, coverage, gate);
     }
   }
 }
@@ -102,26 +119,40 @@ void check_spec_profile_support(const Scene& scene) {
   }
 }
 
-std::vector<CoverageClass> spec_coverage_classes(const Scene& scene, const CpuOptions& options) {
+namespace {
+
+// Classes, and with `depths` the depth intervals, of the union of all draws.
+std::vector<CoverageClass> classify(const Scene& scene, const CpuOptions& options, DepthIntervalMap* depths) {
   check_spec_profile_support(scene);
   const uint32_t bits = effective_sub_pixel_bits(options.sub_pixel_bits);
   const bool multisample = scene.samples > 1;
   CoverageMap map(scene);
   if (map.region().empty()) return map.classes();
   const SpecPrimitives primitives = build_spec_primitives(scene, options.fma, bits);
-  if (primitives.undefined) map.make_may_everywhere();
-  for (const SpecTriangle& t : primitives.triangles) add_triangle(map, t, bits, multisample);
+  if (primitives.undefined) {
+    map.make_may_everywhere();
+    if (depths != nullptr) depths->make_any(map.region());
+  }
+  for (const SpecTriangle& t : primitives.triangles) add_triangle(map, depths, t, bits, multisample);
   for (const SharedEdge& shared : find_shared_edges(primitives.triangles))
     add_shared_edge(map, primitives.triangles, shared, bits, multisample);
-  for (const SpecLine& line : primitives.lines) add_line(map, line, bits, multisample);
+  for (const SpecLine& line : primitives.lines) add_line(map, depths, line, bits, multisample);
   return map.classes();
+}
+
+}  // namespace
+
+std::vector<CoverageClass> spec_coverage_classes(const Scene& scene, const CpuOptions& options) {
+  return classify(scene, options, nullptr);
 }
 
 RenderResult render_spec_profile(const Scene& scene, const CpuOptions& options, RenderResult estimate) {
   check_spec_profile_support(scene);
   RenderResult result = std::move(estimate);
   result.device = "cpu spec profile (subPixelPrecisionBits " + std::to_string(options.sub_pixel_bits) + ")";
-  result.coverage_class = spec_coverage_classes(scene, options);
+  DepthIntervalMap depths(scene);
+  result.coverage_class = classify(scene, options, &depths);
+  result.depth_interval = depths.intervals();
   return result;
 }
 
