@@ -149,7 +149,8 @@ TEST(CliChildren, AFullDiskLeavesNoHalfFileUnderAFinalName) {
     ASSERT_TRUE(WIFEXITED(status)) << command;
     EXPECT_EQ(WEXITSTATUS(status), 2) << command << "\n" << read_file(tmp / "log");
     EXPECT_NE(read_file(tmp / "log").find("could not write"), std::string::npos) << read_file(tmp / "log");
-    ASSERT_TRUE(fs::is_directory(out));
+    // A folder the failed command made and left empty is removed again (docs/reliability.md).
+    if (!fs::is_directory(out)) continue;
     EXPECT_TRUE(temporaries_below(out).empty()) << temporaries_below(out).front();
     // What is there is whole: what a run without the limit writes, byte for byte.
     const fs::path whole = tmp / ("whole" + std::to_string(kib));

@@ -208,7 +208,7 @@ TEST(CliErrors, AnUnknownMethodOnTheCommandLineIsRefusedWithTheAcceptedNames) {
   const std::string out = (tmp / "out").string();
   const std::vector<std::string> fill = {"--method fill=nosuch",
                                          "known: exact, scanline, even_odd, winding, float_edge, flood"};
-  const std::vector<std::string> stage = {"--method nosuch=x", "known stages: clip, fill"};
+  const std::vector<std::string> stage = {"--method nosuch=x", "known stages: clip, cull, fill, line, depth, visibility, snap, tie_break"};
   for (const char* backend : {"cpu", "vulkan"}) {
     expect_refused({"render", kGoodScene.string(), "--backend", backend, "--out", out, "--method", "fill=nosuch"}, fill,
                    tmp);

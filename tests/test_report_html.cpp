@@ -240,7 +240,6 @@ std::vector<CaseRecord> write_report(const fs::path& report, const fs::path& sce
   method.cpu_method = "fill=float_edge";
   Expectations expectations;
   expectations.baseline["rastercmp.t.expected"] = "Fail";
-  expectations.baseline["rastercmp.t.warn"] = "Warn";
   expectations.reasons["rastercmp.t.expected"] = "no tie rule: <both> sides fill";
   std::vector<CaseRecord> records;
   fs::create_directories(scenes);
@@ -301,7 +300,7 @@ TEST(ReportHtml, IsDeterministicAndEscapesText) {
   const ScratchDir scratch_page("page");
   const fs::path report = scratch_page.path() / "report";
   const auto records = write_report(report, scratch_page.path() / "scenes");
-  const RunInfo info{"lavapipe", "llvmpipe <test>", "Mesa", true, false, {}};
+  const RunInfo info{"lavapipe", "llvmpipe <test>", "Mesa", true, true, false, {}};
   const std::string html = render_report_html(info, records);
   EXPECT_EQ(html, render_report_html(info, records));
   EXPECT_EQ(html, read_file(report / "index.html"));
