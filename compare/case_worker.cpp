@@ -86,7 +86,10 @@ int run_case_worker(const WorkerOptions& o, const std::atomic<int>& stop) {
       fmt::print(stderr, "test-only fault: {} in {}\n", fault, scene.name);
       std::fflush(stderr);
     }
-    if (fault == "crash") std::raise(SIGSEGV);
+    if (fault == "crash") {  // a plain SIGSEGV death, also where a sanitizer has its own handler
+      std::signal(SIGSEGV, SIG_DFL);
+      std::raise(SIGSEGV);
+    }
     while (fault == "hang") std::this_thread::sleep_for(std::chrono::seconds(1));
     CaseResult result =
         from_captures ? runner.run_capture(scene, capture_dir_for(o.captures_root, o.suite_dir, o.scene_files[i]))
