@@ -58,11 +58,17 @@ TEST(CliErrors, CompareRejectsAnUnwritableReportFolderOrJsonFile) {
   }
 }
 
-TEST(CliErrors, ConformanceRejectsAnUnwritableOutputFolder) {
-  const TempDir tmp;
+// A suite folder in tmp holding the one good scene.
+fs::path one_scene_suite(const fs::path& tmp) {
   const fs::path suite = tmp / "suite";
   fs::create_directories(suite);
   fs::copy_file(kGoodScene, suite / "shared_edge.json");
+  return suite;
+}
+
+TEST(CliErrors, ConformanceRejectsAnUnwritableOutputFolder) {
+  const TempDir tmp;
+  const fs::path suite = one_scene_suite(tmp.path());
   for (const fs::path& out : unwritable_outputs(tmp)) {
     SCOPED_TRACE(out.string());
     expect_unwritable({"conformance", "--suite", suite.string(), "--out", out.string()}, out, tmp);
@@ -71,9 +77,7 @@ TEST(CliErrors, ConformanceRejectsAnUnwritableOutputFolder) {
 
 TEST(CliErrors, CaptureRejectsAnUnwritableOutputFolder) {
   const TempDir tmp;
-  const fs::path suite = tmp / "suite";
-  fs::create_directories(suite);
-  fs::copy_file(kGoodScene, suite / "shared_edge.json");
+  const fs::path suite = one_scene_suite(tmp.path());
   for (const fs::path& out : unwritable_outputs(tmp)) {
     SCOPED_TRACE(out.string());
     expect_unwritable({"capture", "--suite", suite.string(), "--out", out.string()}, out, tmp);
@@ -208,7 +212,8 @@ TEST(CliErrors, AnUnknownMethodOnTheCommandLineIsRefusedWithTheAcceptedNames) {
   const std::string out = (tmp / "out").string();
   const std::vector<std::string> fill = {"--method fill=nosuch",
                                          "known: exact, scanline, even_odd, winding, float_edge, flood"};
-  const std::vector<std::string> stage = {"--method nosuch=x", "known stages: clip, cull, fill, line, depth, visibility, snap, tie_break"};
+  const std::vector<std::string> stage = {"--method nosuch=x",
+                                          "known stages: clip, cull, fill, line, depth, visibility, snap, tie_break"};
   for (const char* backend : {"cpu", "vulkan"}) {
     expect_refused({"render", kGoodScene.string(), "--backend", backend, "--out", out, "--method", "fill=nosuch"}, fill,
                    tmp);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "cpu_raster/methods/clip_line_cohen_sutherland.hpp"
 #include "cpu_raster/methods/clip_line_cohen_sutherland_3d.hpp"
@@ -166,17 +167,25 @@ ClassicClippedLine clip_line_2d(const std::array<ClipVertex, 2>& line, const Vie
   return result;
 }
 
+// What both polygon clippers decide before clipping: a non-finite vertex drops the triangle, one
+// wholly inside passes unchanged, one wholly outside a plane is dropped; nullopt: clip it.
+std::optional<std::vector<std::array<ClipVertex, 3>>> trivial_clip(const std::array<ClipVertex, 3>& triangle,
+                                                                   const methods::ClipVolume& volume) {
+  for (const ClipVertex& v : triangle)
+    if (!finite(v.pos_clip)) return std::vector<std::array<ClipVertex, 3>>{};
+  const auto [any, all] = outcodes(triangle, volume);
+  if (any == 0) return std::vector<std::array<ClipVertex, 3>>{triangle};
+  if (all != 0) return std::vector<std::array<ClipVertex, 3>>{};
+  return std::nullopt;
+}
+
 }  // namespace
 
 std::vector<std::array<ClipVertex, 3>> clip_triangle_weiler_atherton(const std::array<ClipVertex, 3>& triangle,
                                                                      const ViewportTransform& viewport,
                                                                      bool depth_clip) {
-  for (const ClipVertex& v : triangle)
-    if (!finite(v.pos_clip)) return {};
   const methods::ClipVolume volume = vulkan_volume(depth_clip);
-  const auto [any, all] = outcodes(triangle, volume);
-  if (any == 0) return {triangle};
-  if (all != 0) return {};
+  if (auto decided = trivial_clip(triangle, volume)) return *decided;
   require_2d(triangle, depth_clip);
   const std::array<methods::Vec2, 3> xy{window_xy(triangle[0]), window_xy(triangle[1]), window_xy(triangle[2])};
   const methods::Polygon2 subject(xy.begin(), xy.end());
@@ -204,12 +213,8 @@ std::vector<std::array<ClipVertex, 3>> clip_triangle_weiler_atherton(const std::
 std::vector<std::array<ClipVertex, 3>> clip_triangle_sutherland_hodgman(const std::array<ClipVertex, 3>& triangle,
                                                                         const ViewportTransform& viewport,
                                                                         bool depth_clip) {
-  for (const ClipVertex& v : triangle)
-    if (!finite(v.pos_clip)) return {};
   const methods::ClipVolume volume = vulkan_volume(depth_clip);
-  const auto [any, all] = outcodes(triangle, volume);
-  if (any == 0) return {triangle};
-  if (all != 0) return {};
+  if (auto decided = trivial_clip(triangle, volume)) return *decided;
   std::vector<methods::Vec4> subject;
   for (const ClipVertex& v : triangle) subject.push_back(to_vec4(v.pos_clip));
   const std::vector<methods::Vec4> polygon = methods::clip_polygon_sutherland_hodgman(subject, volume);
