@@ -4,7 +4,7 @@ BUILD      ?= build
 BUILD_SAN  ?= build-sanitize
 JOBS       ?= $(shell nproc)
 OUT        ?= out
-FUZZ_SECONDS ?= 60
+FUZZ_SECONDS ?= 30
 
 # A sanitizer report ends the process with this exit code (not one rastercmp itself uses, so a CLI
 # test that expects exit 1 or 2 from the executable cannot mistake a report for it), and the test fails.

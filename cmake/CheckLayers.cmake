@@ -8,7 +8,8 @@
 #                        renders) and explain_text.* (which traces on the exact path); report.hpp
 #                        and run_outputs.{hpp,cpp} do not include each other
 # and, for each binary in CPU_ONLY_TESTS and NO_LOADER_BINARIES (the rastercmp executable, which
-# opens the loader at run time: vk_reference/vk_loader.hpp), that it has no NEEDED libvulkan.
+# opens the loader at run time: vk_reference/vk_loader.hpp), that it has no NEEDED libvulkan; the
+# NO_LOADER_BINARIES also no NEEDED libOpenImageIO (model/image_codec.hpp).
 if(NOT SOURCE_DIR)
   message(FATAL_ERROR "CheckLayers.cmake: pass -DSOURCE_DIR=<source tree>")
 endif()
@@ -67,6 +68,8 @@ foreach(_bin ${NO_LOADER_BINARIES})
     set(_errors "${_errors}\n  readelf -d ${_bin} failed")
   elseif(_dyn MATCHES "NEEDED[^\n]*libvulkan")
     set(_errors "${_errors}\n  ${_bin} links the Vulkan loader; it must open it at run time (vk_loader.hpp)")
+  elseif(_dyn MATCHES "NEEDED[^\n]*libOpenImageIO")
+    set(_errors "${_errors}\n  ${_bin} links OpenImageIO; it must open the image codec at run time (model/image_codec.hpp)")
   endif()
 endforeach()
 

@@ -1,6 +1,4 @@
 // The report's per-case images (compare/report.hpp).
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
 #include <fmt/core.h>
 #include <unistd.h>
 
@@ -9,55 +7,66 @@
 
 #include "compare/report.hpp"
 #include "model/errors.hpp"
+#include "model/image_codec.hpp"
 #include "model/image_io.hpp"
 
 namespace rastercmp {
 namespace fs = std::filesystem;
 namespace {
 
+// 8-bit RGB, row 0 first.
+struct RgbImage {
+  uint32_t width = 0, height = 0;
+  std::vector<uint8_t> rgb;
+};
+
 // Written to a temporary name in the same folder, then renamed: a reader never sees half a PNG.
-void write_png_atomic(const OIIO::ImageBuf& image, const fs::path& path) {
+void write_png_atomic(const RgbImage& image, const fs::path& path) {
   const fs::path tmp = path.parent_path() / fmt::format(".{}.tmp{}.png", path.stem().string(), getpid());
-  if (!image.write(tmp.string(), OIIO::TypeDesc::UINT8, "png") || image.has_error()) {
+  const std::string why =
+      image_codec().write(tmp.string(), path.string(), {image.width, image.height, 3, PixelType::UInt8, image.rgb.data()});
+  if (!why.empty()) {
     std::error_code ec;
     fs::remove(tmp, ec);
-    throw InputError(path.string(), "", "could not write the image: " + image.geterror());
+    throw InputError(path.string(), "", "could not write the image: " + why);
   }
   std::error_code ec;
   fs::rename(tmp, path, ec);
   if (ec) throw InputError(path.string(), "", "could not write the image: " + ec.message());
 }
 
-OIIO::ImageBuf rgb_image(uint32_t width, uint32_t height, const std::vector<uint8_t>& rgb) {
-  OIIO::ImageBuf image(OIIO::ImageSpec(int(width), int(height), 3, OIIO::TypeDesc::UINT8));
-  image.set_pixels(OIIO::ROI::All(), OIIO::TypeDesc::UINT8, rgb.data());
-  return image;
+// OpenImageIO's "inferno" colour map of values in [0, 1].
+std::vector<uint8_t> inferno_rgb(const std::vector<float>& values) {
+  std::vector<uint8_t> rgb(values.size() * 3);
+  const std::string why = image_codec().inferno(values.data(), values.size(), rgb.data());
+  if (!why.empty()) throw std::runtime_error(why);
+  return rgb;
 }
 
 // Sample 0 of each pixel in the owners' false colours (model/image_io.hpp).
-OIIO::ImageBuf owner_image(const RenderResult& r) {
-  std::vector<uint8_t> rgb(size_t(r.width) * r.height * 3);
+RgbImage owner_image(const RenderResult& r) {
+  RgbImage image{r.width, r.height, std::vector<uint8_t>(size_t(r.width) * r.height * 3)};
   for (uint32_t y = 0; y < r.height; ++y)
     for (uint32_t x = 0; x < r.width; ++x)
-      owner_false_colour(r.owner[r.index(x, y, 0)], &rgb[(size_t(y) * r.width + x) * 3]);
-  return rgb_image(r.width, r.height, rgb);
+      owner_false_colour(r.owner[r.index(x, y, 0)], &image.rgb[(size_t(y) * r.width + x) * 3]);
+  return image;
 }
 
 // Missing / unexpected as the judged renderer sees them (judged_class).
-OIIO::ImageBuf mask_image(const SceneDiff& diff, bool cpu_judged) {
+RgbImage mask_image(const SceneDiff& diff, bool cpu_judged) {
   const DiffSummary& s = diff.summary;
-  std::vector<uint8_t> rgb(size_t(s.width) * s.height * 3);
+  RgbImage image{s.width, s.height, std::vector<uint8_t>(size_t(s.width) * s.height * 3)};
   for (uint32_t y = 0; y < s.height; ++y)
     for (uint32_t x = 0; x < s.width; ++x) {
       const Rgb c = mask_colour(judged_class(pixel_class(diff, x, y), cpu_judged));
-      std::copy(c.begin(), c.end(), rgb.begin() + std::ptrdiff_t((size_t(y) * s.width + x) * 3));
+      std::copy(c.begin(), c.end(), image.rgb.begin() + std::ptrdiff_t((size_t(y) * s.width + x) * 3));
     }
-  return rgb_image(s.width, s.height, rgb);
+  return image;
 }
 
 // |diff| in r, the largest of the pixel's samples, normalised to the case's maximum, through
 // OIIO's "inferno" colour map (black = no difference).
-OIIO::ImageBuf depth_heatmap(const SceneDiff& diff) {
+RgbImage depth_heatmap(const SceneDiff& diff) {
   const DiffSummary& s = diff.summary;
   std::vector<float> level(size_t(s.width) * s.height, 0.0f);
   for (size_t p = 0; p < level.size(); ++p)
@@ -66,11 +75,7 @@ OIIO::ImageBuf depth_heatmap(const SceneDiff& diff) {
   const float scale = level.empty() ? 0.0f : *std::max_element(level.begin(), level.end());
   if (scale > 0)
     for (float& v : level) v /= scale;
-  OIIO::ImageBuf normalised(OIIO::ImageSpec(int(s.width), int(s.height), 1, OIIO::TypeDesc::FLOAT));
-  normalised.set_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, level.data());
-  OIIO::ImageBuf coloured = OIIO::ImageBufAlgo::color_map(normalised, 0, "inferno");
-  if (coloured.has_error()) throw std::runtime_error("color_map inferno: " + coloured.geterror());
-  return coloured;
+  return {s.width, s.height, inferno_rgb(level)};
 }
 
 // inferno at 0, 0.1, ..., 1 (the colour map the heatmap uses).
@@ -78,12 +83,7 @@ std::vector<Rgb> inferno_stops() {
   constexpr int kStops = 11;
   std::vector<float> ramp(kStops);
   for (int i = 0; i < kStops; ++i) ramp[size_t(i)] = float(i) / float(kStops - 1);
-  OIIO::ImageBuf values(OIIO::ImageSpec(kStops, 1, 1, OIIO::TypeDesc::FLOAT));
-  values.set_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, ramp.data());
-  OIIO::ImageBuf coloured = OIIO::ImageBufAlgo::color_map(values, 0, "inferno");
-  if (coloured.has_error()) throw std::runtime_error("color_map inferno: " + coloured.geterror());
-  std::vector<uint8_t> rgb(size_t(kStops) * 3);
-  coloured.get_pixels(OIIO::ROI(0, kStops, 0, 1, 0, 1, 0, 3), OIIO::TypeDesc::UINT8, rgb.data());
+  const std::vector<uint8_t> rgb = inferno_rgb(ramp);
   std::vector<Rgb> stops;
   for (int i = 0; i < kStops; ++i)
     stops.push_back({rgb[size_t(i) * 3], rgb[size_t(i) * 3 + 1], rgb[size_t(i) * 3 + 2]});
@@ -153,7 +153,7 @@ CaseImages write_case_images(const std::string& report_dir, const std::string& c
   if (!result.expected && !result.actual) return images;
   const std::string folder = case_folder(case_name);
   ensure_output_dir((fs::path(report_dir) / folder).string());
-  auto write = [&](const OIIO::ImageBuf& image, const char* file, std::string& relative) {
+  auto write = [&](const RgbImage& image, const char* file, std::string& relative) {
     relative = folder + "/" + file;
     write_png_atomic(image, fs::path(report_dir) / relative);
   };

@@ -11,13 +11,12 @@
 #include <fstream>
 #include <sstream>
 
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imageio.h>
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
 
 #include "model/depth_format.hpp"
 #include "model/errors.hpp"
+#include "model/image_codec.hpp"
 
 namespace rastercmp {
 namespace fs = std::filesystem;
@@ -38,34 +37,27 @@ void commit_temp(const std::string& tmp, const std::string& path) {
   }
 }
 
-void write_image_atomic(const std::string& path, OIIO::ImageSpec spec, const void* pixels) {
-  // Same input, same bytes: OpenImageIO would stamp the current time (TIFF DateTime, EXR capDate).
-  spec.attribute("DateTime", "1970:01:01 00:00:00");
+void write_image_atomic(const std::string& path, const ImageView& image) {
+  const ImageCodec& codec = image_codec();
   const std::string tmp = temp_name_for(path);
-  auto out = OIIO::ImageOutput::create(path);  // format from the final extension
   // Renamed only when every step, the close (the last flush) included, succeeded.
-  const bool written = out && out->open(tmp, spec) && out->write_image(spec.format, pixels);
-  const bool closed = out && out->close();
-  if (!written || !closed) {
-    const std::string why = out ? out->geterror() : OIIO::geterror();
+  const std::string why = codec.write(tmp, path, image);
+  if (!why.empty()) {
     std::error_code ec;
     fs::remove(tmp, ec);
-    throw InputError(path, "", "could not write the image: " + (why.empty() ? std::string("write failed") : why));
+    throw InputError(path, "", "could not write the image: " + why);
   }
   commit_temp(tmp, path);
 }
 
 std::vector<uint32_t> read_uint_image(const std::string& path, uint32_t& width, uint32_t& height, uint32_t& channels) {
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) throw InputError(path, "", "expected a readable image: " + OIIO::geterror());
-  const OIIO::ImageSpec& spec = in->spec();
-  width = spec.width;
-  height = spec.height;
-  channels = spec.nchannels;
-  std::vector<uint32_t> data(size_t(width) * height * channels);
-  if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT32, data.data()))
-    throw InputError(path, "", "could not read the image: " + in->geterror());
-  return data;
+  ImageU32 image;
+  const std::string why = image_codec().read_u32(path, image);
+  if (!why.empty()) throw InputError(path, "", "expected a readable image: " + why);
+  width = image.width;
+  height = image.height;
+  channels = image.channels;
+  return std::move(image.pixels);
 }
 
 // render.json "limits"; every field is optional and keeps its DeviceLimits default when absent.
@@ -154,28 +146,21 @@ void owner_false_colour(uint32_t owner, unsigned char rgb[3]) {
 
 void write_render_outputs(const RenderResult& r, const std::string& dir) {
   ensure_output_dir(dir);
-  const int w = int(r.width), h = int(r.height), s = int(r.samples);
-
-  OIIO::ImageSpec owner_spec(w, h, s, OIIO::TypeDesc::UINT32);
-  owner_spec.attribute("compression", "zip");
-  write_image_atomic((fs::path(dir) / "owner.tif").string(), owner_spec, r.owner.data());
+  const uint32_t w = r.width, h = r.height, s = r.samples;
+  write_image_atomic((fs::path(dir) / "owner.tif").string(), {w, h, s, PixelType::UInt32, r.owner.data(), true});
 
   // People see sample 0 of each pixel.
   std::vector<unsigned char> rgb(size_t(w) * h * 3);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) owner_false_colour(r.owner[r.index(x, y, 0)], &rgb[(size_t(y) * w + x) * 3]);
-  write_image_atomic((fs::path(dir) / "owner.png").string(), OIIO::ImageSpec(w, h, 3, OIIO::TypeDesc::UINT8),
-                     rgb.data());
+  for (uint32_t y = 0; y < h; ++y)
+    for (uint32_t x = 0; x < w; ++x) owner_false_colour(r.owner[r.index(x, y, 0)], &rgb[(size_t(y) * w + x) * 3]);
+  write_image_atomic((fs::path(dir) / "owner.png").string(), {w, h, 3, PixelType::UInt8, rgb.data(), false});
 
   if (r.has_depth()) {
-    OIIO::ImageSpec raw_spec(w, h, s, OIIO::TypeDesc::UINT32);
-    raw_spec.attribute("compression", "zip");
-    write_image_atomic((fs::path(dir) / "depth_raw.tif").string(), raw_spec, r.depth_raw.data());
+    write_image_atomic((fs::path(dir) / "depth_raw.tif").string(),
+                       {w, h, s, PixelType::UInt32, r.depth_raw.data(), true});
     std::vector<float> depth(r.depth_raw.size());
     for (size_t i = 0; i < depth.size(); ++i) depth[i] = float(depth_raw_to_value(r.depth_format, r.depth_raw[i]));
-    OIIO::ImageSpec exr_spec(w, h, s, OIIO::TypeDesc::FLOAT);
-    exr_spec.attribute("compression", "zip");
-    write_image_atomic((fs::path(dir) / "depth.exr").string(), exr_spec, depth.data());
+    write_image_atomic((fs::path(dir) / "depth.exr").string(), {w, h, s, PixelType::Float, depth.data(), true});
   }
 
   nlohmann::ordered_json meta = {

@@ -191,7 +191,10 @@ inline Scene small_mesh_scene(uint64_t seed) {
       for (uint32_t k : {v, v + 1, v + columns + 2, v, v + columns + 2, v + columns + 1}) draw.indices.push_back(k);
     }
   if (topology == 1) draw.topology = Topology::TriangleStrip;  // the same indices, read as a strip
-  if (topology == 2) draw.topology = Topology::TriangleFan;
+  if (topology == 2) {  // two rows of cells: over the whole mesh a fan's triangles span the frame
+    draw.topology = Topology::TriangleFan;
+    draw.indices.resize(std::min<size_t>(draw.indices.size(), 12 * columns));
+  }
   draw.state.cull_mode = CullMode(r.below(4));
   draw.state.front_face = FrontFace(r.below(2));
   draw.state.depth.compare_op = r.chance(0.5) ? CompareOp::Less : CompareOp(r.below(8));

@@ -29,6 +29,7 @@ Geometry upload_geometry(const Context& context, PipelineCache& pipelines, const
     call.index_offset = index_bytes;
     call.vertex_count = draw.vertex_count();
     call.indexed = !draw.indices.empty();
+    if (draw.state.depth_bias.enable) call.depth_bias = draw.state.depth_bias;
     if (call.vertex_count > 0) call.pipeline = pipelines.graphics_pipeline(config, draw.topology, draw.state);
     vertex_bytes += draw.positions_clip.size() * sizeof(glm::vec4);
     index_bytes += draw.indices.size() * sizeof(uint32_t);

@@ -26,6 +26,7 @@ struct DrawCall {
   VkDeviceSize index_offset = 0;   // bytes into Geometry::indices
   uint32_t vertex_count = 0;       // Draw::vertex_count()
   bool indexed = false;
+  DepthBias depth_bias;            // the draw's factors (dynamic state); zero when bias is off
 };
 
 struct Geometry {

@@ -45,6 +45,7 @@ inline constexpr const char* kLoaderEnv = "RASTERCMP_VULKAN_LOADER";
   X(vkCmdPipelineBarrier)                     \
   X(vkCmdPushConstants)                       \
   X(vkCmdSetScissor)                          \
+  X(vkCmdSetDepthBias)                        \
   X(vkCmdSetViewport)                         \
   X(vkCreateBuffer)                           \
   X(vkCreateCommandPool)                      \

@@ -120,11 +120,6 @@ PipelineKey make_pipeline_key(const AttachmentConfig& attachments, Topology topo
   key.depth_write = state.depth.write_enable;
   key.compare_op = state.depth.compare_op;
   key.bias_enable = state.depth_bias.enable;
-  if (state.depth_bias.enable) {
-    key.bias_constant_bits = std::bit_cast<uint32_t>(state.depth_bias.constant_factor);
-    key.bias_slope_bits = std::bit_cast<uint32_t>(state.depth_bias.slope_factor);
-    key.bias_clamp_bits = std::bit_cast<uint32_t>(state.depth_bias.clamp);
-  }
   key.depth_clamp = state.depth_clamp;
   key.depth_clip = state.depth_clip.has_value() ? int(*state.depth_clip) : -1;
   return key;

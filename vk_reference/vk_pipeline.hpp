@@ -34,8 +34,7 @@ struct PipelineKey {
   uint32_t line_width_bits = 0;
   bool depth_test = false, depth_write = false;
   CompareOp compare_op = CompareOp::Less;
-  bool bias_enable = false;
-  uint32_t bias_constant_bits = 0, bias_slope_bits = 0, bias_clamp_bits = 0;
+  bool bias_enable = false;  // the factors are dynamic state, set per draw
   bool depth_clamp = false;
   int depth_clip = -1;  // -1: VK_EXT_depth_clip_enable not chained; else its depthClipEnable
   auto operator<=>(const PipelineKey&) const = default;

@@ -14,9 +14,7 @@ void fill_rasterization(const RasterState& state, RasterizationChain& chain) {
   r.cullMode = to_vk(state.cull_mode);
   r.frontFace = to_vk(state.front_face);
   r.depthBiasEnable = state.depth_bias.enable;
-  r.depthBiasConstantFactor = state.depth_bias.enable ? state.depth_bias.constant_factor : 0.0f;
-  r.depthBiasSlopeFactor = state.depth_bias.enable ? state.depth_bias.slope_factor : 0.0f;
-  r.depthBiasClamp = state.depth_bias.enable ? state.depth_bias.clamp : 0.0f;
+  // The factors are dynamic state (SharedStates): vkCmdSetDepthBias sets them per draw (vk_record.cpp).
   r.lineWidth = state.line_width;
 
   const void** tail = &r.pNext;
@@ -46,7 +44,7 @@ SharedStates::SharedStates() {
   viewport.viewportCount = 1;
   viewport.scissorCount = 1;
   dynamic.sType = VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO;
-  dynamic.dynamicStateCount = 2;
+  dynamic.dynamicStateCount = 3;
   dynamic.pDynamicStates = dynamic_states;
   owner_blend.blendEnable = VK_FALSE;
   owner_blend.colorWriteMask = VK_COLOR_COMPONENT_R_BIT;  // R32_UINT has one component

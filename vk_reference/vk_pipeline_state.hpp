@@ -26,14 +26,16 @@ struct RasterizationChain {
 void fill_rasterization(const RasterState& state, RasterizationChain& chain);
 
 // The states every graphics pipeline shares: one vec4 clip position per vertex, viewport and
-// scissor as dynamic state (set per scene at record time), and the owner attachment written
-// without blending. Pointers inside point into the object itself: do not copy it.
+// scissor as dynamic state (set per scene at record time), the depth bias factors as dynamic state
+// (set per draw, so draws that differ only in their factors share one pipeline and lavapipe
+// compiles its shaders once), and the owner attachment written without blending. Pointers inside point into the object itself: do not copy it.
 struct SharedStates {
   VkVertexInputBindingDescription binding{0, 4 * sizeof(float), VK_VERTEX_INPUT_RATE_VERTEX};
   VkVertexInputAttributeDescription pos_clip{0, 0, VK_FORMAT_R32G32B32A32_SFLOAT, 0};
   VkPipelineVertexInputStateCreateInfo vertex_input{};
   VkPipelineViewportStateCreateInfo viewport{};
-  VkDynamicState dynamic_states[2] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
+  VkDynamicState dynamic_states[3] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR,
+                                     VK_DYNAMIC_STATE_DEPTH_BIAS};
   VkPipelineDynamicStateCreateInfo dynamic{};
   VkPipelineColorBlendAttachmentState owner_blend{};
   VkPipelineColorBlendStateCreateInfo blend{};

@@ -39,6 +39,10 @@ void record_draws(VkCommandBuffer commands, VkPipelineLayout layout, const Geome
       api().vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_GRAPHICS, call.pipeline);
       bound = call.pipeline;
     }
+    // Dynamic state (SharedStates): every pipeline takes its factors from here; a draw without
+    // bias has depthBiasEnable off in its pipeline, which makes them unused.
+    api().vkCmdSetDepthBias(commands, call.depth_bias.constant_factor, call.depth_bias.clamp,
+                            call.depth_bias.slope_factor);
     api().vkCmdPushConstants(commands, layout, VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof draw_index, &draw_index);
     api().vkCmdBindVertexBuffers(commands, 0, 1, &vertices, &call.vertex_offset);
     if (call.indexed) {
