@@ -25,6 +25,9 @@ struct PairParams {
   double angle_deg = 45;         // rotation of the plane away from facing the eye (depth slope)
   double separation = 0;         // NearCoplanar: world distance of the decal in front of the base
   DepthBias decal_bias;          // applied to the decal (negative factors pull it towards the eye)
+  // Coplanar / NearCoplanar only: the far plane, the distance of the pair's centre from the eye and
+  // a scale of its sides (the defaults give the pair described below).
+  double far_plane = 100, distance = 50, scale = 1;
 };
 
 // Coplanar / near-coplanar pair: a 36x36 square 50 units in front of the eye (far = 100), split
