@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "experiments/csv_log.hpp"
+#include "experiments/method_maps.hpp"
 #include "experiments/polygon_offset.hpp"
 #include "experiments/speed_accuracy.hpp"
 #include "experiments/stability.hpp"
@@ -162,6 +163,26 @@ TEST(ExperimentsSweeps, StabilityQuick) {
   for (const char* chart :
        {"fight_vs_far_near", "fight_onset_map", "sliver_map", "far_distance", "near_w", "non_finite"})
     expect_chart(dir, chart);
+
+  // Method maps: the exact path equals lavapipe on every scene of every map, which is what lets
+  // test_experiments_boundaries use it as the reference; each map has its chart and its boundaries.
+  size_t map_rows = 0;
+  for (const MapExperiment& e : method_map_experiments()) {
+    for (const Row& row : select_rows(table, {{"experiment", std::string(e.name)}, {"method", "exact"}})) {
+      EXPECT_EQ(row[agree], "true") << join_fields(row, row.size());
+      ++map_rows;
+    }
+    expect_chart(dir, "map_" + std::string(e.name));
+  }
+  EXPECT_GT(map_rows, 100u);
+  bool painter_cyclic = false;
+  for (const auto& b : summary["boundaries"])
+    if (b["experiment"] == "visibility_cyclic" && b["method"] == "visibility=painter") {
+      painter_cyclic = true;
+      EXPECT_EQ(b["last_clean"].get<double>(), 0.05);  // as pinned by test_experiments_boundaries
+      EXPECT_EQ(b["boundary"].get<double>(), 0.1);
+    }
+  EXPECT_TRUE(painter_cyclic);
 }
 
 TEST(ExperimentsSweeps, SpeedAccuracyQuick) {
