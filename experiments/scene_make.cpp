@@ -223,6 +223,25 @@ Scene make_mesh_scene(uint32_t size, uint32_t cells) {
   return scene;
 }
 
+Scene make_line_star(uint32_t size, uint32_t lines) {
+  Scene scene;
+  scene.name = "experiments.line_star";
+  scene.width = scene.height = size;
+  const Viewport viewport = scene.effective_viewport();
+  Draw draw;
+  draw.topology = Topology::LineList;
+  const double centre = size / 2.0 + 0.3, inner = size * 0.05, outer = size * 0.45;
+  for (uint32_t i = 0; i < lines; ++i) {
+    const double a = 2 * std::numbers::pi * (i + 0.37) / lines;
+    const glm::vec4 from(float(centre + inner * std::cos(a)), float(centre + inner * std::sin(a)), 0.2f, 1);
+    const glm::vec4 to(float(centre + outer * std::cos(a)), float(centre + outer * std::sin(a)), 0.8f, 1);
+    draw.positions_clip.push_back(pixels_to_clip(viewport, from));
+    draw.positions_clip.push_back(pixels_to_clip(viewport, to));
+  }
+  scene.draws.push_back(draw);
+  return scene;
+}
+
 Scene make_near_w_triangle(float w_clip) {
   Scene scene;
   scene.name = "experiments.near_w";

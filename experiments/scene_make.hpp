@@ -56,6 +56,10 @@ Scene make_far_triangle(double distance_px);
 // size x size frame with D32 depth: the timing scene with many small triangles.
 Scene make_mesh_scene(uint32_t size, uint32_t cells);
 
+// `lines` 1-pixel lines radiating from near the centre of a size x size frame, endpoints off the
+// pixel grid, depth rising along each line: the timing scene of the line methods.
+Scene make_line_star(uint32_t size, uint32_t lines);
+
 // A triangle with one vertex at clip (0.2, 0.6, 0, w): on the near plane, w approaching 0.
 Scene make_near_w_triangle(float w_clip);
 

@@ -191,9 +191,17 @@ TEST(ExperimentsSweeps, SpeedAccuracyQuick) {
   run_speed_accuracy({dir.string(), true, false});
   const CsvTable table = read_csv((dir / kSpeedAccuracyCsv).string());
   const std::vector<Row> reference = select_rows(table, {{"method", "lavapipe"}});
-  ASSERT_FALSE(reference.empty());
-  ASSERT_EQ(table.rows.size(), reference.size() * (speed_accuracy_entries().size() + 1));
-  for (const Row& row : table.rows) EXPECT_GT(to_double(row[table.column("seconds_per_frame")]), 0.0);
+  const size_t triangle_scenes = speed_accuracy_scenes(false).size(), line_scenes = speed_accuracy_scenes(true).size();
+  ASSERT_EQ(reference.size(), triangle_scenes + line_scenes);
+  size_t triangle_entries = 0, line_entries = 0;
+  for (const MethodEntry& e : speed_accuracy_entries()) ++(e.lines ? line_entries : triangle_entries);
+  ASSERT_EQ(table.rows.size(), (triangle_entries + 1) * triangle_scenes + (line_entries + 1) * line_scenes);
+  for (const Row& row : table.rows) {
+    const double median = to_double(row[table.column("seconds_per_frame")]);
+    EXPECT_GT(median, 0.0);
+    EXPECT_LE(to_double(row[table.column("seconds_ci_low")]), median);
+    EXPECT_GE(to_double(row[table.column("seconds_ci_high")]), median);
+  }
   // The exact path, its fast paths and every depth format reproduce lavapipe on the whole set.
   for (const Where& where :
        {Where{{"method", "exact"}}, Where{{"family", "fast path"}}, Where{{"family", "depth format"}}})
@@ -201,11 +209,21 @@ TEST(ExperimentsSweeps, SpeedAccuracyQuick) {
       EXPECT_EQ(to_double(row[table.column("coverage_mismatch_pct")]), 0.0) << join_fields(row, row.size());
       EXPECT_EQ(to_double(row[table.column("depth_mismatch_pct")]), 0.0) << join_fields(row, row.size());
     }
+  // DDA and Bresenham are 1-pixel lines of their own: they differ from Vulkan's line rules.
+  for (const char* method : {"line=dda", "line=bresenham"})
+    EXPECT_GT(to_double(select_rows(table, {{"method", method}}).at(0)[table.column("coverage_mismatch_pct")]), 0.0);
   const nlohmann::json summary = nlohmann::json::parse(read_text(dir / "speed_accuracy.json"));
-  EXPECT_GT(summary["lavapipe"]["seconds_per_frame"].get<double>(), 0.0);
-  EXPECT_FALSE(summary["pareto_front_coverage"].empty());
-  expect_chart(dir, "speed_accuracy_coverage");
-  expect_chart(dir, "speed_accuracy_depth");
+  ASSERT_EQ(summary["sets"].size(), 2u);
+  for (const auto& set : summary["sets"]) {
+    EXPECT_GT(set["lavapipe"]["seconds_per_frame"].get<double>(), 0.0);
+    EXPECT_FALSE(set["pareto_front_coverage"].empty());
+    EXPECT_FALSE(set["family_fronts_coverage"].empty());
+    for (const auto& m : set["methods"]) EXPECT_NEAR(m["ci_coverage"].get<double>(), 0.9375, 1e-12);  // n = 5
+  }
+  EXPECT_TRUE(summary["sets"][1]["family_fronts_coverage"].contains("line"));
+  for (const char* chart : {"speed_accuracy_coverage", "speed_accuracy_depth", "speed_accuracy_lines_coverage",
+                            "speed_accuracy_lines_depth"})
+    expect_chart(dir, chart);
 }
 
 }  // namespace

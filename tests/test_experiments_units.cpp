@@ -13,6 +13,7 @@
 #include "experiments/csv_log.hpp"
 #include "experiments/gnuplot.hpp"
 #include "experiments/html_page.hpp"
+#include "experiments/order_stats.hpp"
 #include "experiments/scene_make.hpp"
 #include "experiments/speed_accuracy.hpp"
 #include "experiments/sweep_common.hpp"
@@ -70,6 +71,52 @@ TEST(ExperimentsPareto, KeepsOnlyPointsNothingBeatsOnBothAxes) {
                                              {"f", "middle", 2.0, 1.0, 1.0}};
   EXPECT_EQ(pareto_front(entries, true), (std::vector<size_t>{1, 3, 0}));
   EXPECT_EQ(pareto_front(entries, false), (std::vector<size_t>{1, 3, 0}));
+}
+
+// The distribution-free interval of a median: ranks from Binomial(n, 1/2) (order_stats.hpp).
+TEST(ExperimentsOrderStats, MedianIntervalRanksFromTheBinomial) {
+  // n = 15: P(B <= 3) = 576 / 32768 <= 0.025 < P(B <= 4), so ranks 4 and 12, coverage 1 - 2 * 576 / 32768.
+  std::vector<double> values;
+  for (int i = 15; i >= 1; --i) values.push_back(i * 10.0);  // unsorted on purpose
+  const MedianCi ci = median_ci(values);
+  EXPECT_EQ(ci.median, 80.0);
+  EXPECT_EQ(ci.low_rank, 4u);
+  EXPECT_EQ(ci.high_rank, 12u);
+  EXPECT_EQ(ci.low, 40.0);
+  EXPECT_EQ(ci.high, 120.0);
+  EXPECT_NEAR(ci.coverage, 1 - 2 * 576.0 / 32768.0, 1e-12);
+  // n = 5 cannot reach 95%: the whole range, coverage 1 - 2 / 32.
+  const MedianCi small = median_ci({3, 1, 2, 5, 4});
+  EXPECT_EQ(small.median, 3.0);
+  EXPECT_EQ(small.low, 1.0);
+  EXPECT_EQ(small.high, 5.0);
+  EXPECT_NEAR(small.coverage, 1 - 2.0 / 32.0, 1e-12);
+  // Even n: the mean of the middle two; an outlier moves neither the median nor the interval.
+  std::vector<double> noisy{1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 20};
+  const MedianCi before = median_ci(noisy);
+  noisy.back() = 1e9;
+  const MedianCi after = median_ci(noisy);
+  EXPECT_EQ(before.median, 10.5);
+  EXPECT_EQ(after.median, before.median);
+  EXPECT_EQ(after.low, before.low);
+  EXPECT_EQ(after.high, before.high);
+  EXPECT_GE(after.coverage, 0.95);
+  EXPECT_THROW(median_ci({1.0}, 1.0), std::invalid_argument);
+}
+
+// Each family's front holds its own methods with the exact and fast paths, never another family's.
+TEST(ExperimentsPareto, FamilyFrontsIncludeTheExactAndFastPaths) {
+  const std::vector<EntrySummary> entries = {{"exact path", "exact", 4.0, 0.0, 0.0},
+                                             {"fast path", "threads=2", 2.0, 0.0, 0.0},
+                                             {"fill", "scanline", 1.0, 0.5, 0.5},
+                                             {"fill", "slow and wrong", 9.0, 0.9, 0.9},
+                                             {"line", "dda", 0.5, 3.0, 3.0}};
+  const auto fronts = family_pareto_fronts(entries, true);
+  ASSERT_EQ(fronts.size(), 2u);
+  EXPECT_EQ(fronts[0].first, "fill");
+  EXPECT_EQ(fronts[0].second, (std::vector<size_t>{2, 1}));  // scanline, then the fast path
+  EXPECT_EQ(fronts[1].first, "line");
+  EXPECT_EQ(fronts[1].second, (std::vector<size_t>{4, 1}));
 }
 
 TEST(ExperimentsChartLabels, FarPointsKeepTheirOwnLabels) {
