@@ -2,6 +2,7 @@
 // Pareto front, chart labels, number formatting, the scene builders' invariants.
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <fstream>
 #include <regex>
 #include <set>
@@ -15,6 +16,8 @@
 #include "experiments/html_page.hpp"
 #include "experiments/order_stats.hpp"
 #include "experiments/scene_make.hpp"
+#include "experiments/scene_needs.hpp"
+#include "experiments/skip_savings.hpp"
 #include "experiments/speed_accuracy.hpp"
 #include "experiments/sweep_common.hpp"
 #include "model/errors.hpp"
@@ -254,6 +257,85 @@ TEST(ExperimentsPage, RendersFromTheTemplateWithEscaping) {
   EXPECT_NE(html.find("<img src=\"zfight_far_near_near_coplanar.svg\""), std::string::npos);
   EXPECT_NE(html.find("<li><a href=\"polygon_offset.csv\">polygon_offset.csv</a></li>"), std::string::npos);
   EXPECT_EQ(index_html("t", {{"no table", "", {}}}, {}).find("<table>"), std::string::npos);
+}
+
+// Which stages a scene needs, from its state alone (scene_needs.hpp).
+TEST(ExperimentsSceneNeeds, EachStageFromTheStateThatRequiresIt) {
+  Scene plain = make_sliver_pair(3, 20);  // two triangles inside the frame, D32, no bias, no culling
+  StageNeeds n = scene_needs(plain);
+  EXPECT_FALSE(n.clipping);
+  EXPECT_TRUE(n.depth);
+  EXPECT_FALSE(n.bias || n.msaa || n.lines || n.culling);
+
+  EXPECT_TRUE(scene_needs(make_near_w_triangle(1e-3f)).clipping);  // a vertex far outside x <= w
+  Scene clip = plain;
+  clip.draws[0].positions_clip[0].z = -0.5f;  // behind the near plane: outside with depth clipping only
+  EXPECT_TRUE(scene_needs(clip).clipping);
+  clip.draws[0].state.depth_clamp = true;
+  EXPECT_FALSE(scene_needs(clip).clipping);
+
+  Scene depthless = plain;
+  depthless.depth_format = DepthFormat::None;
+  EXPECT_FALSE(scene_needs(depthless).depth);
+  Scene test_off = plain;
+  for (Draw& d : test_off.draws) d.state.depth.test_enable = false;
+  EXPECT_FALSE(scene_needs(test_off).depth);
+
+  Scene bias = plain;
+  bias.draws[1].state.depth_bias = {true, 0, 0, 0.5f};  // on, but both factors 0: nothing to add
+  EXPECT_FALSE(scene_needs(bias).bias);
+  bias.draws[1].state.depth_bias.slope_factor = 1;
+  EXPECT_TRUE(scene_needs(bias).bias);
+
+  Scene msaa = plain;
+  msaa.samples = 4;
+  EXPECT_TRUE(scene_needs(msaa).msaa);
+  EXPECT_TRUE(scene_needs(make_line_star(64, 8)).lines);
+  Scene wire = plain;
+  wire.draws[0].state.polygon_mode = PolygonMode::Line;
+  EXPECT_TRUE(scene_needs(wire).lines);
+  Scene culled = plain;
+  culled.draws[1].state.cull_mode = CullMode::Back;
+  EXPECT_TRUE(scene_needs(culled).culling);
+
+  EXPECT_EQ(with_skip_off(CpuOptions{}, "all").skips.clip_only_when_needed, false);
+  EXPECT_THROW(with_skip_off(CpuOptions{}, "edges"), std::invalid_argument);
+}
+
+// chart scene-needs --quick, end to end on a two-scene suite (CPU and gnuplot only): one row per
+// scene, and a skip is timed only where the timing scene does not need its stage.
+TEST(ExperimentsSceneNeeds, QuickRunTimesOnlySkippedStages) {
+  try {
+    find_gnuplot();
+  } catch (const EnvironmentError&) {
+    GTEST_SKIP() << "gnuplot is not installed";
+  }
+  const fs::path dir = fs::temp_directory_path() / "rastercmp_test_experiments_scene_needs";
+  fs::remove_all(dir);
+  run_scene_needs({dir.string(), true, false}, {{"a.sliver", make_sliver_pair(3, 20)}, {"b.lines", make_line_star(64, 8)}});
+  const CsvTable needs = read_csv((dir / kSceneNeedsCsv).string());
+  ASSERT_EQ(needs.rows.size(), 2u);
+  EXPECT_EQ(needs.rows[1][needs.column("lines")], "needs");
+  EXPECT_EQ(needs.rows[0][needs.column("lines")], "skips");
+  const CsvTable savings = read_csv((dir / kSkipSavingsCsv).string());
+  ASSERT_FALSE(savings.rows.empty());
+  std::map<std::string, Scene> timing;
+  for (auto& [name, scene] : skip_timing_scenes(true)) timing[name] = scene;
+  for (const auto& row : savings.rows) {
+    const std::string& skip = row[savings.column("skip")];
+    ASSERT_TRUE(timing.count(row[0])) << row[0];
+    const StageNeeds n = scene_needs(timing[row[0]]);
+    EXPECT_FALSE(skip == "clip" && n.clipping) << row[0];
+    EXPECT_FALSE(skip == "depth" && n.depth) << row[0];
+    EXPECT_FALSE(skip == "bias" && n.bias) << row[0];
+    EXPECT_GT(std::stod(row[savings.column("ratio")]), 0.0);
+  }
+  // The depthless grid skips clipping, depth and bias: all three are timed there.
+  size_t depthless = 0;
+  for (const auto& row : savings.rows) depthless += row[0].find("depthless") != std::string::npos ? 1 : 0;
+  EXPECT_EQ(depthless, 4u);  // clip, depth, bias, all
+  for (const char* chart : {"suite_needs", "skip_savings"})
+    EXPECT_NE(read_text(dir / (std::string(chart) + ".svg")).find("<svg"), std::string::npos) << chart;
 }
 
 }  // namespace
