@@ -165,10 +165,8 @@ const MapExperiment* find_map_experiment(std::string_view name) {
 }
 
 std::vector<NamedMethod> fill_methods() {
-  std::vector<NamedMethod> out = named({{"fill", "scanline"}, {"fill", "even_odd"}, {"fill", "winding"},
-                                        {"fill", "float_edge"}, {"fill", "flood"}, {"snap", "round_half_away"},
-                                        {"tie_break", "none"}});
-  return out;
+  return named({{"fill", "scanline"}, {"fill", "even_odd"}, {"fill", "winding"}, {"fill", "float_edge"},
+                {"fill", "flood"}, {"snap", "round_half_away"}, {"tie_break", "none"}});
 }
 
 std::vector<NamedMethod> family_methods(std::string_view family) {
