@@ -92,8 +92,10 @@ std::vector<PageSection> write_method_map_charts(const std::string& dir, const C
     chart(dir, table, e);
     PageSection section{std::string(e.family) + ": " + std::string(e.name),
                         std::string(e.notes) + ". Parameter: " + std::string(e.parameter) +
-                            ", from the benign end to the hard end. Boundary: the first value whose " +
-                            std::string(e.measure) + " exceeds 0; the true boundary lies after the last clean value.",
+                            ", from the benign end to the hard end. Boundary: the first value at which " +
+                            (e.measure == "value_cpu" ? "the method's own wrong surface wins a pixel"
+                                                      : "a sample's owner or depth differs from lavapipe") +
+                            "; the true boundary lies after the last clean value.",
                         {"map_" + std::string(e.name)},
                         {{"case", "method", "last clean", "boundary", "failing points", "refused points"}}};
     for (const FailureBoundary& b : boundaries)
