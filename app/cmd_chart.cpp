@@ -1,17 +1,20 @@
 // rastercmp chart speed-accuracy [--out DIR] [--quick]
+// rastercmp chart scene-needs [--out DIR] [--quick]
 #include <memory>
 #include <string>
 
 #include <fmt/core.h>
 
 #include "app/commands.hpp"
+#include "compare/case_select.hpp"
+#include "experiments/skip_savings.hpp"
 #include "experiments/speed_accuracy.hpp"
 #include "model/errors.hpp"
 
 namespace rastercmp::app {
 
 void add_chart_command(CLI::App& app, int& exit_code) {
-  CLI::App* chart = app.add_subcommand("chart", "measured charts: speed-accuracy");
+  CLI::App* chart = app.add_subcommand("chart", "measured charts: speed-accuracy, scene-needs");
   chart->require_subcommand(1);
   auto options = std::make_shared<experiments::SweepOptions>();
   options->out_dir = "chart-speed-accuracy";
@@ -22,6 +25,21 @@ void add_chart_command(CLI::App& app, int& exit_code) {
   cmd->callback([options, &exit_code] {
     experiments::run_speed_accuracy(*options);
     fmt::print("speed-accuracy chart → {}/index.html\n", options->out_dir);
+    exit_code = kExitOk;
+  });
+
+  auto needs = std::make_shared<experiments::SweepOptions>();
+  needs->out_dir = "chart-scene-needs";
+  CLI::App* needs_cmd = chart->add_subcommand(
+      "scene-needs",
+      "which pipeline stages each built-in scene needs, and what each skipped stage saves on the exact path");
+  needs_cmd->add_option("--out", needs->out_dir, "output folder (CSV, JSON, charts, index.html)")->capture_default_str();
+  needs_cmd->add_flag("--quick", needs->quick, "smaller timing scenes, fewer repetitions (seconds)");
+  needs_cmd->callback([needs, &exit_code] {
+    std::vector<std::pair<std::string, Scene>> suite;
+    for (SuiteCase& c : load_suite(default_suite_dir())) suite.push_back({c.name, std::move(c.scene)});
+    experiments::run_scene_needs(*needs, suite);
+    fmt::print("scene-needs chart → {}/index.html\n", needs->out_dir);
     exit_code = kExitOk;
   });
 }

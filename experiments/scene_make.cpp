@@ -49,16 +49,16 @@ DecalScene make_pair(const PairParams& p) {
   camera.eye = {0, 0, 0};
   camera.target = {0, 0, -1};
   camera.fov_y_degrees = 45;
-  camera.far_plane = 100;
-  camera.near_plane = float(100.0 / p.far_near_ratio);
+  camera.far_plane = float(p.far_plane);
+  camera.near_plane = float(p.far_plane / p.far_near_ratio);
   const glm::mat4 world_to_clip = camera_world_to_clip(camera, 1.0f);
   const double angle = radians(p.angle_deg);
-  const glm::dvec3 centre(0, 0, -50);
+  const glm::dvec3 centre(0, 0, -p.distance);
   const glm::dvec3 normal(std::sin(angle), 0, std::cos(angle));  // towards the eye
   std::vector<glm::vec3> base, decal;
-  push_quad(base, plane_rect(centre, angle, 18, 18), false);
+  push_quad(base, plane_rect(centre, angle, 18 * p.scale, 18 * p.scale), false);
   const double separation = p.kind == PairKind::NearCoplanar ? p.separation : 0.0;
-  push_quad(decal, plane_rect(centre + normal * separation, angle, 12, 10), true);
+  push_quad(decal, plane_rect(centre + normal * separation, angle, 12 * p.scale, 10 * p.scale), true);
   DecalScene out;
   out.scene.name = std::string("experiments.") + to_string(p.kind);
   out.scene.depth_format = p.format;
@@ -220,6 +220,25 @@ Scene make_mesh_scene(uint32_t size, uint32_t cells) {
   scene.name = "experiments.mesh";
   scene.width = scene.height = size;
   scene.draws.push_back(world_draw("mesh", triangles, world_to_clip, CullMode::None));
+  return scene;
+}
+
+Scene make_line_star(uint32_t size, uint32_t lines) {
+  Scene scene;
+  scene.name = "experiments.line_star";
+  scene.width = scene.height = size;
+  const Viewport viewport = scene.effective_viewport();
+  Draw draw;
+  draw.topology = Topology::LineList;
+  const double centre = size / 2.0 + 0.3, inner = size * 0.05, outer = size * 0.45;
+  for (uint32_t i = 0; i < lines; ++i) {
+    const double a = 2 * std::numbers::pi * (i + 0.37) / lines;
+    const glm::vec4 from(float(centre + inner * std::cos(a)), float(centre + inner * std::sin(a)), 0.2f, 1);
+    const glm::vec4 to(float(centre + outer * std::cos(a)), float(centre + outer * std::sin(a)), 0.8f, 1);
+    draw.positions_clip.push_back(pixels_to_clip(viewport, from));
+    draw.positions_clip.push_back(pixels_to_clip(viewport, to));
+  }
+  scene.draws.push_back(draw);
   return scene;
 }
 

@@ -25,6 +25,9 @@ struct PairParams {
   double angle_deg = 45;         // rotation of the plane away from facing the eye (depth slope)
   double separation = 0;         // NearCoplanar: world distance of the decal in front of the base
   DepthBias decal_bias;          // applied to the decal (negative factors pull it towards the eye)
+  // Coplanar / NearCoplanar only: the far plane, the distance of the pair's centre from the eye and
+  // a scale of its sides (the defaults give the pair described below).
+  double far_plane = 100, distance = 50, scale = 1;
 };
 
 // Coplanar / near-coplanar pair: a 36x36 square 50 units in front of the eye (far = 100), split
@@ -52,6 +55,10 @@ Scene make_far_triangle(double distance_px);
 // A height-field mesh of cells x cells quads (2 triangles each) seen in perspective, in a
 // size x size frame with D32 depth: the timing scene with many small triangles.
 Scene make_mesh_scene(uint32_t size, uint32_t cells);
+
+// `lines` 1-pixel lines radiating from near the centre of a size x size frame, endpoints off the
+// pixel grid, depth rising along each line: the timing scene of the line methods.
+Scene make_line_star(uint32_t size, uint32_t lines);
 
 // A triangle with one vertex at clip (0.2, 0.6, 0, w): on the near plane, w approaching 0.
 Scene make_near_w_triangle(float w_clip);

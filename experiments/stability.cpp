@@ -6,6 +6,7 @@
 
 #include "experiments/csv_log.hpp"
 #include "experiments/gnuplot.hpp"
+#include "experiments/method_maps.hpp"
 #include "experiments/pixel_stats.hpp"
 #include "experiments/progress.hpp"
 #include "experiments/scene_make.hpp"
@@ -31,27 +32,12 @@ void add_fight_onset(std::vector<StabilityPoint>& plan, bool quick) {
         p.angle_deg = kOnsetAngleDeg;
         p.separation = separation;
         plan.push_back({"fight_onset", to_string(format), "exact", separation, ratio,
-                        [p] { return make_decal_scene(p).scene; }, exact_cpu_options(), 1});
+                        [p] { return make_decal_scene(p).scene; }, exact_cpu_options(), 1, true});
       }
 }
 
-// The methods the sliver and distance maps compare with lavapipe.
-std::vector<std::pair<std::string, CpuOptions>> sliver_methods() {
-  std::vector<std::pair<std::string, CpuOptions>> out{{"exact", exact_cpu_options()}};
-  CpuOptions no_fma = exact_cpu_options();
-  no_fma.fma = false;
-  out.push_back({"exact_no_fma", no_fma});
-  CpuOptions snap = exact_cpu_options();
-  snap.methods = {{"snap", "round_half_away"}};
-  out.push_back({"snap=round_half_away", snap});
-  CpuOptions tie = exact_cpu_options();
-  tie.methods = {{"tie_break", "none"}};
-  out.push_back({"tie_break=none", tie});
-  return out;
-}
-
 void add_slivers(std::vector<StabilityPoint>& plan, bool quick) {
-  for (const auto& [name, cpu] : sliver_methods())
+  for (const auto& [name, cpu] : fill_methods())
     for (double angle : pick(quick, {0.1, 3}, {0.01, 0.03, 0.1, 0.3, 1, 3, 10}))
       for (double length : pick(quick, {8, 60}, {4, 8, 16, 32, 60}))
         plan.push_back({"sliver", "sliver_pair", name, angle, length,
@@ -78,10 +64,12 @@ std::vector<std::string> key_of(const StabilityPoint& p) {
   return {p.experiment, p.case_name, p.method, num(p.param_a), num(p.param_b)};
 }
 
-// value_* columns: fight_onset: wrong-surface fraction; otherwise covered pixels.
-std::vector<std::string> measure(VulkanRenderer& vk, const StabilityPoint& point) {
+}  // namespace
+
+// value_* columns: wrong-surface fraction, or covered pixels.
+std::vector<std::string> measure_stability_point(const StabilityPoint& point, const ReferenceRender& reference) {
   const Scene scene = point.make_scene();
-  const RenderResult gpu = vk.render(scene);
+  const RenderResult gpu = reference(scene);
   std::vector<std::string> row = key_of(point);
   RenderResult cpu;
   try {
@@ -91,7 +79,7 @@ std::vector<std::string> measure(VulkanRenderer& vk, const StabilityPoint& point
     return row;
   }
   const Mismatch m = compare_results(cpu, gpu);
-  if (point.experiment == "fight_onset") {
+  if (point.wrong_surface) {
     const std::vector<bool> mask = covered_mask(render_cpu(decal_only({scene, point.decal_draw}), point.cpu));
     row.insert(row.end(), {num(wrong_surface_fraction(cpu, mask, point.decal_draw)),
                            num(wrong_surface_fraction(gpu, mask, point.decal_draw))});
@@ -101,8 +89,6 @@ std::vector<std::string> measure(VulkanRenderer& vk, const StabilityPoint& point
   row.insert(row.end(), {num(double(m.coverage)), num(double(m.depth)), flag(m.identical())});
   return row;
 }
-
-}  // namespace
 
 std::vector<std::string> stability_header() {
   return {"experiment",        "case",           "method",      "param_a", "param_b", "value_cpu", "value_vk",
@@ -114,6 +100,7 @@ std::vector<StabilityPoint> stability_plan(bool quick) {
   add_fight_onset(plan, quick);
   add_slivers(plan, quick);
   add_limits(plan, quick);
+  add_method_maps(plan, quick);
   return plan;
 }
 
@@ -130,7 +117,7 @@ void run_stability_sweep(const SweepOptions& options) {
       progress.skipped();
       continue;
     }
-    csv.append(measure(vk, point));
+    csv.append(measure_stability_point(point, [&vk](const Scene& scene) { return vk.render(scene); }));
     progress.finished();
   }
   progress.done();

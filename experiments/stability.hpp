@@ -4,6 +4,8 @@
 //   far_distance  distance from the origin up to the viewportBoundsRange limit (exact path)
 //   near_w        a vertex on the near plane with w approaching 0
 //   non_finite    NaN and infinite vertex components
+//   fill_*, clip_*, depth_far_near, pseudo_depth, coplanar_offset, visibility_*: the method maps of
+//                 every family (method_maps.hpp), with their failure boundaries (failure_boundary.hpp)
 // Output: stability.csv (appended per point), stability.json (thresholds), charts, index.html.
 #pragma once
 
@@ -24,8 +26,14 @@ struct StabilityPoint {
   double param_a = 0, param_b = 0;
   std::function<Scene()> make_scene;
   CpuOptions cpu;           // the method under test
-  uint32_t decal_draw = 0;  // fight_onset: the draw that should win (others: unused)
+  uint32_t decal_draw = 0;     // wrong_surface: the draw that should win (others: unused)
+  bool wrong_surface = false;  // value_* = fraction of the decal's pixels it does not win (else covered pixels)
 };
+
+// One point measured against a reference render of the same scene (lavapipe in the sweep; the
+// exact CPU path, which equals lavapipe bit for bit, in the device-free tests): the CSV row.
+using ReferenceRender = std::function<RenderResult(const Scene&)>;
+std::vector<std::string> measure_stability_point(const StabilityPoint& point, const ReferenceRender& reference);
 
 std::vector<StabilityPoint> stability_plan(bool quick);
 std::vector<std::string> stability_header();

@@ -5,7 +5,9 @@
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
 
+#include "experiments/failure_boundary.hpp"
 #include "experiments/gnuplot.hpp"
+#include "experiments/method_maps.hpp"
 #include "experiments/html_page.hpp"
 #include "experiments/stability.hpp"
 #include "experiments/table_query.hpp"
@@ -145,6 +147,18 @@ nlohmann::ordered_json summary(const CsvTable& table) {
     }
     out[experiment] = per_method;
   }
+  const auto number = [](double v) { return std::isnan(v) ? nlohmann::ordered_json() : nlohmann::ordered_json(v); };
+  out["boundaries"] = nlohmann::ordered_json::array();
+  for (const FailureBoundary& b : failure_boundaries(table))
+    out["boundaries"].push_back({{"experiment", b.experiment},
+                                 {"family", b.family},
+                                 {"case", b.case_name},
+                                 {"method", b.method},
+                                 {"last_clean", number(b.last_clean)},
+                                 {"boundary", number(b.boundary)},
+                                 {"points", b.points},
+                                 {"failing", b.failing},
+                                 {"refused", b.refused}});
   return out;
 }
 
@@ -169,18 +183,19 @@ void write_stability_outputs(const std::string& dir) {
   chart_limit(dir, table, "near_w", "Exact path: a vertex on the near plane with w approaching 0",
               "clip w of the vertex");
   chart_non_finite(dir, table);
-  write_index_html(
-      dir, "Stability: where methods fail",
-      {{"Z-fighting onset",
+  std::vector<PageSection> sections{
+      {"Z-fighting onset",
         "A near-coplanar pair; the first far/near ratio at which the farther surface wins a pixel.",
         {"fight_vs_far_near", "fight_onset_map"}},
-       {"Slivers",
-        "Two thin triangles sharing an edge through a pixel centre; colour: pixels that differ from lavapipe.",
-        {"sliver_map"}},
-       {"Limits of the exact path",
+      {"Slivers",
+       "Two thin triangles sharing an edge through a pixel centre, every fill method; colour: pixels that differ "
+       "from lavapipe.",
+       {"sliver_map"}},
+      {"Limits of the exact path",
         "Large window coordinates, w near 0, and NaN / infinite inputs (zero is exact).",
-        {"far_distance", "near_w", "non_finite"}}},
-      {kStabilityCsv, "stability.json"});
+        {"far_distance", "near_w", "non_finite"}}};
+  for (PageSection& section : write_method_map_charts(dir, table)) sections.push_back(std::move(section));
+  write_index_html(dir, "Stability: where methods fail", sections, {kStabilityCsv, "stability.json"});
 }
 
 }  // namespace rastercmp::experiments

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "experiments/csv_log.hpp"
+#include "experiments/method_maps.hpp"
 #include "experiments/polygon_offset.hpp"
 #include "experiments/speed_accuracy.hpp"
 #include "experiments/stability.hpp"
@@ -162,6 +163,26 @@ TEST(ExperimentsSweeps, StabilityQuick) {
   for (const char* chart :
        {"fight_vs_far_near", "fight_onset_map", "sliver_map", "far_distance", "near_w", "non_finite"})
     expect_chart(dir, chart);
+
+  // Method maps: the exact path equals lavapipe on every scene of every map, which is what lets
+  // test_experiments_boundaries use it as the reference; each map has its chart and its boundaries.
+  size_t map_rows = 0;
+  for (const MapExperiment& e : method_map_experiments()) {
+    for (const Row& row : select_rows(table, {{"experiment", std::string(e.name)}, {"method", "exact"}})) {
+      EXPECT_EQ(row[agree], "true") << join_fields(row, row.size());
+      ++map_rows;
+    }
+    expect_chart(dir, "map_" + std::string(e.name));
+  }
+  EXPECT_GT(map_rows, 100u);
+  bool painter_cyclic = false;
+  for (const auto& b : summary["boundaries"])
+    if (b["experiment"] == "visibility_cyclic" && b["method"] == "visibility=painter") {
+      painter_cyclic = true;
+      EXPECT_EQ(b["last_clean"].get<double>(), 0.05);  // as pinned by test_experiments_boundaries
+      EXPECT_EQ(b["boundary"].get<double>(), 0.1);
+    }
+  EXPECT_TRUE(painter_cyclic);
 }
 
 TEST(ExperimentsSweeps, SpeedAccuracyQuick) {
@@ -170,9 +191,17 @@ TEST(ExperimentsSweeps, SpeedAccuracyQuick) {
   run_speed_accuracy({dir.string(), true, false});
   const CsvTable table = read_csv((dir / kSpeedAccuracyCsv).string());
   const std::vector<Row> reference = select_rows(table, {{"method", "lavapipe"}});
-  ASSERT_FALSE(reference.empty());
-  ASSERT_EQ(table.rows.size(), reference.size() * (speed_accuracy_entries().size() + 1));
-  for (const Row& row : table.rows) EXPECT_GT(to_double(row[table.column("seconds_per_frame")]), 0.0);
+  const size_t triangle_scenes = speed_accuracy_scenes(false).size(), line_scenes = speed_accuracy_scenes(true).size();
+  ASSERT_EQ(reference.size(), triangle_scenes + line_scenes);
+  size_t triangle_entries = 0, line_entries = 0;
+  for (const MethodEntry& e : speed_accuracy_entries()) ++(e.lines ? line_entries : triangle_entries);
+  ASSERT_EQ(table.rows.size(), (triangle_entries + 1) * triangle_scenes + (line_entries + 1) * line_scenes);
+  for (const Row& row : table.rows) {
+    const double median = to_double(row[table.column("seconds_per_frame")]);
+    EXPECT_GT(median, 0.0);
+    EXPECT_LE(to_double(row[table.column("seconds_ci_low")]), median);
+    EXPECT_GE(to_double(row[table.column("seconds_ci_high")]), median);
+  }
   // The exact path, its fast paths and every depth format reproduce lavapipe on the whole set.
   for (const Where& where :
        {Where{{"method", "exact"}}, Where{{"family", "fast path"}}, Where{{"family", "depth format"}}})
@@ -180,11 +209,21 @@ TEST(ExperimentsSweeps, SpeedAccuracyQuick) {
       EXPECT_EQ(to_double(row[table.column("coverage_mismatch_pct")]), 0.0) << join_fields(row, row.size());
       EXPECT_EQ(to_double(row[table.column("depth_mismatch_pct")]), 0.0) << join_fields(row, row.size());
     }
+  // DDA and Bresenham are 1-pixel lines of their own: they differ from Vulkan's line rules.
+  for (const char* method : {"line=dda", "line=bresenham"})
+    EXPECT_GT(to_double(select_rows(table, {{"method", method}}).at(0)[table.column("coverage_mismatch_pct")]), 0.0);
   const nlohmann::json summary = nlohmann::json::parse(read_text(dir / "speed_accuracy.json"));
-  EXPECT_GT(summary["lavapipe"]["seconds_per_frame"].get<double>(), 0.0);
-  EXPECT_FALSE(summary["pareto_front_coverage"].empty());
-  expect_chart(dir, "speed_accuracy_coverage");
-  expect_chart(dir, "speed_accuracy_depth");
+  ASSERT_EQ(summary["sets"].size(), 2u);
+  for (const auto& set : summary["sets"]) {
+    EXPECT_GT(set["lavapipe"]["seconds_per_frame"].get<double>(), 0.0);
+    EXPECT_FALSE(set["pareto_front_coverage"].empty());
+    EXPECT_FALSE(set["family_fronts_coverage"].empty());
+    for (const auto& m : set["methods"]) EXPECT_NEAR(m["ci_coverage"].get<double>(), 0.9375, 1e-12);  // n = 5
+  }
+  EXPECT_TRUE(summary["sets"][1]["family_fronts_coverage"].contains("line"));
+  for (const char* chart : {"speed_accuracy_coverage", "speed_accuracy_depth", "speed_accuracy_lines_coverage",
+                            "speed_accuracy_lines_depth"})
+    expect_chart(dir, chart);
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 // Pareto front, chart labels, number formatting, the scene builders' invariants.
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <fstream>
 #include <regex>
 #include <set>
@@ -13,7 +14,10 @@
 #include "experiments/csv_log.hpp"
 #include "experiments/gnuplot.hpp"
 #include "experiments/html_page.hpp"
+#include "experiments/order_stats.hpp"
 #include "experiments/scene_make.hpp"
+#include "experiments/scene_needs.hpp"
+#include "experiments/skip_savings.hpp"
 #include "experiments/speed_accuracy.hpp"
 #include "experiments/sweep_common.hpp"
 #include "model/errors.hpp"
@@ -70,6 +74,52 @@ TEST(ExperimentsPareto, KeepsOnlyPointsNothingBeatsOnBothAxes) {
                                              {"f", "middle", 2.0, 1.0, 1.0}};
   EXPECT_EQ(pareto_front(entries, true), (std::vector<size_t>{1, 3, 0}));
   EXPECT_EQ(pareto_front(entries, false), (std::vector<size_t>{1, 3, 0}));
+}
+
+// The distribution-free interval of a median: ranks from Binomial(n, 1/2) (order_stats.hpp).
+TEST(ExperimentsOrderStats, MedianIntervalRanksFromTheBinomial) {
+  // n = 15: P(B <= 3) = 576 / 32768 <= 0.025 < P(B <= 4), so ranks 4 and 12, coverage 1 - 2 * 576 / 32768.
+  std::vector<double> values;
+  for (int i = 15; i >= 1; --i) values.push_back(i * 10.0);  // unsorted on purpose
+  const MedianCi ci = median_ci(values);
+  EXPECT_EQ(ci.median, 80.0);
+  EXPECT_EQ(ci.low_rank, 4u);
+  EXPECT_EQ(ci.high_rank, 12u);
+  EXPECT_EQ(ci.low, 40.0);
+  EXPECT_EQ(ci.high, 120.0);
+  EXPECT_NEAR(ci.coverage, 1 - 2 * 576.0 / 32768.0, 1e-12);
+  // n = 5 cannot reach 95%: the whole range, coverage 1 - 2 / 32.
+  const MedianCi small = median_ci({3, 1, 2, 5, 4});
+  EXPECT_EQ(small.median, 3.0);
+  EXPECT_EQ(small.low, 1.0);
+  EXPECT_EQ(small.high, 5.0);
+  EXPECT_NEAR(small.coverage, 1 - 2.0 / 32.0, 1e-12);
+  // Even n: the mean of the middle two; an outlier moves neither the median nor the interval.
+  std::vector<double> noisy{1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 20};
+  const MedianCi before = median_ci(noisy);
+  noisy.back() = 1e9;
+  const MedianCi after = median_ci(noisy);
+  EXPECT_EQ(before.median, 10.5);
+  EXPECT_EQ(after.median, before.median);
+  EXPECT_EQ(after.low, before.low);
+  EXPECT_EQ(after.high, before.high);
+  EXPECT_GE(after.coverage, 0.95);
+  EXPECT_THROW(median_ci({1.0}, 1.0), std::invalid_argument);
+}
+
+// Each family's front holds its own methods with the exact and fast paths, never another family's.
+TEST(ExperimentsPareto, FamilyFrontsIncludeTheExactAndFastPaths) {
+  const std::vector<EntrySummary> entries = {{"exact path", "exact", 4.0, 0.0, 0.0},
+                                             {"fast path", "threads=2", 2.0, 0.0, 0.0},
+                                             {"fill", "scanline", 1.0, 0.5, 0.5},
+                                             {"fill", "slow and wrong", 9.0, 0.9, 0.9},
+                                             {"line", "dda", 0.5, 3.0, 3.0}};
+  const auto fronts = family_pareto_fronts(entries, true);
+  ASSERT_EQ(fronts.size(), 2u);
+  EXPECT_EQ(fronts[0].first, "fill");
+  EXPECT_EQ(fronts[0].second, (std::vector<size_t>{2, 1}));  // scanline, then the fast path
+  EXPECT_EQ(fronts[1].first, "line");
+  EXPECT_EQ(fronts[1].second, (std::vector<size_t>{4, 1}));
 }
 
 TEST(ExperimentsChartLabels, FarPointsKeepTheirOwnLabels) {
@@ -207,6 +257,85 @@ TEST(ExperimentsPage, RendersFromTheTemplateWithEscaping) {
   EXPECT_NE(html.find("<img src=\"zfight_far_near_near_coplanar.svg\""), std::string::npos);
   EXPECT_NE(html.find("<li><a href=\"polygon_offset.csv\">polygon_offset.csv</a></li>"), std::string::npos);
   EXPECT_EQ(index_html("t", {{"no table", "", {}}}, {}).find("<table>"), std::string::npos);
+}
+
+// Which stages a scene needs, from its state alone (scene_needs.hpp).
+TEST(ExperimentsSceneNeeds, EachStageFromTheStateThatRequiresIt) {
+  Scene plain = make_sliver_pair(3, 20);  // two triangles inside the frame, D32, no bias, no culling
+  StageNeeds n = scene_needs(plain);
+  EXPECT_FALSE(n.clipping);
+  EXPECT_TRUE(n.depth);
+  EXPECT_FALSE(n.bias || n.msaa || n.lines || n.culling);
+
+  EXPECT_TRUE(scene_needs(make_near_w_triangle(1e-3f)).clipping);  // a vertex far outside x <= w
+  Scene clip = plain;
+  clip.draws[0].positions_clip[0].z = -0.5f;  // behind the near plane: outside with depth clipping only
+  EXPECT_TRUE(scene_needs(clip).clipping);
+  clip.draws[0].state.depth_clamp = true;
+  EXPECT_FALSE(scene_needs(clip).clipping);
+
+  Scene depthless = plain;
+  depthless.depth_format = DepthFormat::None;
+  EXPECT_FALSE(scene_needs(depthless).depth);
+  Scene test_off = plain;
+  for (Draw& d : test_off.draws) d.state.depth.test_enable = false;
+  EXPECT_FALSE(scene_needs(test_off).depth);
+
+  Scene bias = plain;
+  bias.draws[1].state.depth_bias = {true, 0, 0, 0.5f};  // on, but both factors 0: nothing to add
+  EXPECT_FALSE(scene_needs(bias).bias);
+  bias.draws[1].state.depth_bias.slope_factor = 1;
+  EXPECT_TRUE(scene_needs(bias).bias);
+
+  Scene msaa = plain;
+  msaa.samples = 4;
+  EXPECT_TRUE(scene_needs(msaa).msaa);
+  EXPECT_TRUE(scene_needs(make_line_star(64, 8)).lines);
+  Scene wire = plain;
+  wire.draws[0].state.polygon_mode = PolygonMode::Line;
+  EXPECT_TRUE(scene_needs(wire).lines);
+  Scene culled = plain;
+  culled.draws[1].state.cull_mode = CullMode::Back;
+  EXPECT_TRUE(scene_needs(culled).culling);
+
+  EXPECT_EQ(with_skip_off(CpuOptions{}, "all").skips.clip_only_when_needed, false);
+  EXPECT_THROW(with_skip_off(CpuOptions{}, "edges"), std::invalid_argument);
+}
+
+// chart scene-needs --quick, end to end on a two-scene suite (CPU and gnuplot only): one row per
+// scene, and a skip is timed only where the timing scene does not need its stage.
+TEST(ExperimentsSceneNeeds, QuickRunTimesOnlySkippedStages) {
+  try {
+    find_gnuplot();
+  } catch (const EnvironmentError&) {
+    GTEST_SKIP() << "gnuplot is not installed";
+  }
+  const fs::path dir = fs::temp_directory_path() / "rastercmp_test_experiments_scene_needs";
+  fs::remove_all(dir);
+  run_scene_needs({dir.string(), true, false}, {{"a.sliver", make_sliver_pair(3, 20)}, {"b.lines", make_line_star(64, 8)}});
+  const CsvTable needs = read_csv((dir / kSceneNeedsCsv).string());
+  ASSERT_EQ(needs.rows.size(), 2u);
+  EXPECT_EQ(needs.rows[1][needs.column("lines")], "needs");
+  EXPECT_EQ(needs.rows[0][needs.column("lines")], "skips");
+  const CsvTable savings = read_csv((dir / kSkipSavingsCsv).string());
+  ASSERT_FALSE(savings.rows.empty());
+  std::map<std::string, Scene> timing;
+  for (auto& [name, scene] : skip_timing_scenes(true)) timing[name] = scene;
+  for (const auto& row : savings.rows) {
+    const std::string& skip = row[savings.column("skip")];
+    ASSERT_TRUE(timing.count(row[0])) << row[0];
+    const StageNeeds n = scene_needs(timing[row[0]]);
+    EXPECT_FALSE(skip == "clip" && n.clipping) << row[0];
+    EXPECT_FALSE(skip == "depth" && n.depth) << row[0];
+    EXPECT_FALSE(skip == "bias" && n.bias) << row[0];
+    EXPECT_GT(std::stod(row[savings.column("ratio")]), 0.0);
+  }
+  // The depthless grid skips clipping, depth and bias: all three are timed there.
+  size_t depthless = 0;
+  for (const auto& row : savings.rows) depthless += row[0].find("depthless") != std::string::npos ? 1 : 0;
+  EXPECT_EQ(depthless, 4u);  // clip, depth, bias, all
+  for (const char* chart : {"suite_needs", "skip_savings"})
+    EXPECT_NE(read_text(dir / (std::string(chart) + ".svg")).find("<svg"), std::string::npos) << chart;
 }
 
 }  // namespace

@@ -1,0 +1,35 @@
+// Failure boundaries of the method maps (issue 21 item 3): along one series (experiment, case,
+// method), whose points run from the benign end of the parameter to the hard end, the boundary is
+// the first parameter value whose measure (map_measure: mismatch against the reference, or the
+// method's own wrong-surface fraction) exceeds 0, and the value before it the last clean one, so the true
+// boundary lies between the two. Rows the method refused (not_supported) are counted, not measured.
+#pragma once
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "experiments/csv_log.hpp"
+
+namespace rastercmp::experiments {
+
+struct FailureBoundary {
+  std::string experiment, family, case_name, method;
+  double boundary = NAN;    // first failing parameter value; NaN when no point fails
+  double last_clean = NAN;  // the point before it; NaN when the first point fails already
+  size_t points = 0, failing = 0, refused = 0;
+};
+
+// The measure of one row: "any_mismatch" = samples whose owner or raw depth differs from the
+// reference (coverage_mismatch + depth_mismatch), otherwise the named column (value_cpu: the
+// method's own wrong-surface fraction). NaN for a refused point.
+double map_measure(const CsvTable& table, const std::vector<std::string>& row, const std::string& measure);
+
+// Every series of every method map in the table (stability.csv read back), in file order.
+std::vector<FailureBoundary> failure_boundaries(const CsvTable& table);
+
+// The one series of a list; throws std::out_of_range when it is not there.
+const FailureBoundary& find_boundary(const std::vector<FailureBoundary>& all, const std::string& experiment,
+                                     const std::string& case_name, const std::string& method);
+
+}  // namespace rastercmp::experiments

@@ -1,0 +1,135 @@
+#include "experiments/method_map_scenes.hpp"
+
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "model/camera.hpp"
+
+namespace rastercmp::experiments {
+namespace {
+
+constexpr double kSubpixel = 1.0 / 256.0;
+
+Scene window_scene(const char* name) {
+  Scene scene;
+  scene.name = std::string("experiments.") + name;
+  scene.depth_format = DepthFormat::D32Sfloat;
+  return scene;
+}
+
+Draw pixel_triangles(const Scene& scene, const std::vector<glm::dvec3>& pixels) {
+  Draw draw;
+  const Viewport viewport = scene.effective_viewport();
+  for (const glm::dvec3& p : pixels)
+    draw.positions_clip.push_back(pixels_to_clip(viewport, glm::vec4(float(p.x), float(p.y), float(p.z), 1)));
+  return draw;
+}
+
+// Two triangles of a quad a b c d.
+void push_quad(std::vector<glm::dvec3>& out, glm::dvec3 a, glm::dvec3 b, glm::dvec3 c, glm::dvec3 d) {
+  out.insert(out.end(), {a, b, c, a, c, d});
+}
+
+// Bar i of make_cyclic_bars: direction at 90 + 120 i degrees, its centre line 8 pixels from the frame
+// centre, half-length 28, half-width 3; window depth mean + tilt * s along it (s in -1..1).
+constexpr double kBarOffset = 8, kBarHalfLength = 28, kBarHalfWidth = 3;
+
+}  // namespace
+
+Scene make_sliver_strip(double width_subpx) {
+  Scene scene = window_scene("sliver_strip");
+  const double w = width_subpx * kSubpixel;
+  scene.draws.push_back(
+      pixel_triangles(scene, {{4.0, 10.5 - 0.3 * w, 0.5}, {60.0, 10.5 + 0.2 * w, 0.5}, {4.0, 10.5 + 0.7 * w, 0.5}}));
+  return scene;
+}
+
+Scene make_fan(double offset_subpx) {
+  Scene scene = window_scene("fan");
+  const glm::dvec3 centre(16.5 + offset_subpx * kSubpixel, 16.5 + offset_subpx * kSubpixel, 0.5);
+  std::vector<glm::dvec3> pixels;
+  for (int k = 0; k < 8; ++k) {
+    const double a0 = k * std::numbers::pi / 4, a1 = (k + 1) * std::numbers::pi / 4;
+    pixels.insert(pixels.end(), {centre, {16.5 + 12 * std::cos(a0), 16.5 + 12 * std::sin(a0), 0.5},
+                                 {16.5 + 12 * std::cos(a1), 16.5 + 12 * std::sin(a1), 0.5}});
+  }
+  Draw draw = pixel_triangles(scene, pixels);
+  scene.draws.push_back(draw);
+  return scene;
+}
+
+double cyclic_bars_onset_tilt() {
+  // Bar i meets bar i+1 at s = +a and bar i-1 at s = -a, a = offset * tan(60 deg) / half-length.
+  return 0.05 / (kBarOffset * std::sqrt(3.0) / kBarHalfLength);
+}
+
+Scene make_cyclic_bars(double tilt) {
+  Scene scene = window_scene("cyclic_bars");
+  const glm::dvec2 centre(32, 32);
+  for (int i = 0; i < 3; ++i) {
+    const double angle = (90.0 + 120.0 * i) * std::numbers::pi / 180.0;
+    const glm::dvec2 d(std::cos(angle), std::sin(angle)), n(d.y, -d.x);
+    const glm::dvec2 mid = centre + n * kBarOffset;
+    const double mean = 0.4 + 0.1 * i;
+    const auto at = [&](double s, double across) {
+      const glm::dvec2 p = mid + d * (s * kBarHalfLength) + n * across;
+      return glm::dvec3(p.x, p.y, mean + tilt * s);
+    };
+    std::vector<glm::dvec3> pixels;
+    push_quad(pixels, at(-1, -kBarHalfWidth), at(1, -kBarHalfWidth), at(1, kBarHalfWidth), at(-1, kBarHalfWidth));
+    scene.draws.push_back(pixel_triangles(scene, pixels));
+  }
+  return scene;
+}
+
+Scene make_interpenetration(double penetration) {
+  Scene scene = window_scene("interpenetration");
+  std::vector<glm::dvec3> front, tilted;
+  push_quad(front, {8, 8, 0.5}, {56, 8, 0.5}, {56, 56, 0.5}, {8, 56, 0.5});
+  const double z0 = 0.55 - penetration, z1 = z0 + 0.2;
+  push_quad(tilted, {16, 20, z0}, {48, 20, z1}, {48, 44, z1}, {16, 44, z0});
+  scene.draws.push_back(pixel_triangles(scene, tilted));  // behind first, as a scene would list it
+  scene.draws.push_back(pixel_triangles(scene, front));
+  return scene;
+}
+
+Scene make_near_w_line(float w) {
+  Scene scene = window_scene("near_w_line");
+  Draw draw;
+  draw.topology = Topology::LineList;
+  draw.positions_clip = {{-0.7f, -0.6f, 0.5f, 1}, {0.2f, 0.6f, 0.0f, w}};
+  scene.draws.push_back(draw);
+  return scene;
+}
+
+Scene make_near_cross_triangle(double behind) {
+  Scene scene = window_scene("near_cross_triangle");
+  Draw draw;
+  draw.positions_clip = {{-0.6f, -0.7f, 0.5f, 1}, {0.7f, -0.5f, 0.5f, 1}, {0.2f, 0.6f, float(-behind), 1}};
+  scene.draws.push_back(draw);
+  return scene;
+}
+
+Scene make_near_cross_line(double behind) {
+  Scene scene = window_scene("near_cross_line");
+  Draw draw;
+  draw.topology = Topology::LineList;
+  draw.positions_clip = {{-0.7f, -0.6f, 0.5f, 1}, {0.2f, 0.6f, float(-behind), 1}};
+  scene.draws.push_back(draw);
+  return scene;
+}
+
+Scene reversed_z(Scene scene, double near_plane, double far_plane) {
+  scene.name += ".reversed_z";
+  scene.depth_clear = 0.0f;
+  for (Draw& draw : scene.draws) {
+    draw.state.depth.compare_op = CompareOp::Greater;
+    // w - z with z = far (w - near) / (far - near), formed in double from w (the eye distance), not
+    // from the float z, whose low bits are already gone at a large far/near.
+    for (glm::vec4& p : draw.positions_clip) p.z = float(near_plane * (far_plane - double(p.w)) / (far_plane - near_plane));
+  }
+  return scene;
+}
+
+}  // namespace rastercmp::experiments

@@ -1,0 +1,230 @@
+// Failure boundaries of the method maps (experiments/method_maps.hpp, docs/experiments.md "Method
+// maps"), pinned, so that a regression moves a number someone reads. The sweep measures each method
+// against lavapipe; here, to stay deterministic and device-free, the reference is the exact CPU
+// path, which equals lavapipe bit for bit (test_experiments_sweeps checks exactly that on these
+// scenes where a device exists). The grid is the --quick one: a boundary is pinned as the pair
+// (last clean grid value, first failing grid value), and where the notes give a formula, the test
+// also checks that the true boundary it predicts lies in that bracket.
+#include <cmath>
+#include <numbers>
+
+#include <gtest/gtest.h>
+
+#include "cpu_raster/classic/method_registry.hpp"
+#include "experiments/csv_log.hpp"
+#include "experiments/failure_boundary.hpp"
+#include "experiments/method_map_scenes.hpp"
+#include "experiments/method_maps.hpp"
+#include "experiments/stability.hpp"
+
+namespace rastercmp::experiments {
+namespace {
+
+const CsvTable& quick_table() {
+  static const CsvTable table = [] {
+    std::vector<StabilityPoint> plan;
+    add_method_maps(plan, true);
+    CsvTable t{stability_header(), {}};
+    const CpuOptions reference = exact_cpu_options();
+    for (const StabilityPoint& point : plan)
+      t.rows.push_back(
+          measure_stability_point(point, [&](const Scene& scene) { return render_cpu(scene, reference); }));
+    return t;
+  }();
+  return table;
+}
+
+const FailureBoundary& boundary(const std::string& experiment, const std::string& case_name,
+                                const std::string& method) {
+  static const std::vector<FailureBoundary> all = failure_boundaries(quick_table());
+  return find_boundary(all, experiment, case_name, method);
+}
+
+constexpr double kNever = NAN;  // no point of the series fails / the first point fails already
+
+void expect_same(double expected, double actual, const char* what) {
+  if (std::isnan(expected))
+    EXPECT_TRUE(std::isnan(actual)) << what << ": expected none, got " << actual;
+  else
+    EXPECT_DOUBLE_EQ(actual, expected) << what;
+}
+
+// Pins one series: the last clean value and the first failing one (kNever for none).
+void expect_boundary(const std::string& experiment, const std::string& case_name, const std::string& method,
+                     double last_clean, double first_failing) {
+  SCOPED_TRACE(experiment + " / " + case_name + " / " + method);
+  const FailureBoundary& b = boundary(experiment, case_name, method);
+  expect_same(last_clean, b.last_clean, "last clean");
+  expect_same(first_failing, b.boundary, "boundary");
+}
+
+void expect_never_fails(const std::string& experiment, const std::string& case_name, const std::string& method) {
+  SCOPED_TRACE(experiment + " / " + case_name + " / " + method);
+  const FailureBoundary& b = boundary(experiment, case_name, method);
+  EXPECT_EQ(b.failing, 0u);
+  EXPECT_GT(b.points, b.refused);
+}
+
+TEST(ExperimentsBoundaries, EveryExperimentHasEveryMethodOfItsFamily) {
+  const std::vector<FailureBoundary> all = failure_boundaries(quick_table());
+  for (const MapExperiment& e : method_map_experiments()) {
+    size_t series = 0;
+    for (const FailureBoundary& b : all) series += b.experiment == e.name ? 1 : 0;
+    EXPECT_GT(series, 1u) << e.name;
+  }
+  // Against the reference the exact path never fails (it is the reference here; lavapipe's own run
+  // checks it for real). Depth experiments measure the method's own wrong surface: exact fights too.
+  for (const FailureBoundary& b : all) {
+    if (b.method == "exact" && find_map_experiment(b.experiment)->measure == "any_mismatch") {
+      EXPECT_EQ(b.failing, 0u) << b.experiment << " / " << b.case_name;
+    }
+  }
+}
+
+// Painter's algorithm (notes RDS "Hard Cases"): right while the bars' depths are ordered, wrong once
+// the overlap is cyclic; BSP splits and stays right.
+TEST(ExperimentsBoundaries, PainterFailsOnCyclicOverlapAndBspDoesNot) {
+  const CsvTable& t = quick_table();
+  for (const std::vector<std::string>& row : t.rows) {
+    if (row[0] != "visibility_cyclic" || row[2] != "visibility=painter") continue;
+    const double tilt = std::stod(row[t.column("param_a")]), measure = map_measure(t, row, "any_mismatch");
+    if (tilt == 0) {
+      EXPECT_EQ(measure, 0.0) << "no cycle at tilt 0";
+    } else if (tilt >= cyclic_bars_onset_tilt()) {
+      EXPECT_GT(measure, 0.0) << "cycle closed at tilt " << tilt;
+    }
+  }
+  expect_boundary("visibility_cyclic", "three_bars", "visibility=painter", 0.05, 0.1);
+  // First contact of the 6-pixel-wide bars: the crossing reaches a + 3 / sin 60 / 28 along each bar,
+  // so a pixel can see the cycle from tilt 0.05 / (a + 0.124), a = 8 tan 60 / 28, before the centre
+  // lines close it at 0.05 / a.
+  const double a = 8 * std::sqrt(3.0) / 28, first_contact = 0.05 / (a + 3 / std::sin(std::numbers::pi / 3) / 28);
+  const FailureBoundary& painter = boundary("visibility_cyclic", "three_bars", "visibility=painter");
+  EXPECT_LT(painter.last_clean, first_contact);
+  EXPECT_GE(painter.boundary, first_contact);
+  EXPECT_LE(painter.boundary, cyclic_bars_onset_tilt());
+  expect_never_fails("visibility_cyclic", "three_bars", "visibility=bsp");
+}
+
+TEST(ExperimentsBoundaries, PainterFailsOnceSurfacesInterpenetrate) {
+  expect_boundary("visibility_interpenetration", "two_squares", "visibility=painter", 0.04, 0.06);
+  // The first pixel centre (x 16.5) of the tilted square sits at depth 0.55 - p + 0.2 * 0.5 / 32.
+  const double first_pixel = kInterpenetrationOnset + 0.2 * 0.5 / 32;
+  const FailureBoundary& painter = boundary("visibility_interpenetration", "two_squares", "visibility=painter");
+  EXPECT_LT(painter.last_clean, first_pixel);
+  EXPECT_GE(painter.boundary, first_pixel);
+  expect_never_fails("visibility_interpenetration", "two_squares", "visibility=bsp");
+}
+
+// Pseudo-depth (notes CFZ "Pseudo-depth"): the stored (1 - pz) / 2 changes by
+// near far / ((far - near) w^2) per unit of eye distance w, so one step of an n-bit format spans
+// (far - near) w^2 / (near far (2^n - 1)) = pseudo_depth_step_at_far(far, n) (w / far)^2. The pair
+// (separation s along a normal 30 degrees off the view axis) is s / cos 30 apart in w; its far
+// corner reaches w = 0.8 far (1 + 0.12). Fighting starts where s / cos 30 falls below one step.
+TEST(ExperimentsBoundaries, PseudoDepthFightsWhereOneStepExceedsTheSeparation) {
+  struct Format {
+    const char* name;
+    int bits;
+  };
+  for (const Format format : {Format{"d16_unorm", 16}, Format{"x8_d24_unorm", 24}})
+    for (const char* method : {"depth=pseudo_depth_75", "depth=pseudo_depth_750", "depth=pseudo_depth_7500"}) {
+      const double far_distance = cpu::classic::pseudo_depth_far(std::string(method).substr(6));
+      const double w = 0.8 * far_distance * 1.12;
+      const double step = cpu::classic::pseudo_depth_step_at_far(far_distance, format.bits) * (w / far_distance) *
+                          (w / far_distance);
+      const double predicted = step * std::cos(kOnsetAngleDeg * std::numbers::pi / 180);
+      const FailureBoundary& b = boundary("pseudo_depth", format.name, method);
+      SCOPED_TRACE(std::string(format.name) + " " + method + " predicted " + std::to_string(predicted));
+      ASSERT_FALSE(std::isnan(b.boundary));
+      // D24 at far 75: the separation (~6e-6) is below the float resolution of vertices 60 units
+      // away (~4e-6), so positions, not the format, decide there; only the order is checked.
+      if (format.bits == 24 && far_distance == 75) continue;
+      EXPECT_LE(b.boundary, predicted * 1.5);
+      EXPECT_GE(b.last_clean, predicted / 1.5);
+    }
+  // Pinned (separation, world units): the last clean and the first fighting grid value.
+  expect_boundary("pseudo_depth", "d16_unorm", "depth=pseudo_depth_75", 0.0017782794100389228, 0.0005623413251903491);
+  expect_boundary("pseudo_depth", "d16_unorm", "depth=pseudo_depth_750", 0.5623413251903491, 0.1778279410038923);
+  expect_boundary("pseudo_depth", "d16_unorm", "depth=pseudo_depth_7500", 56.23413251903491, 17.78279410038923);
+  expect_boundary("pseudo_depth", "x8_d24_unorm", "depth=pseudo_depth_75", 5.623413251903491e-06,
+                  1.7782794100389227e-06);
+  expect_boundary("pseudo_depth", "x8_d24_unorm", "depth=pseudo_depth_7500", 0.1778279410038923,
+                  0.05623413251903491);
+  // D32 stores (1 - pz) / 2 near 1 at the far end, where a float's step is 2^-24: D24's.
+  for (const char* method : {"depth=pseudo_depth_75", "depth=pseudo_depth_750", "depth=pseudo_depth_7500"})
+    EXPECT_EQ(boundary("pseudo_depth", "d32_sfloat", method).boundary,
+              boundary("pseudo_depth", "x8_d24_unorm", method).boundary)
+        << method;
+}
+
+// Z-fighting of a pair 0.1 apart against far/near (notes DCP), per format and with reversed Z.
+TEST(ExperimentsBoundaries, DepthMethodsFightFromAFarNearRatioPerFormat) {
+  for (const char* method : {"exact", "depth=no_fma", "depth=bilinear"}) {
+    // D16: the analytic onset 100 dz 65535 / z^2 (dz = 0.1 / cos 30, z = 56) is 241: in (100, 316].
+    expect_boundary("depth_far_near", "d16_unorm", method, 100, 316.22776601683796);
+    expect_boundary("depth_far_near", "x8_d24_unorm", method, 100000, 316227.7660168379);
+    // D32 with the usual mapping is no better than D24: the float clip z has lost the bits already.
+    expect_boundary("depth_far_near", "d32_sfloat", method, 100000, 316227.7660168379);
+    // Reversed Z puts the float's dense end at the far plane: no fighting up to 10^6.
+    expect_never_fails("depth_far_near", "d32_sfloat_reversed_z", method);
+    // UNORM steps are uniform, so reversing gains little (z formed in double from w here).
+    expect_boundary("depth_far_near", "d16_unorm_reversed_z", method, 316.22776601683796, 1000);
+    expect_boundary("depth_far_near", "x8_d24_unorm_reversed_z", method, 31622.776601683792, 100000);
+  }
+  // Window z interpolated perspective-correctly is not the plane the rasterizer shares between the
+  // two surfaces: the pair fights at every ratio.
+  for (const char* format : {"d16_unorm", "x8_d24_unorm", "d32_sfloat", "d32_sfloat_reversed_z"})
+    expect_boundary("depth_far_near", format, "depth=perspective_correct", kNever, 10);
+}
+
+// Coplanar pairs need polygon offset (notes DCP): the smallest constant factor that separates them.
+TEST(ExperimentsBoundaries, CoplanarPairsNeedAnOffsetPerFormat) {
+  for (const char* method : {"exact", "depth=no_fma", "depth=bilinear"}) {
+    expect_boundary("coplanar_offset", "d16_unorm", method, 1, 0);
+    expect_boundary("coplanar_offset", "x8_d24_unorm", method, 2, 1);
+    expect_boundary("coplanar_offset", "d32_sfloat", method, 8, 2);
+  }
+  expect_boundary("coplanar_offset", "d16_unorm", "depth=perspective_correct", 2, 1);
+  expect_boundary("coplanar_offset", "x8_d24_unorm", "depth=perspective_correct", kNever, 8);
+}
+
+// Fill methods against the 24.8 exact fill (notes CFZ "Polygon Filling", RDS "Rasterizing a Triangle").
+TEST(ExperimentsBoundaries, FillMethodsLeaveTheReferenceWhereSnappingOrTiesDecide) {
+  for (const char* method : {"fill=scanline", "fill=even_odd", "fill=winding", "fill=float_edge"}) {
+    // A sliver: the float fills keep the real triangle's pixels while snapping moves the exact one's.
+    expect_boundary("fill_sliver_width", "sliver_strip", method, 256, 64);
+    // Far from the origin float and 24.8 round differently.
+    expect_boundary("fill_distance", "far_triangle", method, 64, 4096);
+  }
+  for (const char* method : {"fill=scanline", "fill=even_odd", "fill=winding", "snap=round_half_away"})
+    // A fan's shared vertex on the 24.8 grid is fine; half a sub-pixel off it (a rounding tie) is not.
+    expect_boundary("fill_fan", "fan", method, 1, 0.5);
+  // No tie rule: the fan's shared edges own their samples twice or never, at every offset.
+  expect_boundary("fill_fan", "fan", "fill=float_edge", kNever, 16);
+  expect_boundary("fill_fan", "fan", "tie_break=none", kNever, 16);
+  expect_boundary("fill_sliver_width", "sliver_strip", "tie_break=none", 4, 1);
+  // The flood fill's Bresenham outline adds pixels outside every triangle from the start.
+  expect_boundary("fill_sliver_width", "sliver_strip", "fill=flood", kNever, 256);
+  expect_never_fails("fill_sliver_width", "sliver_strip", "snap=round_half_away");
+  expect_never_fails("fill_distance", "far_triangle", "tie_break=none");
+}
+
+// Clippers near the eye (notes RDS "Cohen Sutherland in 3D", "Pipeline Clipping of Polygons").
+TEST(ExperimentsBoundaries, ClippersLeaveTheReferenceAsWGoesToZero) {
+  expect_boundary("clip_near_w", "triangle", "clip=sutherland_hodgman", 1, 0.001);
+  expect_boundary("clip_near_w", "triangle", "clip=weiler_atherton", 1, 0.001);
+  expect_boundary("clip_near_w_line", "line", "clip=cohen_sutherland_3d", 1, 0.001);
+  expect_boundary("clip_near_w_line", "line", "clip=liang_barsky", 1, 0.001);
+  expect_boundary("clip_near_w_line", "line", "clip=cohen_sutherland", 0.001, 1e-20);
+  expect_never_fails("clip_near_w_line", "line", "clip=cyrus_beck");
+  expect_boundary("clip_near_cross", "triangle", "clip=sutherland_hodgman", 0, 0.0001);
+  expect_boundary("clip_near_cross", "line", "clip=cohen_sutherland_3d", 0.0001, 1);
+  expect_boundary("clip_near_cross", "line", "clip=liang_barsky", 0.0001, 1);
+  // The 2-D clippers work after the divide: they refuse w <= 0 and vertices behind the near plane.
+  EXPECT_EQ(boundary("clip_near_w", "triangle", "clip=weiler_atherton").refused, 3u);
+  EXPECT_EQ(boundary("clip_near_w_line", "line", "clip=cohen_sutherland").refused, 2u);
+  EXPECT_EQ(boundary("clip_near_cross", "line", "clip=cyrus_beck").refused, 3u);
+}
+
+}  // namespace
+}  // namespace rastercmp::experiments
