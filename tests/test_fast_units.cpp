@@ -15,6 +15,7 @@
 #include "cpu_raster/exact/edge_plane.hpp"
 #include "cpu_raster/exact/fixed_point.hpp"
 #include "cpu_raster/exact/float_ops.hpp"
+#include "cpu_raster/fast/binned_tiles.hpp"
 #include "cpu_raster/fast/block_rows.hpp"
 #include "cpu_raster/fast/cpu_features.hpp"
 #include "cpu_raster/fast/exact_rows.hpp"
@@ -455,6 +456,53 @@ TEST(FastTileEdges, RowColumnsAreTheCoveredPixelsOfEachRow) {
   }
   EXPECT_GT(covered_rows, 10000);
   EXPECT_GT(empty_rows, 1000);
+}
+
+// binned_tile_coverage answers for every pixel (and sample) of a tile what binned_covers answers,
+// over random triangles with coordinates anywhere in int32 (llvmpipe's wrapping set-up), near the
+// framebuffer and around it, single-sampled and 4x.
+TEST(FastBinnedTiles, TileCoverageIsBinnedCoversPixelByPixel) {
+  fast_test::Random r(29);
+  const PixelRect framebuffer{0, 0, 299, 199};
+  int64_t partial_tiles = 0, covered = 0, uncovered = 0;
+  for (int trial = 0; trial < 1200; ++trial) {
+    std::array<FixedPoint, 3> v;
+    for (FixedPoint& p : v) {
+      const bool huge = trial % 3 != 0 && r.chance(0.5);
+      const auto coordinate = [&](int32_t extent) {
+        return huge ? int32_t(uint32_t(r.below(UINT32_MAX))) : int32_t(r.below(uint32_t(2 * extent))) - extent / 4;
+      };
+      p = FixedPoint{Fixed24_8{coordinate(400 * kFixedOne)}, Fixed24_8{coordinate(300 * kFixedOne)}};
+    }
+    std::array<LpPlane, 8> planes{};
+    const std::array<LpPlane, 3> edges = lp_edge_planes(v);
+    std::copy(edges.begin(), edges.end(), planes.begin());
+    const bool multisample = trial % 4 == 1;
+    const BinnedTriangle t =
+        bin_triangle(planes, 3, wrapped_triangle_bbox(v), framebuffer, framebuffer, multisample);
+    std::array<uint64_t, kBinTile> rows;
+    for (int32_t ty = 0; ty < t.tiles_y; ++ty) {
+      for (int32_t tx = 0; tx < t.tiles_x; ++tx) {
+        const uint32_t mask = t.tile_planes[size_t(ty) * size_t(t.tiles_x) + size_t(tx)];
+        if (mask != 0 && mask != (uint32_t(1) << 31)) ++partial_tiles;
+        for (uint32_t sample = 0; sample < (multisample ? 4u : 1u); ++sample) {
+          binned_tile_coverage(t, tx, ty, sample, rows);
+          for (int32_t j = 0; j < kBinTile; ++j) {
+            for (int32_t i = 0; i < kBinTile; ++i) {
+              const bool expected = binned_covers(t, tx * kBinTile + i, ty * kBinTile + j, sample);
+              ASSERT_EQ(expected, ((rows[size_t(j)] >> i) & 1) != 0)
+                  << "trial " << trial << " tile (" << tx << "," << ty << ") pixel (" << i << "," << j << ") sample "
+                  << sample;
+              ++(expected ? covered : uncovered);
+            }
+          }
+        }
+      }
+    }
+  }
+  EXPECT_GT(partial_tiles, 200);
+  EXPECT_GT(covered, 100000);
+  EXPECT_GT(uncovered, 100000);
 }
 
 // A verdict holds for every fragment and stored value in the ranges (depth_test_passes decides).

@@ -357,8 +357,8 @@ void BandWorker::raster_exact_in_band(const RasterPrimitive& primitive, const De
     band.visit.y0 = std::max(visit.y0, ty * kTileSize);
     band.visit.y1 = std::min(visit.y1, ty * kTileSize + kTileSize - 1);
     prepare_tiles(band.visit, depth.write);
-    if (band.binned)  // llvmpipe's wrapping set-up: coverage is no plane test, every column is visited
-      rasterize_primitive(band, depth, frame_.targets);
+    if (band.binned)  // llvmpipe's wrapping set-up: coverage from its bins, not a plane test
+      rasterize_binned_rows(band, depth, frame_.targets);
     else
       rasterize_primitive_rows(band, depth, frame_.targets);
   }
