@@ -261,7 +261,7 @@ void BandWorker::raster_all_tiles(const FastTriangle& t, const DrawRaster& raste
   for (int32_t ty = t.rect.y0 >> kTileOrder; ty <= t.rect.y1 >> kTileOrder; ++ty) {
     if (!owns_tile_row(ty)) continue;
     for (int32_t tx = t.rect.x0 >> kTileOrder; tx <= t.rect.x1 >> kTileOrder; ++tx)
-      raster_in_tile(t, intersect(t.rect, tile_rect(tx, ty, frame_.raster.target)), tx, ty, raster, frame_.raster);
+      raster_in_tile(t, rect_in_tile(t.rect, tile_rect(tx, ty, frame_.raster.target)), tx, ty, raster, frame_.raster);
   }
 }
 
@@ -283,7 +283,7 @@ void BandWorker::flush(const DrawRaster& raster) {
         continue;
       }
       for (const FastTriangle& t : batch_) {
-        const PixelRect r = intersect(t.rect, tile);
+        const PixelRect r = rect_in_tile(t.rect, tile);
         if (!r.empty()) raster_in_tile(t, r, tx, ty, raster, frame_.raster);
       }
     }
@@ -298,7 +298,7 @@ bool BandWorker::may_hide(const PixelRect& tile, const DrawRaster& raster) const
   if (!raster.bounds || !raster.depth.write) return false;
   bool earlier = false;
   for (const FastTriangle& t : batch_) {
-    const PixelRect r = intersect(t.rect, tile);
+    const PixelRect r = rect_in_tile(t.rect, tile);
     if (r.empty()) continue;
     if (earlier && r == tile) return true;
     earlier = true;
@@ -322,7 +322,7 @@ size_t BandWorker::first_visible(const PixelRect& tile, const DrawRaster& raster
   size_t first = 0;
   for (size_t i = 0; i < batch_.size(); ++i) {
     TileTriangle& p = prepared_[i];
-    const PixelRect r = intersect(batch_[i].rect, tile);
+    const PixelRect r = rect_in_tile(batch_[i].rect, tile);
     p = r.empty() ? TileTriangle{} : prepare_in_tile(batch_[i], r, raster, true);  // TileTriangle{}: edges None
     if (p.edges.fit == EdgeFit::None || !provable) continue;                       // no sample of r in the triangle
     if (!p.ranged) {
