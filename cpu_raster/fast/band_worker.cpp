@@ -69,9 +69,22 @@ void BandWorker::run() {
       walk_exact(d);
     flush(frame_.draws[d].raster);
   }
-  for (int32_t ty = int32_t(index_); ty < frame_.raster.tiles_y; ty += int32_t(workers_))
-    for (int32_t tx = 0; tx < frame_.raster.tiles_x; ++tx)
-      if (!frame_.raster.tile(tx, ty).cleared) clear_tile(tx, ty, frame_.raster);
+  for (int32_t ty = int32_t(index_); ty < frame_.raster.tiles_y; ty += int32_t(workers_)) clear_untouched(ty);
+}
+
+// The tiles of a tile row no primitive reached, cleared a run of neighbours at a time: one fill per
+// pixel row of the run instead of one per tile (a big framebuffer's mostly empty rows are filled
+// as long contiguous rows).
+void BandWorker::clear_untouched(int32_t ty) {
+  const FrameRaster& raster = frame_.raster;
+  for (int32_t tx = 0; tx < raster.tiles_x; ++tx) {
+    if (raster.tile(tx, ty).cleared) continue;
+    int32_t last = tx;
+    while (last + 1 < raster.tiles_x && !raster.tile(last + 1, ty).cleared) ++last;
+    const PixelRect first_tile = tile_rect(tx, ty, raster.target), last_tile = tile_rect(last, ty, raster.target);
+    clear_rect(PixelRect{first_tile.x0, first_tile.y0, last_tile.x1, last_tile.y1}, raster);
+    tx = last;
+  }
 }
 
 bool BandWorker::owns_rows(int32_t y0, int32_t y1) const { return owns_tile_rows(y0 >> kTileOrder, y1 >> kTileOrder); }

@@ -71,6 +71,8 @@ void raster_prepared(const FastTriangle& t, const TileTriangle& prepared, int32_
 
 // Writes the clear values (kOwnerBackground, the packed depth clear) into a tile's pixels.
 void clear_tile(int32_t tile_x, int32_t tile_y, const FrameRaster& frame);
+// The same for every pixel of r (whole tiles): one fill per attachment and pixel row.
+void clear_rect(const PixelRect& r, const FrameRaster& frame);
 
 // The scalar kernel: the exact path's per-pixel functions; returns whether any pixel was written.
 bool raster_scalar(const FastTriangle& t, const PixelRect& r, const DepthTestState& depth, const TileTarget& target);
