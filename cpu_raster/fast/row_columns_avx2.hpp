@@ -19,6 +19,7 @@
 #include <immintrin.h>
 
 #include <algorithm>
+#include <cstddef>
 #include <cstdint>
 
 #include "cpu_raster/fast/cpu_features.hpp"
@@ -34,22 +35,30 @@ struct RowColumns {
   __m256d u_first, u_last, clamp_lo, clamp_hi;
 };
 
+// Lanes 0-2 of a job's three-edge array as doubles, lane 3 zero (the 16-byte load reads the
+// KernelJob field after the array, which the blend drops).
+RASTERCMP_AVX2 inline __m256d edges_as_doubles(const int32_t (&edge)[3]) {
+  const __m128i v = _mm_loadu_si128(reinterpret_cast<const __m128i*>(edge));
+  return _mm256_cvtepi32_pd(_mm_blend_epi32(v, _mm_setzero_si128(), 0x8));
+}
+
 RASTERCMP_AVX2 inline RowColumns row_columns_of(const KernelJob& j) {
-  const auto gx = [&](int i) { return i < 3 ? double(j.gx[i]) : 0.0; };
+  static_assert(offsetof(KernelJob, gx) == offsetof(KernelJob, g_minus_1) + 12 &&
+                offsetof(KernelJob, gy) == offsetof(KernelJob, gx) + 12, "edges_as_doubles reads past each array");
   RowColumns c;
-  c.gx = _mm256_setr_pd(gx(0), gx(1), gx(2), 0.0);
-  c.n = _mm256_setr_pd(double(j.g_minus_1[0]), double(j.g_minus_1[1]), double(j.g_minus_1[2]), 0.0);
-  c.gy = _mm256_setr_pd(double(j.gy[0]), double(j.gy[1]), double(j.gy[2]), 0.0);
-  const __m256d zero = _mm256_setzero_pd();
+  c.gx = edges_as_doubles(j.gx);
+  c.n = edges_as_doubles(j.g_minus_1);
+  c.gy = edges_as_doubles(j.gy);
+  const __m256d zero = _mm256_setzero_pd(), one = _mm256_set1_pd(1.0);
   c.lower = _mm256_cmp_pd(c.gx, zero, _CMP_GT_OQ);
   c.upper = _mm256_cmp_pd(c.gx, zero, _CMP_LT_OQ);
   const __m256d flat = _mm256_cmp_pd(c.gx, zero, _CMP_EQ_OQ);
-  c.inv = _mm256_andnot_pd(flat, _mm256_div_pd(_mm256_set1_pd(-1.0), _mm256_or_pd(c.gx, _mm256_and_pd(flat, _mm256_set1_pd(1.0)))));
-  c.side = _mm256_blendv_pd(_mm256_set1_pd(1.0), _mm256_set1_pd(-1.0), c.lower);
+  c.inv = _mm256_andnot_pd(flat, _mm256_div_pd(_mm256_set1_pd(-1.0), _mm256_blendv_pd(c.gx, one, flat)));
+  c.side = _mm256_blendv_pd(one, _mm256_set1_pd(-1.0), c.lower);
   c.u_first = _mm256_set1_pd(double(j.rect.x0 - j.origin_x));
   c.u_last = _mm256_set1_pd(double(j.rect.x1 - j.origin_x));
-  c.clamp_lo = _mm256_sub_pd(c.u_first, _mm256_set1_pd(1.0));
-  c.clamp_hi = _mm256_add_pd(c.u_last, _mm256_set1_pd(1.0));
+  c.clamp_lo = _mm256_sub_pd(c.u_first, one);
+  c.clamp_hi = _mm256_add_pd(c.u_last, one);
   return c;
 }
 
