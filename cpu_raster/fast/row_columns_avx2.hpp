@@ -44,7 +44,8 @@ RASTERCMP_AVX2 inline __m256d edges_as_doubles(const int32_t (&edge)[3]) {
 
 RASTERCMP_AVX2 inline RowColumns row_columns_of(const KernelJob& j) {
   static_assert(offsetof(KernelJob, gx) == offsetof(KernelJob, g_minus_1) + 12 &&
-                offsetof(KernelJob, gy) == offsetof(KernelJob, gx) + 12, "edges_as_doubles reads past each array");
+                offsetof(KernelJob, gy) == offsetof(KernelJob, gx) + 12 &&
+                offsetof(KernelJob, gy) + 16 <= sizeof(KernelJob), "edges_as_doubles reads past each array");
   RowColumns c;
   c.gx = edges_as_doubles(j.gx);
   c.n = edges_as_doubles(j.g_minus_1);
