@@ -87,6 +87,17 @@ INSTANTIATE_TEST_SUITE_P(Seeds, FastLayeredScenes, ::testing::Range<uint64_t>(1,
                            return "seed_" + std::to_string(param_info.param);
                          });
 
+class FastMidTriangles : public ::testing::TestWithParam<uint64_t> {};
+
+TEST_P(FastMidTriangles, MatchExactPath) {
+  expect_fast_matches(fast_test::mid_triangle_scene(GetParam()), GetParam() % 3 != 0);
+}
+
+INSTANTIATE_TEST_SUITE_P(Seeds, FastMidTriangles, ::testing::Range<uint64_t>(1, 41),
+                         [](const ::testing::TestParamInfo<uint64_t>& param_info) {
+                           return "seed_" + std::to_string(param_info.param);
+                         });
+
 class FastSmallMeshes : public ::testing::TestWithParam<uint64_t> {};
 
 TEST_P(FastSmallMeshes, MatchExactPath) {

@@ -208,6 +208,42 @@ inline Scene small_mesh_scene(uint64_t seed) {
   return scene;
 }
 
+// Scattered triangles of 8 to 64 px (the row-column kernel's, tile_kernel_avx2.cpp), some across
+// tile borders and the framebuffer's edges, over framebuffers whose width is no multiple of 8
+// (spans past the row's end), with random depth state per draw.
+inline Scene mid_triangle_scene(uint64_t seed) {
+  Random r(seed);
+  Scene scene;
+  scene.name = "test.fast.mid_triangles." + std::to_string(seed);
+  scene.width = 60 + r.below(200);
+  scene.height = 60 + r.below(200);
+  scene.depth_format = DepthFormat(r.below(4));
+  scene.depth_clear = r.chance(0.5) ? 1.0f : float(r.range(0.3, 1.0));
+  const uint32_t draws = 1 + r.below(3);
+  for (uint32_t d = 0; d < draws; ++d) {
+    Draw draw;
+    const uint32_t triangles = 20 + r.below(200);
+    for (uint32_t k = 0; k < triangles; ++k) {
+      const float size_px = float(r.range(8, 64));
+      const float sx = 2.0f * size_px / float(scene.width), sy = 2.0f * size_px / float(scene.height);
+      const float cx = float(r.range(-1.1, 1.1)), cy = float(r.range(-1.1, 1.1));
+      for (int v = 0; v < 3; ++v)
+        draw.positions_clip.emplace_back(cx + sx * float(r.range(-0.5, 0.5)), cy + sy * float(r.range(-0.5, 0.5)),
+                                         float(r.range(0.0, 1.0)), 1.0f);
+    }
+    draw.state.cull_mode = CullMode(r.below(4));
+    draw.state.depth.compare_op = r.chance(0.5) ? CompareOp::Less : CompareOp(r.below(8));
+    draw.state.depth.write_enable = !r.chance(0.2);
+    draw.state.depth.test_enable = !r.chance(0.1);
+    draw.state.depth_clamp = r.chance(0.2);
+    if (r.chance(0.2)) draw.state.depth_bias = DepthBias{true, float(r.range(-3, 3)), float(r.range(-1, 1)), 0.0f};
+    scene.draws.push_back(std::move(draw));
+  }
+  if (r.chance(0.3))
+    scene.scissor = Rect2D{int32_t(r.below(40)), int32_t(r.below(40)), 20 + r.below(200), 20 + r.below(200)};
+  return scene;
+}
+
 // Renders with the exact path (threads = 0).
 inline RenderResult render_exact(const Scene& scene, bool fma) {
   CpuOptions options;

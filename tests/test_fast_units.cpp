@@ -15,6 +15,7 @@
 #include "cpu_raster/exact/edge_plane.hpp"
 #include "cpu_raster/exact/fixed_point.hpp"
 #include "cpu_raster/exact/float_ops.hpp"
+#include "cpu_raster/fast/binned_tiles.hpp"
 #include "cpu_raster/fast/block_rows.hpp"
 #include "cpu_raster/fast/cpu_features.hpp"
 #include "cpu_raster/fast/exact_rows.hpp"
@@ -399,6 +400,109 @@ TEST(FastTileEdges, GFormAgreesWithExactEdgeValues) {
       }
     }
   }
+}
+
+// The AVX2 kernel's covered columns of each row (row_columns_avx2.hpp) are exactly the pixels whose
+// G - 1 >= 0 for every edge, over random triangles from one pixel to thousands wide, near-horizontal
+// and near-vertical edges (quotients far outside the tile), horizontal and vertical ones (flat
+// edges), and rectangles anywhere in a tile.
+TEST(FastTileEdges, RowColumnsAreTheCoveredPixelsOfEachRow) {
+  if (!host_has_avx2_fma()) GTEST_SKIP() << "host without AVX2/FMA: the row-column kernel does not run";
+  fast_test::Random r(23);
+  int64_t covered_rows = 0, empty_rows = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    FastTriangle t;
+    const int32_t spreads[] = {2 * kFixedOne, 40 * kFixedOne, 3000 * kFixedOne, 16000 * kFixedOne};
+    const int32_t spread = spreads[trial % 4];
+    const int32_t cx = int32_t(r.below(2048)) * kFixedOne, cy = int32_t(r.below(2048)) * kFixedOne;
+    for (int k = 0; k < 3; ++k) {
+      t.x_fixed[k] = cx + int32_t(r.below(uint32_t(2 * spread))) - spread;
+      t.y_fixed[k] = cy + int32_t(r.below(uint32_t(2 * spread))) - spread;
+    }
+    if (trial % 5 == 1) t.y_fixed[1] = t.y_fixed[0];                               // a horizontal edge
+    if (trial % 5 == 2) t.x_fixed[2] = t.x_fixed[1];                               // a vertical edge
+    if (trial % 5 == 3) t.y_fixed[2] = t.y_fixed[0] + int32_t(r.below(3)) - 1;     // near-horizontal
+    if (trial % 7 == 4) t.x_fixed[0] = (t.x_fixed[0] >> kFixedOrder) << kFixedOrder;  // on sample columns
+    const int32_t tx = (cx >> kFixedOrder) & ~(kTileSize - 1), ty = (cy >> kFixedOrder) & ~(kTileSize - 1);
+    const int32_t x0 = tx + int32_t(r.below(64)), y0 = ty + int32_t(r.below(64));
+    const PixelRect rect{x0, y0, x0 + int32_t(r.below(uint32_t(tx + 64 - x0))),
+                         y0 + int32_t(r.below(uint32_t(ty + 64 - y0)))};
+    KernelJob job;
+    if (setup_tile_edges(t, rect, job).fit != EdgeFit::Vector) continue;
+    std::vector<int32_t> first(size_t(rect.y1 - rect.y0 + 1)), last(first.size());
+    covered_columns_avx2(job, first.data(), last.data());
+    for (int32_t py = rect.y0; py <= rect.y1; ++py) {
+      int32_t lo = 1, hi = 0;  // the covered pixels of the row, one interval (a convex triangle)
+      for (int32_t px = rect.x0; px <= rect.x1; ++px) {
+        bool in = true;
+        for (int i = 0; i < 3; ++i)
+          in = in && int64_t(job.g_minus_1[i]) + int64_t(job.gx[i]) * (px - job.origin_x) +
+                             int64_t(job.gy[i]) * (py - rect.y0) >= 0;
+        if (!in) continue;
+        ASSERT_TRUE(lo > hi || hi == px - 1) << "trial " << trial << " row " << py << " not one interval";
+        if (lo > hi) lo = px;
+        hi = px;
+      }
+      const size_t k = size_t(py - rect.y0);
+      if (lo > hi) {
+        ++empty_rows;
+        ASSERT_GT(first[k], last[k]) << "trial " << trial << " row " << py << ": columns for an empty row";
+      } else {
+        ++covered_rows;
+        ASSERT_EQ(first[k], lo) << "trial " << trial << " row " << py;
+        ASSERT_EQ(last[k], hi) << "trial " << trial << " row " << py;
+      }
+    }
+  }
+  EXPECT_GT(covered_rows, 10000);
+  EXPECT_GT(empty_rows, 1000);
+}
+
+// binned_tile_coverage answers for every pixel (and sample) of a tile what binned_covers answers,
+// over random triangles with coordinates anywhere in int32 (llvmpipe's wrapping set-up), near the
+// framebuffer and around it, single-sampled and 4x.
+TEST(FastBinnedTiles, TileCoverageIsBinnedCoversPixelByPixel) {
+  fast_test::Random r(29);
+  const PixelRect framebuffer{0, 0, 299, 199};
+  int64_t partial_tiles = 0, covered = 0, uncovered = 0;
+  for (int trial = 0; trial < 1200; ++trial) {
+    std::array<FixedPoint, 3> v;
+    for (FixedPoint& p : v) {
+      const bool huge = trial % 3 != 0 && r.chance(0.5);
+      const auto coordinate = [&](int32_t extent) {
+        return huge ? int32_t(uint32_t(r.below(UINT32_MAX))) : int32_t(r.below(uint32_t(2 * extent))) - extent / 4;
+      };
+      p = FixedPoint{Fixed24_8{coordinate(400 * kFixedOne)}, Fixed24_8{coordinate(300 * kFixedOne)}};
+    }
+    std::array<LpPlane, 8> planes{};
+    const std::array<LpPlane, 3> edges = lp_edge_planes(v);
+    std::copy(edges.begin(), edges.end(), planes.begin());
+    const bool multisample = trial % 4 == 1;
+    const BinnedTriangle t =
+        bin_triangle(planes, 3, wrapped_triangle_bbox(v), framebuffer, framebuffer, multisample);
+    std::array<uint64_t, kBinTile> rows;
+    for (int32_t ty = 0; ty < t.tiles_y; ++ty) {
+      for (int32_t tx = 0; tx < t.tiles_x; ++tx) {
+        const uint32_t mask = t.tile_planes[size_t(ty) * size_t(t.tiles_x) + size_t(tx)];
+        if (mask != 0 && mask != (uint32_t(1) << 31)) ++partial_tiles;
+        for (uint32_t sample = 0; sample < (multisample ? 4u : 1u); ++sample) {
+          binned_tile_coverage(t, tx, ty, sample, rows);
+          for (int32_t j = 0; j < kBinTile; ++j) {
+            for (int32_t i = 0; i < kBinTile; ++i) {
+              const bool expected = binned_covers(t, tx * kBinTile + i, ty * kBinTile + j, sample);
+              ASSERT_EQ(expected, ((rows[size_t(j)] >> i) & 1) != 0)
+                  << "trial " << trial << " tile (" << tx << "," << ty << ") pixel (" << i << "," << j << ") sample "
+                  << sample;
+              ++(expected ? covered : uncovered);
+            }
+          }
+        }
+      }
+    }
+  }
+  EXPECT_GT(partial_tiles, 200);
+  EXPECT_GT(covered, 100000);
+  EXPECT_GT(uncovered, 100000);
 }
 
 // A verdict holds for every fragment and stored value in the ranges (depth_test_passes decides).

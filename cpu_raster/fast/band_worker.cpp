@@ -69,9 +69,22 @@ void BandWorker::run() {
       walk_exact(d);
     flush(frame_.draws[d].raster);
   }
-  for (int32_t ty = int32_t(index_); ty < frame_.raster.tiles_y; ty += int32_t(workers_))
-    for (int32_t tx = 0; tx < frame_.raster.tiles_x; ++tx)
-      if (!frame_.raster.tile(tx, ty).cleared) clear_tile(tx, ty, frame_.raster);
+  for (int32_t ty = int32_t(index_); ty < frame_.raster.tiles_y; ty += int32_t(workers_)) clear_untouched(ty);
+}
+
+// The tiles of a tile row no primitive reached, cleared a run of neighbours at a time: one fill per
+// pixel row of the run instead of one per tile (a big framebuffer's mostly empty rows are filled
+// as long contiguous rows).
+void BandWorker::clear_untouched(int32_t ty) {
+  const FrameRaster& raster = frame_.raster;
+  for (int32_t tx = 0; tx < raster.tiles_x; ++tx) {
+    if (raster.tile(tx, ty).cleared) continue;
+    int32_t last = tx;
+    while (last + 1 < raster.tiles_x && !raster.tile(last + 1, ty).cleared) ++last;
+    const PixelRect first_tile = tile_rect(tx, ty, raster.target), last_tile = tile_rect(last, ty, raster.target);
+    clear_rect(PixelRect{first_tile.x0, first_tile.y0, last_tile.x1, last_tile.y1}, raster);
+    tx = last;
+  }
 }
 
 bool BandWorker::owns_rows(int32_t y0, int32_t y1) const { return owns_tile_rows(y0 >> kTileOrder, y1 >> kTileOrder); }
@@ -261,7 +274,7 @@ void BandWorker::raster_all_tiles(const FastTriangle& t, const DrawRaster& raste
   for (int32_t ty = t.rect.y0 >> kTileOrder; ty <= t.rect.y1 >> kTileOrder; ++ty) {
     if (!owns_tile_row(ty)) continue;
     for (int32_t tx = t.rect.x0 >> kTileOrder; tx <= t.rect.x1 >> kTileOrder; ++tx)
-      raster_in_tile(t, intersect(t.rect, tile_rect(tx, ty, frame_.raster.target)), tx, ty, raster, frame_.raster);
+      raster_in_tile(t, rect_in_tile(t.rect, tile_rect(tx, ty, frame_.raster.target)), tx, ty, raster, frame_.raster);
   }
 }
 
@@ -283,7 +296,7 @@ void BandWorker::flush(const DrawRaster& raster) {
         continue;
       }
       for (const FastTriangle& t : batch_) {
-        const PixelRect r = intersect(t.rect, tile);
+        const PixelRect r = rect_in_tile(t.rect, tile);
         if (!r.empty()) raster_in_tile(t, r, tx, ty, raster, frame_.raster);
       }
     }
@@ -298,7 +311,7 @@ bool BandWorker::may_hide(const PixelRect& tile, const DrawRaster& raster) const
   if (!raster.bounds || !raster.depth.write) return false;
   bool earlier = false;
   for (const FastTriangle& t : batch_) {
-    const PixelRect r = intersect(t.rect, tile);
+    const PixelRect r = rect_in_tile(t.rect, tile);
     if (r.empty()) continue;
     if (earlier && r == tile) return true;
     earlier = true;
@@ -322,7 +335,7 @@ size_t BandWorker::first_visible(const PixelRect& tile, const DrawRaster& raster
   size_t first = 0;
   for (size_t i = 0; i < batch_.size(); ++i) {
     TileTriangle& p = prepared_[i];
-    const PixelRect r = intersect(batch_[i].rect, tile);
+    const PixelRect r = rect_in_tile(batch_[i].rect, tile);
     p = r.empty() ? TileTriangle{} : prepare_in_tile(batch_[i], r, raster, true);  // TileTriangle{}: edges None
     if (p.edges.fit == EdgeFit::None || !provable) continue;                       // no sample of r in the triangle
     if (!p.ranged) {
@@ -357,8 +370,8 @@ void BandWorker::raster_exact_in_band(const RasterPrimitive& primitive, const De
     band.visit.y0 = std::max(visit.y0, ty * kTileSize);
     band.visit.y1 = std::min(visit.y1, ty * kTileSize + kTileSize - 1);
     prepare_tiles(band.visit, depth.write);
-    if (band.binned)  // llvmpipe's wrapping set-up: coverage is no plane test, every column is visited
-      rasterize_primitive(band, depth, frame_.targets);
+    if (band.binned)  // llvmpipe's wrapping set-up: coverage from its bins, not a plane test
+      rasterize_binned_rows(band, depth, frame_.targets);
     else
       rasterize_primitive_rows(band, depth, frame_.targets);
   }

@@ -1,7 +1,11 @@
 #include "cpu_raster/fast/exact_rows.hpp"
 
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <optional>
+
+#include "cpu_raster/fast/binned_tiles.hpp"
 
 namespace rastercmp::cpu::fast {
 namespace {
@@ -26,14 +30,39 @@ bool plane_columns(const EdgePlane& plane, int64_t sample_x, int64_t y_fixed, in
   return x0 <= x1;
 }
 
+namespace {
+
+// The writes of one covered (column, sample) of a primitive (rasterize_primitive's loop body): with
+// an active depth test only evaluate_sample's depth work is left to do.
+void write_covered_sample(const RasterPrimitive& p, const DepthTestState& depth, RenderTargets& targets, int32_t px,
+                          int32_t py, uint32_t s, const EdgeFrame32* edges32) {
+  const bool read_stored = (depth.active || depth.compute_when_inactive) && !targets.depth_raw.empty();
+  const size_t i = targets.index(px, py, s);
+  if (depth.active && !depth.compute_when_inactive) {
+    const SamplePoint point = sample_point(px, py, s, p.per_sample);
+    const SampleDepth z = sample_depth(p.depth, p.offset.offset, point.x, point.y, depth.range, depth.format, depth.fma);
+    if (!depth_test_passes(depth.op, depth.format, z.raw, read_stored ? targets.depth_raw[i] : 0)) return;
+    if (depth.write) targets.depth_raw[i] = z.raw;
+  } else {
+    const SampleVerdict verdict = evaluate_sample(p, depth, px, py, s, read_stored ? targets.depth_raw[i] : 0, edges32);
+    if (!verdict.passes()) return;
+    if (depth.write) targets.depth_raw[i] = verdict.depth.raw;
+  }
+  if (p.per_sample) {
+    targets.owner[i] = p.owner;
+  } else {
+    for (uint32_t t = 0; t < targets.samples; ++t) targets.owner[targets.index(px, py, t)] = p.owner;
+  }
+}
+
+}  // namespace
+
 // rasterize_primitive (rasterize.cpp) with the loops over a row's columns and its samples swapped
 // (every (column, sample) of a primitive writes its own values: the order between them does not
-// matter) and each sample's columns cut to plane_columns of every plane. Those columns are
-// covered, so with an active depth test only evaluate_sample's depth work is left to do.
+// matter) and each sample's columns cut to plane_columns of every plane.
 void rasterize_primitive_rows(const RasterPrimitive& p, const DepthTestState& depth, RenderTargets& targets) {
   const std::optional<EdgeFrame32> frame32 = make_edge_frame32(p.planes, p.visit);  // as WorkSkips{} does
   const EdgeFrame32* edges32 = frame32 ? &*frame32 : nullptr;
-  const bool read_stored = (depth.active || depth.compute_when_inactive) && !targets.depth_raw.empty();
   const uint32_t tested_samples = p.per_sample ? targets.samples : 1;
   for (int32_t py = p.visit.y0; py <= p.visit.y1; ++py) {
     for (uint32_t s = 0; s < tested_samples; ++s) {
@@ -43,24 +72,31 @@ void rasterize_primitive_rows(const RasterPrimitive& p, const DepthTestState& de
       for (uint32_t i = 0; i < p.planes.count && any; ++i)
         any = plane_columns(p.planes.plane[i], origin.x_fixed, origin.y_fixed, x0, x1);
       if (!any) continue;
-      for (int32_t px = x0; px <= x1; ++px) {
-        const size_t i = targets.index(px, py, s);
-        if (depth.active && !depth.compute_when_inactive) {  // covered (plane_columns): evaluate_sample's depth part
-          const SamplePoint point = sample_point(px, py, s, p.per_sample);
-          const SampleDepth z =
-              sample_depth(p.depth, p.offset.offset, point.x, point.y, depth.range, depth.format, depth.fma);
-          if (!depth_test_passes(depth.op, depth.format, z.raw, read_stored ? targets.depth_raw[i] : 0)) continue;
-          if (depth.write) targets.depth_raw[i] = z.raw;
-        } else {
-          const SampleVerdict verdict =
-              evaluate_sample(p, depth, px, py, s, read_stored ? targets.depth_raw[i] : 0, edges32);
-          if (!verdict.passes()) continue;
-          if (depth.write) targets.depth_raw[i] = verdict.depth.raw;
-        }
-        if (p.per_sample) {
-          targets.owner[i] = p.owner;
-        } else {
-          for (uint32_t t = 0; t < targets.samples; ++t) targets.owner[targets.index(px, py, t)] = p.owner;
+      for (int32_t px = x0; px <= x1; ++px) write_covered_sample(p, depth, targets, px, py, s, edges32);
+    }
+  }
+}
+
+// rasterize_primitive for a binned primitive (llvmpipe's wrapping set-up, binned_triangle.hpp), the
+// same loops swapped, with coverage a 64x64 tile at a time (binned_tile_coverage: what binned_covers
+// answers for each of its pixels).
+void rasterize_binned_rows(const RasterPrimitive& p, const DepthTestState& depth, RenderTargets& targets) {
+  const BinnedTriangle& t = *p.binned;
+  const uint32_t tested_samples = p.per_sample ? targets.samples : 1;
+  const PixelRect visit = intersect(p.visit, PixelRect{0, 0, t.tiles_x * kBinTile - 1, t.tiles_y * kBinTile - 1});
+  if (visit.empty()) return;  // binned_covers is false outside the tiles
+  std::array<uint64_t, kBinTile> rows;
+  for (int32_t ty = visit.y0 / kBinTile; ty <= visit.y1 / kBinTile; ++ty) {
+    const int32_t y0 = std::max(visit.y0, ty * kBinTile), y1 = std::min(visit.y1, ty * kBinTile + kBinTile - 1);
+    for (int32_t tx = visit.x0 / kBinTile; tx <= visit.x1 / kBinTile; ++tx) {
+      if (t.tile_planes[size_t(ty) * size_t(t.tiles_x) + size_t(tx)] == 0) continue;  // not binned: none covered
+      const int32_t x0 = std::max(visit.x0, tx * kBinTile), x1 = std::min(visit.x1, tx * kBinTile + kBinTile - 1);
+      const uint64_t columns = (~uint64_t(0) >> (63 - (x1 - tx * kBinTile))) & (~uint64_t(0) << (x0 - tx * kBinTile));
+      for (uint32_t s = 0; s < tested_samples; ++s) {
+        binned_tile_coverage(t, tx, ty, p.per_sample ? s : 0, rows);
+        for (int32_t py = y0; py <= y1; ++py) {
+          for (uint64_t bits = rows[size_t(py - ty * kBinTile)] & columns; bits != 0; bits &= bits - 1)
+            write_covered_sample(p, depth, targets, tx * kBinTile + std::countr_zero(bits), py, s, nullptr);
         }
       }
     }

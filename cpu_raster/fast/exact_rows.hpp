@@ -18,4 +18,8 @@ bool plane_columns(const EdgePlane& plane, int64_t sample_x, int64_t y_fixed, in
 // Same writes as rasterize_primitive(p, depth, targets).
 void rasterize_primitive_rows(const RasterPrimitive& p, const DepthTestState& depth, RenderTargets& targets);
 
+// Same writes as rasterize_primitive(p, depth, targets) for a binned primitive (p.binned): coverage
+// a 64x64 tile at a time from its bins, binned_covers only in partial tiles.
+void rasterize_binned_rows(const RasterPrimitive& p, const DepthTestState& depth, RenderTargets& targets);
+
 }  // namespace rastercmp::cpu::fast

@@ -52,6 +52,10 @@ using SmallKernelFn = bool (*)(const SmallBlockOutput&, int lane, uint32_t owner
                                const TileTarget&);
 SmallKernelFn select_small_kernel_avx2(DepthFormat format, CompareOp op);
 
+// The covered columns [x0[k], x1[k]] of row rect.y0 + k of a job as the AVX2 kernel finds them for
+// rectangles wider than one span (row_columns_avx2.hpp); x0[k] > x1[k]: none. For tests.
+void covered_columns_avx2(const KernelJob& job, int32_t* x0, int32_t* x1);
+
 // The AVX2 kernel for a depth format (None: coverage only) and compare op. Call only when
 // host_has_avx2_fma().
 KernelFn select_kernel_avx2(DepthFormat format, CompareOp op);

@@ -13,6 +13,7 @@
 #include "cpu_raster/fast/avx2_depth.hpp"
 #include "cpu_raster/fast/cpu_features.hpp"
 #include "cpu_raster/fast/format_dispatch.hpp"
+#include "cpu_raster/fast/row_columns_avx2.hpp"
 #include "cpu_raster/fast/small_triangles.hpp"
 #include "cpu_raster/fast/tile_depth_bounds.hpp"
 #include "cpu_raster/fast/tile_kernel.hpp"
@@ -141,10 +142,120 @@ RASTERCMP_AVX2 bool covered_spans(const KernelJob& j, const KernelDepth& d, cons
   return any;
 }
 
+// A job's depth plane and state in locals, read once per job: the kernels store through
+// may_alias vector pointers, so fields read through the job or the KernelDepth are reloaded after
+// every store otherwise.
+struct SpanDepth {
+  __m256 a0, dzdx, dzdy, offset, zmin, zmax;
+  bool fma, clamp, write;
+};
+
+RASTERCMP_AVX2 inline SpanDepth span_depth(const KernelJob& j, const KernelDepth& d) {
+  return SpanDepth{_mm256_set1_ps(j.a0),     _mm256_set1_ps(j.dzdx), _mm256_set1_ps(j.dzdy),
+                   _mm256_set1_ps(j.offset), _mm256_set1_ps(d.zmin), _mm256_set1_ps(d.zmax),
+                   d.fma,                    d.clamp,                d.write};
+}
+
+// fragment_depth's operations in the same order (finish_depth8: + o, min 1, max 0, the clamp).
+RASTERCMP_AVX2 inline __m256 span_z(const SpanDepth& s, __m256 px, __m256 py) {
+  __m256 z = _mm256_add_ps(mul_add8(s.dzdy, py, mul_add8(s.dzdx, px, s.a0, s.fma), s.fma), s.offset);
+  z = _mm256_max_ps(_mm256_min_ps(z, _mm256_set1_ps(1.0f)), _mm256_setzero_ps());
+  if (s.clamp) z = _mm256_max_ps(_mm256_min_ps(z, s.zmax), s.zmin);
+  return z;
+}
+
+// One span of row_spans whose coverage is known: depth test and writes, then the owner. Lanes
+// past the row's end (row_end) are never touched; the others lie in this worker's tile row.
+template <DepthFormat F, CompareOp Op>
+RASTERCMP_AVX2 inline bool write_covered(const SpanDepth& s, uint32_t* depth, uint32_t* owner_px, __m256i xv,
+                                         __m256 py, __m256i covered, __m256i owner, bool row_end,
+                                         __m256i in_row) {
+  __m256i pass = covered;
+  if constexpr (F != DepthFormat::None) {
+    const __m256 z = span_z(s, _mm256_cvtepi32_ps(xv), py);
+    const __m256i raw = to_raw<F>(z);
+    const __m256i stored = row_end || Op != CompareOp::Always || !all_lanes(covered) ? load_lanes(depth, in_row, row_end)
+                                                                                     : _mm256_setzero_si256();
+    if constexpr (Op != CompareOp::Always) {
+      pass = _mm256_and_si256(pass, depth_passes<F, Op>(z, raw, stored));
+      if (_mm256_testz_si256(pass, pass)) return false;
+    }
+    if (s.write) store_lanes(depth, raw, stored, pass, row_end);
+  }
+  if (!row_end && all_lanes(pass)) {
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(owner_px), owner);
+  } else {
+    store_lanes(owner_px, owner, load_lanes(owner_px, in_row, row_end), pass, row_end);
+  }
+  return true;
+}
+
+// Mid-size triangles (rectangles wider than one span): per row the covered columns from the edges
+// (row_columns_avx2.hpp), then whole 8-pixel spans from the first of them, the last span masked:
+// no edge values per span, and the spans of an 8-60 px triangle mostly full instead of a third
+// full over its rectangle. A span may reach past the rectangle into the next tile of the row (this
+// worker's) or past the row's end (masked loads and stores); only covered lanes are written.
+// Mid-size triangles (rectangles wider than one span): per row the covered columns from the edges
+// (row_columns_avx2.hpp), then whole 8-pixel spans from the first of them, the last span masked:
+// no edge values per span, and the spans of an 8-60 px triangle mostly full instead of a third
+// full over its rectangle. A span may reach past the rectangle into the next tile of the row (this
+// worker's) or past the row's end (masked loads and stores); only covered lanes are written.
+// Calls row(y, x0, x1) for each row of the job that holds a covered pixel, with its covered
+// columns [x0, x1] (row_columns_avx2.hpp).
+template <typename Row>
+RASTERCMP_AVX2 inline void for_each_covered_row(const KernelJob& j, Row&& row) {
+  int32_t y0 = j.rect.y0, y1 = j.rect.y1;
+  if (!flat_edge_rows(j, y0, y1)) return;
+  RowColumns c = row_columns_of(j);
+  c.n = _mm256_add_pd(c.n, _mm256_mul_pd(c.gy, _mm256_set1_pd(double(y0 - j.rect.y0))));  // exact integers
+  for (int32_t y = y0; y <= y1; ++y) {
+    int32_t u0, u1;
+    next_row_columns(c, u0, u1);
+    if (u0 <= u1) row(y, j.origin_x + u0, j.origin_x + u1);
+  }
+}
+
+// Mid-size triangles (rectangles wider than one span): per row the covered columns from the edges
+// (row_columns_avx2.hpp), then whole 8-pixel spans from the first of them, the last span masked:
+// no edge values per span, and the spans of an 8-60 px triangle mostly full instead of a third
+// full over its rectangle. A span may reach past the rectangle into the next tile of the row (this
+// worker's) or past the row's end (masked loads and stores); only covered lanes are written.
+template <DepthFormat F, CompareOp Op>
+RASTERCMP_AVX2 bool row_spans(const KernelJob& j, const KernelDepth& d, const TileTarget& t) {
+  const SpanDepth s = span_depth(j, d);
+  const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7), all = _mm256_set1_epi32(-1);
+  const __m256i owner = _mm256_set1_epi32(int32_t(j.owner)), row_width = _mm256_set1_epi32(t.width);
+  const int32_t last_full = t.width - 8;
+  uint32_t* const owner_base = t.owner;
+  uint32_t* const depth_base = t.depth;
+  const size_t width = size_t(t.width);
+  bool any = false;
+  CoveredRows rows = covered_rows(j);
+  int32_t y, x, x_end;
+  while (rows.next(y, x, x_end)) {
+    const __m256 py = _mm256_set1_ps(float(y));
+    const size_t row = size_t(y) * width;
+    for (; x + 7 <= x_end; x += 8) {
+      const __m256i xv = _mm256_add_epi32(_mm256_set1_epi32(x), lane);
+      const bool row_end = x > last_full;
+      any |= write_covered<F, Op>(s, F != DepthFormat::None ? depth_base + row + x : nullptr, owner_base + row + x,
+                                  xv, py, all, owner, row_end, row_end ? _mm256_cmpgt_epi32(row_width, xv) : all);
+    }
+    if (x > x_end) continue;
+    const __m256i xv = _mm256_add_epi32(_mm256_set1_epi32(x), lane);
+    const __m256i covered = _mm256_cmpgt_epi32(_mm256_set1_epi32(x_end + 1), xv);
+    const bool row_end = x > last_full;
+    any |= write_covered<F, Op>(s, F != DepthFormat::None ? depth_base + row + x : nullptr, owner_base + row + x, xv,
+                                py, covered, owner, row_end, row_end ? _mm256_cmpgt_epi32(row_width, xv) : covered);
+  }
+  return any;
+}
+
 template <DepthFormat F, CompareOp Op>
 RASTERCMP_AVX2 bool kernel(const KernelJob& j, const KernelDepth& d, const TileTarget& t) {
   if constexpr (Op == CompareOp::Never && F != DepthFormat::None) return false;
   if (j.all_in && (j.rect.x0 & 7) == 0 && ((j.rect.x1 + 1) & 7) == 0) return covered_spans<F, Op>(j, d, t);
+  if (j.rect.x1 - j.origin_x >= 8) return row_spans<F, Op>(j, d, t);
   const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
   __m256i lane_g[3], span_step[3];
   for (int i = 0; i < 3; ++i) {
@@ -297,6 +408,13 @@ constexpr auto kKernels = kernel_table<Kernels>();
 }  // namespace
 
 KernelFn select_kernel_avx2(DepthFormat format, CompareOp op) { return select_kernel(kKernels, format, op); }
+
+RASTERCMP_AVX2 void covered_columns_avx2(const KernelJob& j, int32_t* x0, int32_t* x1) {
+  for (int32_t y = j.rect.y0; y <= j.rect.y1; ++y) x0[y - j.rect.y0] = 1, x1[y - j.rect.y0] = 0;
+  CoveredRows rows = covered_rows(j);
+  int32_t y, first, last;
+  while (rows.next(y, first, last)) x0[y - j.rect.y0] = first, x1[y - j.rect.y0] = last;
+}
 
 SmallKernelFn select_small_kernel_avx2(DepthFormat format, CompareOp op) {
   return select_kernel(kSmallKernels, format, op);

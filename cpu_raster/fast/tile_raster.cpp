@@ -123,7 +123,10 @@ void raster_prepared(const FastTriangle& t, const TileTriangle& prepared, int32_
 }
 
 void clear_tile(int32_t tile_x, int32_t tile_y, const FrameRaster& frame) {
-  const PixelRect r = tile_rect(tile_x, tile_y, frame.target);
+  clear_rect(tile_rect(tile_x, tile_y, frame.target), frame);
+}
+
+void clear_rect(const PixelRect& r, const FrameRaster& frame) {
   const size_t width = size_t(frame.target.width), count = size_t(r.x1 - r.x0 + 1);
   for (int32_t y = r.y0; y <= r.y1; ++y) {
     const size_t row = size_t(y) * width + size_t(r.x0);
