@@ -35,6 +35,7 @@ struct Runner {
 
 double time_once(VulkanRenderer& vk, Runner& r, size_t scene) {
   if (!r.cpu) return vk.submit_and_wait_seconds(*r.prepared[scene]);
+  r.results[scene] = RenderResult{};  // the previous render's buffers are freed before the clock starts
   const auto start = Clock::now();
   r.results[scene] = render_cpu(r.scenes[scene], *r.cpu);
   return std::chrono::duration<double>(Clock::now() - start).count();
