@@ -349,7 +349,7 @@ RASTERCMP_SMALL_TARGET void RASTERCMP_SMALL_SETUP(const SmallBlockInput& in, Sma
     out.grid_x1 = max_of_lanes(_mm256_blendv_epi8(none_high, x1, grid));
     out.grid_y1 = max_of_lanes(_mm256_blendv_epi8(none_high, y1, grid));
 #ifdef RASTERCMP_SMALL_WINDOW
-    if (in.window_ok && shift != kSmallGridShift && goes_to_window(out, shift)) {
+    if (in.window_ok && goes_to_window(out, shift)) {
       store_window_lanes(edges, plane, out);
       return;
     }

@@ -3,5 +3,4 @@
 
 #define RASTERCMP_SMALL_TARGET RASTERCMP_AVX2
 #define RASTERCMP_SMALL_SETUP setup_small_block_avx2
-#define RASTERCMP_SMALL_WINDOW 1
 #include "cpu_raster/fast/small_setup_simd.inl"

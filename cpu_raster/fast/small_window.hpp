@@ -1,4 +1,4 @@
-// The window compositor for blocks of small triangles (AVX2 and AVX-512 hosts): a block of grid lanes
+// The window compositor for blocks of small triangles (AVX-512 hosts): a block of grid lanes
 // whose union fits kWindowWidth x kWindowHeight pixels
 // (SmallBlockOutput::window) is drawn by loading that window of the attachments once, then, lane
 // by lane in primitive order, evaluating the lane's rows 16 pixels at a time (coverage from the
@@ -26,7 +26,5 @@ using WindowBlockFn = void (*)(const SmallBlockOutput&, uint32_t owner_of_lane_0
 
 // Call only when host_has_avx512().
 WindowBlockFn select_window_block_avx512(DepthFormat format, CompareOp op);
-// Eight pixels per step (small_window_avx2.cpp); call only when host_has_avx2_fma().
-WindowBlockFn select_window_block_avx2(DepthFormat format, CompareOp op);
 
 }  // namespace rastercmp::cpu::fast
