@@ -151,7 +151,10 @@ struct GridLanes {
 // the lanes that reach the row and shifted into place.
 template <DepthFormat F, int Shift>
 RASTERCMP_SMALL_TARGET void evaluate_grid(const GridLanes& g, const Edge8 (&edges)[3], const Plane8& plane,
-                                          const KernelDepth& depth, SmallBlockOutput& out) {
+                                          const KernelDepth& depth_state, SmallBlockOutput& out) {
+  // A local copy: the stores into `out` might alias the caller's KernelDepth as far as the
+  // compiler knows, which made the loop reload fma and clamp at every pixel position.
+  const KernelDepth depth = depth_state;
   const int columns = g.columns, rows = g.rows;
   __m256i row_e[3], gx[3], gy[3];
   for (int i = 0; i < 3; ++i) {
