@@ -45,6 +45,9 @@ SampleClass judged_class(SampleClass c, bool cpu_judged);
 // "missing" / "unexpected" of a BadSample::kind swapped the same way; other kinds unchanged.
 std::string judged_kind(const std::string& kind, bool cpu_judged);
 
+// A number as the report prints it: six significant digits.
+std::string report_number(double v);
+
 // How a runner status looks in the report: one row per status name, so a new status is one line.
 struct StatusStyle {
   std::string_view key;  // the status name, or its part before '(' ("UnexpectedImprovement(Pass)")

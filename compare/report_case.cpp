@@ -21,9 +21,7 @@ namespace {
 using kainjow::mustache::data;
 using kainjow::mustache::mustache;
 
-std::string number(double v) { return fmt::format("{:.6g}", v); }
-
-std::string owner_text(uint32_t owner) {
+std::string owner_short_text(uint32_t owner) {
   if (owner == kOwnerBackground) return "background";
   return fmt::format("draw {} prim {}", owner_draw(owner), owner_primitive(owner));
 }
@@ -61,11 +59,11 @@ data bad_sample_row(const BadSample& b, bool cpu_judged) {
   const uint32_t judged_owner = cpu_judged ? b.expected_owner : b.actual_owner;
   const uint32_t reference_depth = cpu_judged ? b.actual_depth_raw : b.expected_depth_raw;
   const uint32_t judged_depth = cpu_judged ? b.expected_depth_raw : b.actual_depth_raw;
-  d.set("reference_owner", owner_text(reference_owner));
-  d.set("judged_owner", owner_text(judged_owner));
+  d.set("reference_owner", owner_short_text(reference_owner));
+  d.set("judged_owner", owner_short_text(judged_owner));
   d.set("reference_depth", b.has_depth ? fmt::format("{:#x}", reference_depth) : "-");
   d.set("judged_depth", b.has_depth ? fmt::format("{:#x}", judged_depth) : "-");
-  d.set("depth_diff", b.depth_diff_raw ? fmt::format("{} ({} r)", b.depth_diff_raw, number(b.depth_diff_r)) : "-");
+  d.set("depth_diff", b.depth_diff_raw ? fmt::format("{} ({} r)", b.depth_diff_raw, report_number(b.depth_diff_r)) : "-");
   return d;
 }
 
@@ -102,9 +100,9 @@ void set_numbers(data& d, const DiffSummary& s, bool cpu_judged) {
   d.set("depth_p50", std::to_string(s.depth.p50_raw));
   d.set("depth_p95", std::to_string(s.depth.p95_raw));
   d.set("max_depth", std::to_string(s.depth.max_raw));
-  d.set("depth_p50_r", number(s.depth.p50_r));
-  d.set("depth_p95_r", number(s.depth.p95_r));
-  d.set("max_depth_r", number(s.depth.max_r));
+  d.set("depth_p50_r", report_number(s.depth.p50_r));
+  d.set("depth_p95_r", report_number(s.depth.p95_r));
+  d.set("max_depth_r", report_number(s.depth.max_r));
   d.set("max_depth_at", fmt::format("({}, {}) sample {}", s.depth.max_at.x, s.depth.max_at.y, s.depth.max_at.sample));
 }
 
@@ -202,6 +200,8 @@ data bad_page_data(const std::string& case_name, const std::vector<BadSample>& a
 }
 
 }  // namespace
+
+std::string report_number(double v) { return fmt::format("{:.6g}", v); }
 
 bool cpu_is_judged(std::string_view cpu_method) { return cpu_method != "exact"; }
 

@@ -43,8 +43,6 @@ constexpr StatusStyle kStatusStyles[] = {
     {"Other", 3, "#ffffff", "#000000", "a status this report has no colour for"},
 };
 
-std::string number(double v) { return fmt::format("{:.6g}", v); }
-
 data styles_data() {
   data list{data::type::list};
   for (const StatusStyle& s : kStatusStyles) {
@@ -90,7 +88,7 @@ data case_row(const CaseRecord& c) {
   count("wrong_owner", s ? s->wrong_owner : 0);
   count("allowed", s ? s->allowed : 0);
   count("depth_mismatches", s ? s->depth.mismatches : 0);
-  d.set("max_depth_r", s ? number(s->depth.max_r) : "-");
+  d.set("max_depth_r", s ? report_number(s->depth.max_r) : "-");
   return d;
 }
 

@@ -22,7 +22,6 @@ int32_t shl32(int32_t a, int k) { return int32_t(uint32_t(a) << k); }
 int64_t add64(int64_t a, int64_t b) { return int64_t(uint64_t(a) + uint64_t(b)); }
 int64_t sub64(int64_t a, int64_t b) { return int64_t(uint64_t(a) - uint64_t(b)); }
 
-uint32_t floor_pot(uint32_t n) { return n == 0 ? 0 : uint32_t(1) << (31 - std::countl_zero(n)); }
 
 // The 16 values of one plane over a 4x4 grid of blocks (BUILD_MASKS, build_masks_sse) at one level
 // of lp_rast_tri_tmp.h: `shift` 4 for a tile's 16x16 blocks, 2 for a 16x16 block's 4x4 blocks.
@@ -129,7 +128,7 @@ BinnedTriangle bin_triangle(const std::array<LpPlane, 8>& planes, uint32_t plane
     if (tx >= 0 && ty >= 0 && tx < t.tiles_x && ty < t.tiles_y) t.tile_planes[size_t(ty) * t.tiles_x + tx] = mask;
   };
   const uint32_t all = (1u << plane_count) - 1;
-  const int32_t dx = int32_t(floor_pot(uint32_t((bbox.x0 ^ bbox.x1) | (bbox.y0 ^ bbox.y1))));
+  const int32_t dx = int32_t(std::bit_floor(uint32_t((bbox.x0 ^ bbox.x1) | (bbox.y0 ^ bbox.y1))));
   if (dx < kTile) {  // one tile, every plane (the 3_4, 3_16 and 4_16 commands end in lp_rast_triangle_N)
     bin(bbox.x0 / kTile, bbox.y0 / kTile, all);
     return t;

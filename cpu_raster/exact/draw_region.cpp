@@ -9,8 +9,6 @@ namespace {
 
 constexpr int32_t kTileSize = 64;  // lp_limits.h TILE_SIZE
 
-// lp_setup_tri.c floor_pot: largest power of two <= n (0 for 0).
-uint32_t floor_pot(uint32_t n) { return n == 0 ? 0 : uint32_t(1) << (31 - std::countl_zero(n)); }
 
 PixelRect square_at(int32_t x, int32_t y, int32_t size) { return PixelRect{x, y, x + size - 1, y + size - 1}; }
 
@@ -61,8 +59,9 @@ PixelRect binned_area(const PixelRect& bbox, const PixelRect& region) {
   // lp_setup_bin_triangle: a box inside one 64x64 tile is binned to that tile. (The 4x4 and 16x16
   // "contained" commands it may pick instead cover the triangle's own box, which bounds every
   // sample a 3-plane triangle can cover; for 4-plane lines the driver covers samples anywhere in
-  // the tile, as the 4x line differential tests show.)
-  const int32_t dx = int32_t(floor_pot(uint32_t((bbox.x0 ^ bbox.x1) | (bbox.y0 ^ bbox.y1))));
+  // the tile, as the 4x line differential tests show.) dx: lp_setup_tri.c floor_pot, the largest
+  // power of two <= n (0 for 0), which is std::bit_floor.
+  const int32_t dx = int32_t(std::bit_floor(uint32_t((bbox.x0 ^ bbox.x1) | (bbox.y0 ^ bbox.y1))));
   if (dx < kTileSize) return square_at(bbox.x0 / kTileSize * kTileSize, bbox.y0 / kTileSize * kTileSize, kTileSize);
   const PixelRect trimmed = intersect(bbox, region);  // otherwise the tiles of bbox ∩ draw region
   return PixelRect{trimmed.x0 / kTileSize * kTileSize, trimmed.y0 / kTileSize * kTileSize,
