@@ -54,20 +54,24 @@ test-sanitize: build-san
 	@cd $(BUILD_SAN) && $(SAN_ENV) LD_PRELOAD="$$(ls /usr/lib/*/libvulkan_lvp.so 2>/dev/null | head -n 1)" \
 	  ctest --output-on-failure -j $(JOBS)
 
-# libFuzzer on the scene parser and the clipper, FUZZ_SECONDS each, from the seed corpus.
-# A crash leaves its input in $(BUILD_SAN)/artifacts/: add it to fuzz/regressions/ as a test.
+# libFuzzer on the scene parser and the clipper, FUZZ_SECONDS each, from the seed corpus, the two
+# side by side (one core each). A crash leaves its input in $(BUILD_SAN)/artifacts/: add it to
+# fuzz/regressions/ as a test.
+FUZZERS := scene_parser clipper
 fuzz: build-san
 	@mkdir -p $(BUILD_SAN)/artifacts
-	@for t in scene_parser clipper; do \
-	  mkdir -p $(BUILD_SAN)/corpus/$$t && \
-	  echo "fuzz: $$t for $(FUZZ_SECONDS) s" && \
-	  $(SAN_ENV) $(BUILD_SAN)/fuzz/fuzz_$$t -max_total_time=$(FUZZ_SECONDS) -print_final_stats=1 \
-	    -artifact_prefix=$(BUILD_SAN)/artifacts/$$t- \
-	    $(BUILD_SAN)/corpus/$$t fuzz/corpus/$$t $$(test -d fuzz/regressions/$$t && echo fuzz/regressions/$$t) \
-	    2>$(BUILD_SAN)/fuzz_$$t.log \
-	  || { tail -n 40 $(BUILD_SAN)/fuzz_$$t.log; exit 1; }; \
-	  grep -E "stat::number_of_executed_units" $(BUILD_SAN)/fuzz_$$t.log; \
-	done
+	@$(MAKE) --no-print-directory -j2 --output-sync=target $(addprefix fuzz-,$(FUZZERS))
+
+# One fuzzer of an already built sanitizer tree.
+fuzz-%:
+	@mkdir -p $(BUILD_SAN)/corpus/$* && \
+	  echo "fuzz: $* for $(FUZZ_SECONDS) s" && \
+	  $(SAN_ENV) $(BUILD_SAN)/fuzz/fuzz_$* -max_total_time=$(FUZZ_SECONDS) -print_final_stats=1 \
+	    -artifact_prefix=$(BUILD_SAN)/artifacts/$*- \
+	    $(BUILD_SAN)/corpus/$* fuzz/corpus/$* $$(test -d fuzz/regressions/$* && echo fuzz/regressions/$*) \
+	    2>$(BUILD_SAN)/fuzz_$*.log \
+	  || { tail -n 40 $(BUILD_SAN)/fuzz_$*.log; exit 1; }; \
+	  grep -E "stat::number_of_executed_units" $(BUILD_SAN)/fuzz_$*.log
 
 bench: build
 	@$(BUILD)/app/rastercmp bench
