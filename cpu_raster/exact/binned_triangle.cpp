@@ -23,6 +23,27 @@ int64_t add64(int64_t a, int64_t b) { return int64_t(uint64_t(a) + uint64_t(b));
 int64_t sub64(int64_t a, int64_t b) { return int64_t(uint64_t(a) - uint64_t(b)); }
 
 
+// do_block_4's test of pixel (i, j) of a 4x4 block whose plane value at the corner is c:
+// BUILD_MASK_LINEAR((c - 1) >> 8, -dcdx >> 8, dcdy >> 8), per sample with MULTISAMPLE.
+bool stamp_pixel_passes(const LpPlane& p, int64_t c, int32_t i, int32_t j, bool multisample, uint32_t sample) {
+  if (multisample) {
+    const SampleOffset& s = kStandardSamples4x[sample];
+    c = add64(c, (int64_t(s.y_fixed) * p.dcdy + int64_t(s.x_fixed) * neg32(p.dcdx)) >> kFixedOrder);
+  }
+  const int32_t c0 = int32_t(sub64(c, 1) >> kFixedOrder);
+  const int32_t v = add32(add32(c0, mul32(i, neg32(p.dcdx) >> kFixedOrder)), mul32(j, p.dcdy >> kFixedOrder));
+  return v >= 0;
+}
+
+// The planes' values at (x, y) moved from their values at (x0, y0): c - dcdx*dx + dcdy*dy (IMUL64).
+void move_to(const BinnedTriangle& t, const std::array<int, 8>& index, uint32_t n, std::array<int64_t, 8>& c,
+             int32_t dx, int32_t dy) {
+  for (uint32_t k = 0; k < n; ++k)
+    c[k] = add64(c[k], int64_t(t.plane[index[k]].dcdy) * dy - int64_t(t.plane[index[k]].dcdx) * dx);
+}
+
+}  // namespace
+
 // The 16 values of one plane over a 4x4 grid of blocks (BUILD_MASKS, build_masks_sse) at one level
 // of lp_rast_tri_tmp.h: `shift` 4 for a tile's 16x16 blocks, 2 for a 16x16 block's 4x4 blocks.
 // Bit j*4 + i of `out` is set when the block's trivial-reject value is negative, of `part` when
@@ -46,27 +67,6 @@ void block_masks(const LpPlane& p, int64_t c, int shift, uint32_t& out, uint32_t
     }
   }
 }
-
-// do_block_4's test of pixel (i, j) of a 4x4 block whose plane value at the corner is c:
-// BUILD_MASK_LINEAR((c - 1) >> 8, -dcdx >> 8, dcdy >> 8), per sample with MULTISAMPLE.
-bool stamp_pixel_passes(const LpPlane& p, int64_t c, int32_t i, int32_t j, bool multisample, uint32_t sample) {
-  if (multisample) {
-    const SampleOffset& s = kStandardSamples4x[sample];
-    c = add64(c, (int64_t(s.y_fixed) * p.dcdy + int64_t(s.x_fixed) * neg32(p.dcdx)) >> kFixedOrder);
-  }
-  const int32_t c0 = int32_t(sub64(c, 1) >> kFixedOrder);
-  const int32_t v = add32(add32(c0, mul32(i, neg32(p.dcdx) >> kFixedOrder)), mul32(j, p.dcdy >> kFixedOrder));
-  return v >= 0;
-}
-
-// The planes' values at (x, y) moved from their values at (x0, y0): c - dcdx*dx + dcdy*dy (IMUL64).
-void move_to(const BinnedTriangle& t, const std::array<int, 8>& index, uint32_t n, std::array<int64_t, 8>& c,
-             int32_t dx, int32_t dy) {
-  for (uint32_t k = 0; k < n; ++k)
-    c[k] = add64(c[k], int64_t(t.plane[index[k]].dcdy) * dy - int64_t(t.plane[index[k]].dcdx) * dx);
-}
-
-}  // namespace
 
 int64_t wrapped_doubled_area(const std::array<FixedPoint, 3>& v) {
   const int32_t dx01 = sub32(v[0].x.raw, v[1].x.raw), dy01 = sub32(v[0].y.raw, v[1].y.raw);

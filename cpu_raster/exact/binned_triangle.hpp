@@ -68,4 +68,10 @@ BinnedTriangle bin_triangle(const std::array<LpPlane, 8>& planes, uint32_t plane
 // Whether llvmpipe's rasterizer covers the sample (pixel px, py; sample index for 4x, else 0).
 bool binned_covers(const BinnedTriangle& t, int32_t px, int32_t py, uint32_t sample);
 
+// The 16 values of one plane over a 4x4 grid of blocks (BUILD_MASKS, build_masks_sse) at one level
+// of lp_rast_tri_tmp.h: `shift` 4 for a tile's 16x16 blocks, 2 for a 16x16 block's 4x4 blocks;
+// `c` is the plane's value at the grid's corner. Sets bit j*4 + i of `out` when the block's
+// trivial-reject value is negative, of `part` when its trivial-accept value is (ORs into both).
+void block_masks(const LpPlane& p, int64_t c, int shift, uint32_t& out, uint32_t& part);
+
 }  // namespace rastercmp::cpu

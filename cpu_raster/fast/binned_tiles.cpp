@@ -28,30 +28,10 @@ struct TilePlanes {
   }
 };
 
-// binned_triangle.cpp block_masks (BUILD_MASKS) over every binned plane: bit j*4 + i of out / part.
+// block_masks (exact/binned_triangle.hpp, BUILD_MASKS) over every binned plane: bit j*4 + i of out / part.
 void block_masks(const TilePlanes& planes, int shift, uint32_t& out, uint32_t& part) {
   out = part = 0;
-  for (uint32_t k = 0; k < planes.count; ++k) {
-    const LpPlane& p = *planes.plane[k];
-    const int64_t c = planes.c[k];
-    int32_t dcdx = neg32(p.dcdx) >> kFixedOrder;
-    int32_t dcdy = p.dcdy >> kFixedOrder;
-    const int32_t cox = int32_t(p.eo >> kFixedOrder);
-    const int32_t ei = shl32(sub32(add32(dcdy, dcdx), cox), shift);
-    const int32_t cox_s = shl32(cox, shift);
-    const int32_t c_hi = int32_t(c >> kFixedOrder), c_hi_minus = int32_t(sub64(c, 1) >> kFixedOrder);
-    const int32_t co = add32(c_hi, cox_s);
-    const int32_t cdiff = add32(sub32(ei, cox_s), sub32(c_hi_minus, c_hi));
-    dcdx = shl32(dcdx, shift);
-    dcdy = shl32(dcdy, shift);
-    for (int j = 0; j < 4; ++j) {
-      for (int i = 0; i < 4; ++i) {
-        const int32_t v = add32(add32(co, mul32(i, dcdx)), mul32(j, dcdy));
-        if (v < 0) out |= 1u << (j * 4 + i);
-        if (add32(v, cdiff) < 0) part |= 1u << (j * 4 + i);
-      }
-    }
-  }
+  for (uint32_t k = 0; k < planes.count; ++k) cpu::block_masks(*planes.plane[k], planes.c[k], shift, out, part);
 }
 
 // binned_triangle.cpp stamp_pixel_passes (do_block_4) for every binned plane.
