@@ -23,17 +23,6 @@ int64_t add64(int64_t a, int64_t b) { return int64_t(uint64_t(a) + uint64_t(b));
 int64_t sub64(int64_t a, int64_t b) { return int64_t(uint64_t(a) - uint64_t(b)); }
 
 
-// do_block_4's test of pixel (i, j) of a 4x4 block whose plane value at the corner is c:
-// BUILD_MASK_LINEAR((c - 1) >> 8, -dcdx >> 8, dcdy >> 8), per sample with MULTISAMPLE.
-bool stamp_pixel_passes(const LpPlane& p, int64_t c, int32_t i, int32_t j, bool multisample, uint32_t sample) {
-  if (multisample) {
-    const SampleOffset& s = kStandardSamples4x[sample];
-    c = add64(c, (int64_t(s.y_fixed) * p.dcdy + int64_t(s.x_fixed) * neg32(p.dcdx)) >> kFixedOrder);
-  }
-  const int32_t c0 = int32_t(sub64(c, 1) >> kFixedOrder);
-  const int32_t v = add32(add32(c0, mul32(i, neg32(p.dcdx) >> kFixedOrder)), mul32(j, p.dcdy >> kFixedOrder));
-  return v >= 0;
-}
 
 // The planes' values at (x, y) moved from their values at (x0, y0): c - dcdx*dx + dcdy*dy (IMUL64).
 void move_to(const BinnedTriangle& t, const std::array<int, 8>& index, uint32_t n, std::array<int64_t, 8>& c,
@@ -66,6 +55,18 @@ void block_masks(const LpPlane& p, int64_t c, int shift, uint32_t& out, uint32_t
       if (add32(v, cdiff) < 0) part |= 1u << (j * 4 + i);
     }
   }
+}
+
+// do_block_4's test of pixel (i, j) of a 4x4 block whose plane value at the corner is c:
+// BUILD_MASK_LINEAR((c - 1) >> 8, -dcdx >> 8, dcdy >> 8), per sample with MULTISAMPLE.
+bool stamp_pixel_passes(const LpPlane& p, int64_t c, int32_t i, int32_t j, bool multisample, uint32_t sample) {
+  if (multisample) {
+    const SampleOffset& s = kStandardSamples4x[sample];
+    c = add64(c, (int64_t(s.y_fixed) * p.dcdy + int64_t(s.x_fixed) * neg32(p.dcdx)) >> kFixedOrder);
+  }
+  const int32_t c0 = int32_t(sub64(c, 1) >> kFixedOrder);
+  const int32_t v = add32(add32(c0, mul32(i, neg32(p.dcdx) >> kFixedOrder)), mul32(j, p.dcdy >> kFixedOrder));
+  return v >= 0;
 }
 
 int64_t wrapped_doubled_area(const std::array<FixedPoint, 3>& v) {

@@ -74,4 +74,8 @@ bool binned_covers(const BinnedTriangle& t, int32_t px, int32_t py, uint32_t sam
 // trivial-reject value is negative, of `part` when its trivial-accept value is (ORs into both).
 void block_masks(const LpPlane& p, int64_t c, int shift, uint32_t& out, uint32_t& part);
 
+// do_block_4's test of pixel (i, j) of a 4x4 block whose plane value at the corner is c
+// (BUILD_MASK_LINEAR; per sample with `multisample`).
+bool stamp_pixel_passes(const LpPlane& p, int64_t c, int32_t i, int32_t j, bool multisample, uint32_t sample);
+
 }  // namespace rastercmp::cpu

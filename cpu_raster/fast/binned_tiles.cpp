@@ -7,14 +7,8 @@ namespace {
 
 constexpr uint32_t kWholeTile = uint32_t(1) << 31;  // BinnedTriangle::tile_planes: lp_setup_whole_tile
 
-// binned_triangle.cpp's wrapping int32 and int64 arithmetic, operation for operation.
-int32_t add32(int32_t a, int32_t b) { return int32_t(uint32_t(a) + uint32_t(b)); }
-int32_t sub32(int32_t a, int32_t b) { return int32_t(uint32_t(a) - uint32_t(b)); }
-int32_t neg32(int32_t a) { return int32_t(0u - uint32_t(a)); }
-int32_t mul32(int32_t a, int32_t b) { return int32_t(uint32_t(a) * uint32_t(b)); }
-int32_t shl32(int32_t a, int k) { return int32_t(uint32_t(a) << k); }
+// binned_triangle.cpp's wrapping int64 addition.
 int64_t add64(int64_t a, int64_t b) { return int64_t(uint64_t(a) + uint64_t(b)); }
-int64_t sub64(int64_t a, int64_t b) { return int64_t(uint64_t(a) - uint64_t(b)); }
 
 // The planes binned for the tile, and their values at a block's corner.
 struct TilePlanes {
@@ -34,19 +28,10 @@ void block_masks(const TilePlanes& planes, int shift, uint32_t& out, uint32_t& p
   for (uint32_t k = 0; k < planes.count; ++k) cpu::block_masks(*planes.plane[k], planes.c[k], shift, out, part);
 }
 
-// binned_triangle.cpp stamp_pixel_passes (do_block_4) for every binned plane.
+// stamp_pixel_passes (exact/binned_triangle.hpp, do_block_4) for every binned plane.
 bool stamp_pixel_passes(const TilePlanes& planes, int32_t i, int32_t j, bool multisample, uint32_t sample) {
-  for (uint32_t k = 0; k < planes.count; ++k) {
-    const LpPlane& p = *planes.plane[k];
-    int64_t c = planes.c[k];
-    if (multisample) {
-      const SampleOffset& s = kStandardSamples4x[sample];
-      c = add64(c, (int64_t(s.y_fixed) * p.dcdy + int64_t(s.x_fixed) * neg32(p.dcdx)) >> kFixedOrder);
-    }
-    const int32_t c0 = int32_t(sub64(c, 1) >> kFixedOrder);
-    const int32_t v = add32(add32(c0, mul32(i, neg32(p.dcdx) >> kFixedOrder)), mul32(j, p.dcdy >> kFixedOrder));
-    if (v < 0) return false;
-  }
+  for (uint32_t k = 0; k < planes.count; ++k)
+    if (!cpu::stamp_pixel_passes(*planes.plane[k], planes.c[k], i, j, multisample, sample)) return false;
   return true;
 }
 
