@@ -224,42 +224,56 @@ std::vector<OwnerAlternative> exact_owner_alternatives(const Scene& scene, const
   std::vector<OwnerAlternative> out;
   if (contested.empty() || triangles.empty()) return out;
   const bool multisample = scene.samples > 1;
-  // The triangles that may touch each contested pixel, in draw order. Contested pixels ascend,
-  // so each row's are a contiguous, sorted run.
-  std::vector<std::vector<uint32_t>> touching(contested.size());
-  uint64_t work = 0;
   const std::vector<ExactDevice> devices = exact_devices(scene);
-  for (size_t ti = 0; ti < triangles.size(); ++ti) {
-    const SnappedTriangle& s = triangles[ti].snapped;
-    const PixelSpan xs = pixels_touching(s.x_min, s.x_max, sub_pixel_bits, multisample);
-    const PixelSpan ys = pixels_touching(s.y_min, s.y_max, sub_pixel_bits, multisample);
-    if (xs.last < 0 || ys.last < 0 || xs.first >= int64_t(scene.width) || ys.first >= int64_t(scene.height)) continue;
-    const int64_t y0 = std::max<int64_t>(ys.first, 0), y1 = std::min<int64_t>(ys.last, scene.height - 1);
-    const int64_t x0 = std::max<int64_t>(xs.first, 0), x1 = std::min<int64_t>(xs.last, scene.width - 1);
-    for (int64_t y = y0; y <= y1; ++y) {
-      const uint32_t row = uint32_t(y) * scene.width;
-      auto it = std::lower_bound(contested.begin(), contested.end(), row + uint32_t(x0));
-      for (; it != contested.end() && *it <= row + uint32_t(x1); ++it) {
-        touching[size_t(it - contested.begin())].push_back(uint32_t(ti));
-        work += uint64_t(scene.samples) * devices.size();
+  // The triangles whose boxes may touch each contested pixel, in draw order, as offsets into one
+  // list (counted first, so that an over-large scene stops before allocating). Contested pixels
+  // ascend, so each row's are a contiguous, sorted run.
+  std::vector<uint32_t> offset(contested.size() + 1, 0), touching;
+  const auto for_each_touch = [&](auto&& visit) {
+    for (size_t ti = 0; ti < triangles.size(); ++ti) {
+      const SnappedTriangle& s = triangles[ti].snapped;
+      const PixelSpan xs = pixels_touching(s.x_min, s.x_max, sub_pixel_bits, multisample);
+      const PixelSpan ys = pixels_touching(s.y_min, s.y_max, sub_pixel_bits, multisample);
+      const int64_t y0 = std::max<int64_t>(ys.first, 0), y1 = std::min<int64_t>(ys.last, int64_t(scene.height) - 1);
+      const int64_t x0 = std::max<int64_t>(xs.first, 0), x1 = std::min<int64_t>(xs.last, int64_t(scene.width) - 1);
+      if (x0 > x1) continue;
+      for (int64_t y = y0; y <= y1; ++y) {
+        const uint32_t row = uint32_t(y) * scene.width;
+        auto it = std::lower_bound(contested.begin(), contested.end(), row + uint32_t(x0));
+        for (; it != contested.end() && *it <= row + uint32_t(x1); ++it)
+          if (!visit(size_t(it - contested.begin()), uint32_t(ti))) return false;
       }
     }
-    if (work > kExactOwnerWorkLimit) return out;
-  }
+    return true;
+  };
+  uint64_t work = 0;
+  const uint64_t per_touch = uint64_t(scene.samples) * devices.size();
+  const bool within = for_each_touch([&](size_t k, uint32_t) {
+    ++offset[k + 1];
+    work += per_touch;
+    return work <= kExactOwnerWorkLimit;
+  });
+  if (!within) return out;
+  for (size_t k = 0; k < contested.size(); ++k) offset[k + 1] += offset[k];
+  touching.resize(offset.back());
+  std::vector<uint32_t> fill(offset.begin(), offset.end() - 1);
+  for_each_touch([&](size_t k, uint32_t ti) {
+    touching[fill[k]++] = ti;
+    return true;
+  });
   // Each triangle that touches some contested pixel, under every snapping.
   std::vector<int32_t> slot(triangles.size(), -1);
   std::vector<Candidate> candidates;
-  for (const std::vector<uint32_t>& list : touching)
-    for (const uint32_t ti : list)
-      if (slot[ti] < 0) {
-        slot[ti] = int32_t(candidates.size());
-        candidates.push_back(make_candidate(scene, triangles[ti], sub_pixel_bits));
-      }
+  for (const uint32_t ti : touching)
+    if (slot[ti] < 0) {
+      slot[ti] = int32_t(candidates.size());
+      candidates.push_back(make_candidate(scene, triangles[ti], sub_pixel_bits));
+    }
   std::vector<const Candidate*> here;
   for (size_t k = 0; k < contested.size(); ++k) {
-    if (touching[k].size() < 2) continue;
+    if (offset[k + 1] - offset[k] < 2) continue;
     here.clear();
-    for (const uint32_t ti : touching[k]) here.push_back(&candidates[size_t(slot[ti])]);
+    for (uint32_t t = offset[k]; t < offset[k + 1]; ++t) here.push_back(&candidates[size_t(slot[touching[t]])]);
     const uint32_t px = contested[k] % scene.width, py = contested[k] / scene.width;
     for (uint32_t sample = 0; sample < scene.samples; ++sample) {
       const size_t index = (size_t(contested[k])) * scene.samples + sample;
