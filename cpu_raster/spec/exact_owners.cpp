@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "cpu_raster/exact/raster_primitive.hpp"
+#include "cpu_raster/spec/coverage_map.hpp"
 #include "cpu_raster/spec/subpixel.hpp"
 #include "model/depth_format.hpp"
 
@@ -298,6 +299,21 @@ uint32_t exact_device_owner(const Scene& scene, const std::vector<SpecTriangle>&
   std::vector<Candidate> candidates;
   for (const SpecTriangle& t : triangles) candidates.push_back(make_candidate(scene, t, sub_pixel_bits));
   return simulate_owner(scene, all_candidates(candidates), device, grid_sample(scene, sub_pixel_bits, x, y, sample));
+}
+
+std::vector<uint32_t> exact_device_owners(const Scene& scene, const std::vector<SpecTriangle>& triangles,
+                                          uint32_t sub_pixel_bits, const ExactDevice& device) {
+  std::vector<Candidate> candidates;
+  for (const SpecTriangle& t : triangles) candidates.push_back(make_candidate(scene, t, sub_pixel_bits));
+  const std::vector<const Candidate*> all = all_candidates(candidates);
+  std::vector<uint32_t> owners(size_t(scene.width) * scene.height * scene.samples, kOwnerBackground);
+  const PixelRect region = scissor_region(scene);
+  for (int32_t y = region.y0; y <= region.y1; ++y)
+    for (int32_t x = region.x0; x <= region.x1; ++x)
+      for (uint32_t s = 0; s < scene.samples; ++s)
+        owners[(size_t(y) * scene.width + size_t(x)) * scene.samples + s] =
+            simulate_owner(scene, all, device, grid_sample(scene, sub_pixel_bits, uint32_t(x), uint32_t(y), s));
+  return owners;
 }
 
 }  // namespace rastercmp::cpu::spec

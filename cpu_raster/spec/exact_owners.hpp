@@ -66,8 +66,12 @@ std::vector<OwnerAlternative> exact_owner_alternatives(const Scene& scene, const
                                                        const std::vector<uint32_t>& estimate_owner);
 
 // One device's owner of one sample (tests): the last of `triangles` whose fragment covers the
-// sample and passes the depth test, or kOwnerBackground.
+// sample and passes the depth test, or kOwnerBackground. No scissor.
 uint32_t exact_device_owner(const Scene& scene, const std::vector<SpecTriangle>& triangles, uint32_t sub_pixel_bits,
                             const ExactDevice& device, uint32_t x, uint32_t y, uint32_t sample);
+
+// One device's owners of every sample (RenderResult order), the scissor applied (tests).
+std::vector<uint32_t> exact_device_owners(const Scene& scene, const std::vector<SpecTriangle>& triangles,
+                                          uint32_t sub_pixel_bits, const ExactDevice& device);
 
 }  // namespace rastercmp::cpu::spec
