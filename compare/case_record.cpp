@@ -36,6 +36,7 @@ void add_diff_fields(OJson& j, const DiffSummary* d) {
   put("unexpected", d ? d->unexpected : 0);
   put("wrong_owner", d ? d->wrong_owner : 0);
   put("allowed", d ? d->allowed : 0);
+  put("allowed_owner", d ? d->allowed_owner : 0);
   put("covered_match", d ? d->covered_match : 0);
   put("bad_pixels", d ? d->bad_pixels : 0);
   put("depth_mismatches", d ? d->depth.mismatches : 0);
@@ -132,6 +133,8 @@ DiffSummary diff_from_json(const Reader& r, const Json& j, const std::string& pa
   d.unexpected = r.get<uint64_t>(j, path, "unexpected");
   d.wrong_owner = r.get<uint64_t>(j, path, "wrong_owner");
   d.allowed = r.get<uint64_t>(j, path, "allowed");
+  if (j.contains("allowed_owner"))  // records written before the owner alternatives lack it
+    d.allowed_owner = r.get<uint64_t>(j, path, "allowed_owner");
   d.covered_match = r.get<uint64_t>(j, path, "covered_match");
   d.bad_pixels = r.get<uint64_t>(j, path, "bad_pixels");
   d.depth.mismatches = r.get<uint64_t>(j, path, "depth_mismatches");

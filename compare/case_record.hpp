@@ -50,7 +50,7 @@ struct CaseRecord {
 
 // The per-scene JSON object (compare --json, summary.json "cases"): scene, source, cpu_method, verdict,
 // message, width, height, pixels, samples, depth_format, coverage_mismatches, missing,
-// unexpected, wrong_owner, allowed, covered_match, bad_pixels, depth_mismatches, depth_unit,
+// unexpected, wrong_owner, allowed, allowed_owner, covered_match, bad_pixels, depth_mismatches, depth_unit,
 // max_depth_error (+_r), depth_p50 / depth_p95 (+_r), max_depth_at, first_bad; the diff fields
 // are null when the scene was not compared. `with_outcome` adds expectation, expectation_reason,
 // status, fails_run, images and explains. Durations are never written here (deterministic output).

@@ -7,6 +7,9 @@
 //   unexpected   actual covered, expected background
 //   wrong_owner  both covered, by different draws/primitives
 //   allowed      spec profile only: any difference on a sample the CPU classed May
+//   allowed_owner spec profile only: a Must sample owned by another primitive that a device
+//                computing the spec's equations exactly, with other choices the spec leaves open,
+//                leaves there (RenderResult::owner_alternatives, docs/spec-profile.md "Owners")
 // Spec profile: coverage is judged against RenderResult::coverage_class of the expected
 // render (Must / May / MustNot, tcuRasterizationVerifier's FULL / PARTIAL / NONE); an empty
 // coverage_class is read as Must where the expected render covers and MustNot elsewhere.
@@ -31,7 +34,7 @@ namespace rastercmp {
 enum class CompareProfile { Lavapipe, Spec };
 const char* to_string(CompareProfile);
 
-enum class SampleClass : uint8_t { Background, Correct, Missing, Unexpected, WrongOwner, Allowed };
+enum class SampleClass : uint8_t { Background, Correct, Missing, Unexpected, WrongOwner, Allowed, AllowedOwner };
 const char* to_string(SampleClass);
 
 // How many bad samples a diff keeps, in scan order (y, then x, then sample).
@@ -86,6 +89,7 @@ struct DiffSummary {
   uint64_t pixels = 0;            // width * height
   uint64_t samples_compared = 0;  // pixels * samples
   uint64_t missing = 0, unexpected = 0, wrong_owner = 0, allowed = 0;
+  uint64_t allowed_owner = 0;  // spec profile: Must samples owned as an exact device may own them
   uint64_t covered_match = 0;  // covered by the same owner in both
   uint64_t bad_pixels = 0;     // pixels with at least one missing/unexpected/wrong-owner/depth sample
   DepthStats depth;

@@ -95,6 +95,7 @@ void set_numbers(data& d, const DiffSummary& s, bool cpu_judged) {
   d.set("adds", std::to_string(cpu_judged ? s.missing : s.unexpected));
   d.set("wrong_owner", std::to_string(s.wrong_owner));
   d.set("allowed", std::to_string(s.allowed));
+  d.set("allowed_owner", std::to_string(s.allowed_owner));
   d.set("depth_mismatches", std::to_string(s.depth.mismatches));
   d.set("depth_unit", s.depth_compared ? depth_unit_name(s.depth_format) : "- (depth not compared)");
   d.set("depth_p50", std::to_string(s.depth.p50_raw));

@@ -96,6 +96,7 @@ int class_rank(SampleClass c) {
     case SampleClass::Unexpected: return 4;
     case SampleClass::WrongOwner: return 3;
     case SampleClass::Allowed: return 2;
+    case SampleClass::AllowedOwner: return 2;
     case SampleClass::Correct: return 1;
     case SampleClass::Background: return 0;
   }
@@ -110,6 +111,7 @@ Rgb mask_colour(SampleClass c) {
     case SampleClass::Unexpected: return kMaskUnexpected;
     case SampleClass::WrongOwner: return kMaskWrongOwner;
     case SampleClass::Allowed: return kMaskAllowed;
+    case SampleClass::AllowedOwner: return kMaskAllowed;
     case SampleClass::Correct: return kMaskCorrect;
     case SampleClass::Background: return kMaskBackground;
   }

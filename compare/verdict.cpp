@@ -51,8 +51,19 @@ std::string outside_counts(const DiffSummary& d) {
       depth_unit_name(d.depth_format), to_string(v.term));
 }
 
+// The May samples, and the Must samples owned by another primitive as an exact device may own them.
+std::string allowed_counts(const DiffSummary& d) {
+  std::string text = fmt::format("{} allowed (may)", d.allowed);
+  if (d.allowed_owner != 0)
+    text += fmt::format(
+        ", {} allowed owner (another primitive, as a device computing the spec's equations exactly leaves it with "
+        "other choices the spec leaves open: vertex rounding, tie rule, depth bias r and m, D32 rounding)",
+        d.allowed_owner);
+  return text;
+}
+
 VerdictDecision decide_spec(const DiffSummary& d, double tolerance_r) {
-  const std::string allowed = fmt::format("{} allowed (may)", d.allowed);
+  const std::string allowed = allowed_counts(d);
   if (d.missing + d.unexpected != 0) {
     std::string why = coverage_counts(d) + ", " + allowed;
     if (d.depth_outside != 0) why += "; " + outside_counts(d);
@@ -62,8 +73,9 @@ VerdictDecision decide_spec(const DiffSummary& d, double tolerance_r) {
   if (d.wrong_owner != 0 && d.depth_intervals_checked)
     return {Verdict::QualityWarning,
             coverage_counts(d) +
-                " (the spec does not fix which primitive wins where both may; every stored depth lies inside its "
-                "spec interval), " +
+                " (owners no device computing the spec's equations exactly leaves there: only arithmetic precision "
+                "decides which primitive wins, which the spec leaves to quality, e.g. between coplanar primitives; "
+                "every stored depth lies inside its spec interval), " +
                 allowed};
   if (d.wrong_owner != 0)
     return {Verdict::QualityWarning, coverage_counts(d) + " (the spec does not fix which primitive wins), " + allowed};

@@ -38,9 +38,10 @@ double spec_depth_tolerance_r(const Scene& scene);
 // Spec profile: Fail on any missing (Must) or unexpected (MustNot) sample, or, when the expected
 // render carries depth intervals, on any Must or May sample whose stored depth lies outside its
 // interval (the message names the farthest one, the bound it broke and the term that set it). A
-// wrong owner is a QualityWarning (which of two primitives wins is left to the device). Without
-// intervals a depth difference beyond `depth_tolerance_r` is a QualityWarning. May samples never
-// count for coverage.
+// wrong owner (a Must sample owned by a primitive no exactly computing device leaves there) is a
+// QualityWarning: only arithmetic precision decides that winner. An allowed owner (one such a
+// device leaves there, RenderResult::owner_alternatives) is a Pass. Without intervals a depth
+// difference beyond `depth_tolerance_r` is a QualityWarning. May samples never count for coverage.
 VerdictDecision decide_verdict(const DiffSummary& diff, double depth_tolerance_r);
 
 }  // namespace rastercmp

@@ -1,5 +1,6 @@
 #include "model/render_result.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <stdexcept>
 
@@ -32,6 +33,14 @@ bool depth_in_interval(DepthFormat format, const DepthInterval& interval, uint32
   if (interval.any) return true;
   const int64_t key = depth_raw_order(format, raw);
   return key >= depth_raw_order(format, interval.lo_raw) && key <= depth_raw_order(format, interval.hi_raw);
+}
+
+bool is_owner_alternative(const RenderResult& result, size_t index, uint32_t owner) {
+  const OwnerAlternative key{uint64_t(index), owner};
+  const auto less = [](const OwnerAlternative& a, const OwnerAlternative& b) {
+    return a.sample != b.sample ? a.sample < b.sample : a.owner < b.owner;
+  };
+  return std::binary_search(result.owner_alternatives.begin(), result.owner_alternatives.end(), key, less);
 }
 
 const char* to_string(DepthTerm term) {

@@ -50,6 +50,15 @@ struct DeviceLimits {
   bool operator==(const DeviceLimits&) const = default;
 };
 
+// Spec profile: an owner other than RenderResult::owner[sample] that a device computing the
+// specification's equations exactly, with other choices the specification leaves to it (vertex
+// rounding, tie rule, r and m of depth bias, D32 rounding), leaves at a Must sample
+// (cpu_raster/spec/exact_owners.hpp, docs/spec-profile.md "Owners").
+struct OwnerAlternative {
+  uint64_t sample = 0;
+  uint32_t owner = 0;
+  bool operator==(const OwnerAlternative&) const = default;
+};
 struct RenderResult {
   std::string backend;  // "cpu" or "vulkan"
   std::string device;   // device or profile description
@@ -65,6 +74,8 @@ struct RenderResult {
   std::vector<CoverageClass> coverage_class;
   // Spec profile only: per-sample interval of allowed stored depth (empty without depth).
   std::vector<DepthInterval> depth_interval;
+  // Spec profile only: sorted by sample, then owner; empty where no sample has one.
+  std::vector<OwnerAlternative> owner_alternatives;
 
   size_t index(uint32_t x, uint32_t y, uint32_t sample = 0) const { return (size_t(y) * width + x) * samples + sample; }
   bool has_depth() const { return !depth_raw.empty(); }
@@ -77,6 +88,9 @@ double depth_raw_to_value(DepthFormat, uint32_t raw);
 // formats the float bits mapped so that integer order is float order (+0 and -0 both 0) and the
 // distance counts the representable floats in between.
 int64_t depth_raw_order(DepthFormat, uint32_t raw);
+
+// Whether `owner` is one of the owner alternatives of sample `index` (binary search).
+bool is_owner_alternative(const RenderResult&, size_t index, uint32_t owner);
 
 // Whether `raw` lies in the interval (always, when it is `any`).
 bool depth_in_interval(DepthFormat, const DepthInterval&, uint32_t raw);

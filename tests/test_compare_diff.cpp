@@ -318,8 +318,54 @@ TEST(SpecProfile, DepthOutsideItsIntervalFailsInsidePasses) {
     actual.owner[actual.index(2, 2)] = kOwnerB;  // another primitive won, its depth inside
     v = decide_verdict(diff_results(expected, actual, CompareProfile::Spec).summary, 2);
     EXPECT_EQ(v.verdict, Verdict::QualityWarning);
-    EXPECT_NE(v.message.find("does not fix which primitive wins"), std::string::npos) << v.message;
+    EXPECT_NE(v.message.find("only arithmetic precision decides which primitive wins"), std::string::npos)
+        << v.message;
+    EXPECT_NE(v.message.find("leaves to quality"), std::string::npos) << v.message;
   }
+}
+
+// RenderResult::owner_alternatives (docs/spec-profile.md "Owners"): a Must sample owned by a
+// primitive that a device computing exactly leaves there is an allowed owner and the scene passes;
+// any other owner stays a wrong owner (QualityWarning), a listed owner does not excuse a missing
+// sample, and the alternatives of one sample say nothing of its neighbours.
+TEST(SpecProfile, OwnerAlternativesAllowThatOwnerOnlyThere) {
+  RenderResult expected = with_classes(half_covered(10, 4, 1, DepthFormat::None));
+  const size_t listed = expected.index(2, 1);
+  expected.owner_alternatives = {{uint64_t(listed), kOwnerB}};
+  RenderResult actual = expected;
+  actual.owner[listed] = kOwnerB;
+  SceneDiff d = diff_results(expected, actual, CompareProfile::Spec);
+  EXPECT_EQ(d.summary.allowed_owner, 1u);
+  EXPECT_EQ(d.summary.wrong_owner, 0u);
+  EXPECT_EQ(d.summary.coverage_mismatches(), 0u);
+  EXPECT_EQ(d.sample_class[listed], SampleClass::AllowedOwner);
+  EXPECT_TRUE(d.summary.first_bad.empty());
+  VerdictDecision v = decide_verdict(d.summary, 2);
+  EXPECT_EQ(v.verdict, Verdict::Pass) << v.message;
+  EXPECT_NE(v.message.find("1 allowed owner"), std::string::npos) << v.message;
+  EXPECT_EQ(describe_sample(expected, actual, CompareProfile::Spec, 2, 1, 0).rfind("allowed owner", 0), 0u);
+  // Another owner there, or the listed owner one pixel over: wrong owners.
+  actual.owner[listed] = kOwnerA + 7;
+  d = diff_results(expected, actual, CompareProfile::Spec);
+  EXPECT_EQ(d.summary.wrong_owner, 1u);
+  EXPECT_EQ(decide_verdict(d.summary, 2).verdict, Verdict::QualityWarning);
+  actual.owner[listed] = kOwnerA;
+  actual.owner[expected.index(3, 1)] = kOwnerB;
+  d = diff_results(expected, actual, CompareProfile::Spec);
+  EXPECT_EQ(d.summary.wrong_owner, 1u);
+  EXPECT_EQ(d.summary.allowed_owner, 0u);
+  // Covered by neither: missing, whatever the alternatives.
+  actual.owner[expected.index(3, 1)] = kOwnerA;
+  actual.owner[listed] = kOwnerBackground;
+  d = diff_results(expected, actual, CompareProfile::Spec);
+  EXPECT_EQ(d.summary.missing, 1u);
+  EXPECT_EQ(decide_verdict(d.summary, 2).verdict, Verdict::Fail);
+  // The lavapipe profile is bit-exact: the alternatives do not count there.
+  actual.owner[listed] = kOwnerB;
+  EXPECT_EQ(diff_results(expected, actual, CompareProfile::Lavapipe).summary.wrong_owner, 1u);
+  // Alternatives past the render's samples are a malformed render.
+  expected.owner_alternatives = {{uint64_t(expected.owner.size()), kOwnerB}};
+  EXPECT_THROW(diff_results(expected, actual, CompareProfile::Spec), std::invalid_argument);
 }
 
 TEST(SpecProfile, ToleranceGrowsWithTheUnormBiasConstant) {

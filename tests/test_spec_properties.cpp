@@ -15,7 +15,9 @@
 #include <rapidcheck.h>
 #include <rapidcheck/gtest.h>
 
+#include "cpu_raster/spec/exact_owners.hpp"
 #include "cpu_raster/spec/line_coverage.hpp"
+#include "cpu_raster/spec/spec_primitives.hpp"
 #include "cpu_raster/spec/spec_profile.hpp"
 #include "cpu_raster/spec/triangle_coverage.hpp"
 #include "model/camera.hpp"
@@ -175,6 +177,40 @@ RC_GTEST_PROP(SpecProfileProperty, LavapipeNeverViolatesScenes, ()) {
     for (int d = 0; d < draws; ++d)
       scene.draws.push_back(random_draw(scene, topologies[size_t(pick(0, 4))], pick(1, 6)));
     check_lavapipe_is_accepted(scene, 8);
+  }
+}
+
+// The devices exact_owners.hpp simulates are conformant rasterizations too, computed independently
+// of the classification (exact edge functions on their own snapped vertices, a tie rule, the depth
+// test in draw order): each must cover every Must sample and no MustNot sample, and where it leaves
+// another owner than the estimate at a Must sample, that owner is among the sample's alternatives.
+RC_GTEST_PROP(SpecProfileProperty, ExactDevicesNeverViolateAndTheirOwnersAreListed, ()) {
+  const std::vector<Topology> topologies = {Topology::TriangleList, Topology::TriangleStrip, Topology::TriangleFan};
+  for (int k = 0; k < kScenesPerCase; ++k) {
+    Scene scene = random_frame();
+    const int draws = pick(1, 4);
+    for (int d = 0; d < draws; ++d)
+      scene.draws.push_back(random_draw(scene, topologies[size_t(pick(0, 2))], pick(1, 4)));
+    const uint32_t bits = coin(80) ? 8 : uint32_t(pick(4, 8));
+    const RenderResult spec = render_spec_profile(scene, spec_options(bits), render_cpu(scene, lavapipe_options()));
+    const cpu::spec::SpecPrimitives primitives = cpu::spec::build_spec_primitives(scene, true, bits);
+    if (primitives.undefined) continue;
+    RC_CLASSIFY(!spec.owner_alternatives.empty(), "some alternatives");
+    for (const cpu::spec::ExactDevice& device : cpu::spec::exact_devices(scene)) {
+      const std::vector<uint32_t> owners = cpu::spec::exact_device_owners(scene, primitives.triangles, bits, device);
+      for (size_t i = 0; i < owners.size(); ++i) {
+        const CoverageClass c = spec.coverage_class[i];
+        const bool covered = owners[i] != kOwnerBackground;
+        if ((c == CoverageClass::Must && !covered) || (c == CoverageClass::MustNot && covered)) {
+          RC_LOG() << "sample " << i << " class " << int(c) << " owner " << owners[i] << " device snap "
+                   << int(device.snap) << " tie " << int(device.tie) << "\n"
+                   << describe(scene);
+          RC_FAIL("an exact device breaks the classes");
+        }
+        // (Small scenes of triangles only: never over kExactOwnerWorkLimit.)
+        if (c == CoverageClass::Must && owners[i] != spec.owner[i]) RC_ASSERT(is_owner_alternative(spec, i, owners[i]));
+      }
+    }
   }
 }
 

@@ -6,6 +6,7 @@
 
 #include "cpu_raster/spec/coverage_map.hpp"
 #include "cpu_raster/spec/depth_intervals.hpp"
+#include "cpu_raster/spec/exact_owners.hpp"
 #include "cpu_raster/spec/shared_edges.hpp"
 #include "cpu_raster/spec/spec_primitives.hpp"
 #include "model/errors.hpp"
@@ -42,8 +43,13 @@ void add_depth(DepthIntervalMap* depths, const DepthJudge& judge, int32_t px, in
               coverage == Coverage::Full && gate == Gate::Certain);
 }
 
+// Per pixel, how many triangles may cover it (saturating): where two or more may, the owner is
+// contested (exact_owners.hpp).
+using TouchCounts = std::vector<uint8_t>;
+
 // Row by row: whole FULL spans at once, classify_box only near the edges.
-void add_triangle(CoverageMap& map, DepthIntervalMap* depths, const SpecTriangle& t, uint32_t bits, bool multisample) {
+void add_triangle(CoverageMap& map, DepthIntervalMap* depths, TouchCounts* touches, const SpecTriangle& t,
+                  uint32_t bits, bool multisample, uint32_t width) {
   const cpu::PixelRect r = triangle_pixels(t.snapped, bits, multisample, map.region());
   for (int32_t py = r.y0; py <= r.y1; ++py) {
     const RowSpans spans = row_spans(t.snapped, py, bits, multisample);
@@ -57,6 +63,10 @@ void add_triangle(CoverageMap& map, DepthIntervalMap* depths, const SpecTriangle
       const Gate gate = triangle_gate_at(t, px, py);
       map.add(px, py, coverage, gate);
       add_depth(depths, t.depth, px, py, coverage, gate);
+      if (touches != nullptr) {
+        uint8_t& n = (*touches)[size_t(py) * width + size_t(px)];
+        if (n < 2) ++n;
+      }
     }
   }
 }
@@ -121,22 +131,45 @@ void check_spec_profile_support(const Scene& scene) {
 
 namespace {
 
-// Classes, and with `depths` the depth intervals, of the union of all draws.
-std::vector<CoverageClass> classify(const Scene& scene, const CpuOptions& options, DepthIntervalMap* depths) {
+// What the owner alternatives need from the classification.
+struct Contest {
+  TouchCounts touches;
+  SpecPrimitives primitives;
+  bool simulated = false;  // triangles only, none undefined: exact_owners.hpp can simulate them
+};
+
+// Classes, and with `depths` the depth intervals, of the union of all draws; with `contest`, what
+// exact_owner_alternatives needs.
+std::vector<CoverageClass> classify(const Scene& scene, const CpuOptions& options, DepthIntervalMap* depths,
+                                    Contest* contest = nullptr) {
   check_spec_profile_support(scene);
   const uint32_t bits = effective_sub_pixel_bits(options.sub_pixel_bits);
   const bool multisample = scene.samples > 1;
   CoverageMap map(scene);
   if (map.region().empty()) return map.classes();
-  const SpecPrimitives primitives = build_spec_primitives(scene, options.fma, bits);
+  SpecPrimitives primitives = build_spec_primitives(scene, options.fma, bits);
   if (primitives.undefined) {
     map.make_may_everywhere();
     if (depths != nullptr) depths->make_any(map.region());
   }
-  for (const SpecTriangle& t : primitives.triangles) add_triangle(map, depths, t, bits, multisample);
+  TouchCounts* touches = nullptr;
+  if (contest != nullptr && !primitives.undefined && primitives.lines.empty()) {
+    contest->touches.assign(size_t(scene.width) * scene.height, 0);
+    touches = &contest->touches;
+  }
+  for (const SpecTriangle& t : primitives.triangles)
+    add_triangle(map, depths, touches, t, bits, multisample, scene.width);
   for (const SharedEdge& shared : find_shared_edges(primitives.triangles))
     add_shared_edge(map, primitives.triangles, shared, bits, multisample);
   for (const SpecLine& line : primitives.lines) add_line(map, depths, line, bits, multisample);
+  if (touches != nullptr) {
+    // Only Must pixels: a May sample takes any owner anyway.
+    for (size_t i = 0; i < contest->touches.size(); ++i)
+      if (contest->touches[i] >= 2 && !map.is_must(int32_t(i % scene.width), int32_t(i / scene.width)))
+        contest->touches[i] = 0;
+    contest->primitives = std::move(primitives);
+    contest->simulated = true;
+  }
   return map.classes();
 }
 
@@ -151,8 +184,17 @@ RenderResult render_spec_profile(const Scene& scene, const CpuOptions& options, 
   RenderResult result = std::move(estimate);
   result.device = "cpu spec profile (subPixelPrecisionBits " + std::to_string(options.sub_pixel_bits) + ")";
   DepthIntervalMap depths(scene);
-  result.coverage_class = classify(scene, options, &depths);
+  Contest contest;
+  result.coverage_class = classify(scene, options, &depths, &contest);
   result.depth_interval = depths.intervals();
+  if (contest.simulated) {
+    std::vector<uint32_t> contested;
+    for (size_t i = 0; i < contest.touches.size(); ++i)
+      if (contest.touches[i] >= 2) contested.push_back(uint32_t(i));
+    result.owner_alternatives =
+        exact_owner_alternatives(scene, contest.primitives.triangles, effective_sub_pixel_bits(options.sub_pixel_bits),
+                                 contested, result.owner);
+  }
   return result;
 }
 
