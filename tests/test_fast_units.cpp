@@ -24,11 +24,32 @@
 #include "cpu_raster/fast/small_window.hpp"
 #include "cpu_raster/fast/tile_depth_bounds.hpp"
 #include "cpu_raster/fast/tile_edges.hpp"
+#include "cpu_raster/fast/tile_raster.hpp"
 #include "cpu_raster/fast/worker_pool.hpp"
 #include "tests/test_fast_support.hpp"
 
 namespace rastercmp::cpu::fast {
 namespace {
+
+// The clears' fill writes exactly [p, p + count): every length class (tail words, 8-word and
+// 32-word steps, the streaming stores from 64 Ki words with their alignment prologue) at every
+// word alignment, and nothing before or after.
+TEST(FastClear, FillWritesExactlyTheRun) {
+  if (!host_has_avx2_fma()) GTEST_SKIP() << "host without AVX2/FMA: clears use std::fill_n";
+  constexpr uint32_t kSentinel = 0xA5A5A5A5u, kValue = 0x3F800000u;
+  const size_t counts[] = {0, 1, 7, 8, 9, 31, 32, 33, 65535, 65536, 65537, 65536 + 37};
+  std::vector<uint32_t> buffer(65536 + 64 + 16);
+  for (size_t count : counts) {
+    for (size_t offset = 0; offset < 8; ++offset) {
+      std::fill(buffer.begin(), buffer.end(), kSentinel);
+      fill_words_avx2(buffer.data() + offset, count, kValue);
+      for (size_t i = 0; i < buffer.size(); ++i) {
+        const bool inside = i >= offset && i < offset + count;
+        ASSERT_EQ(buffer[i], inside ? kValue : kSentinel) << "count " << count << " offset " << offset << " word " << i;
+      }
+    }
+  }
+}
 
 std::vector<glm::vec4> awkward_positions() {
   fast_test::Random r(7);

@@ -126,12 +126,25 @@ void clear_tile(int32_t tile_x, int32_t tile_y, const FrameRaster& frame) {
   clear_rect(tile_rect(tile_x, tile_y, frame.target), frame);
 }
 
+namespace {
+void fill_words(uint32_t* p, size_t count, uint32_t value, bool avx2) {
+  if (avx2)
+    fill_words_avx2(p, count, value);
+  else
+    std::fill_n(p, count, value);
+}
+}  // namespace
+
+// Rows that span the whole width are one contiguous run of pixels, filled at once.
 void clear_rect(const PixelRect& r, const FrameRaster& frame) {
-  const size_t width = size_t(frame.target.width), count = size_t(r.x1 - r.x0 + 1);
-  for (int32_t y = r.y0; y <= r.y1; ++y) {
+  const size_t width = size_t(frame.target.width);
+  const bool whole_rows = r.x0 == 0 && size_t(r.x1) + 1 == width;
+  const size_t count = whole_rows ? width * size_t(r.y1 - r.y0 + 1) : size_t(r.x1 - r.x0 + 1);
+  const int32_t y_end = whole_rows ? r.y0 : r.y1;
+  for (int32_t y = r.y0; y <= y_end; ++y) {
     const size_t row = size_t(y) * width + size_t(r.x0);
-    std::fill_n(frame.target.owner + row, count, kOwnerBackground);
-    if (frame.target.depth) std::fill_n(frame.target.depth + row, count, frame.depth_clear_raw);
+    fill_words(frame.target.owner + row, count, kOwnerBackground, frame.avx2);
+    if (frame.target.depth) fill_words(frame.target.depth + row, count, frame.depth_clear_raw, frame.avx2);
   }
 }
 

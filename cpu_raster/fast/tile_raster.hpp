@@ -74,6 +74,10 @@ void clear_tile(int32_t tile_x, int32_t tile_y, const FrameRaster& frame);
 // The same for every pixel of r (whole tiles): one fill per attachment and pixel row.
 void clear_rect(const PixelRect& r, const FrameRaster& frame);
 
+// p[0, count) = value, with 32-byte stores, streaming ones for long runs (tile_kernel_avx2.cpp).
+// Call only when host_has_avx2_fma().
+void fill_words_avx2(uint32_t* p, size_t count, uint32_t value);
+
 // The scalar kernel: the exact path's per-pixel functions; returns whether any pixel was written.
 bool raster_scalar(const FastTriangle& t, const PixelRect& r, const DepthTestState& depth, const TileTarget& target);
 
