@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bench/bench_scenes.hpp"
@@ -161,6 +162,56 @@ TEST(FastTinyMeshes, PackedGridLayoutMatchesExactPath) {
 TEST(FastWindowMeshes, WindowCompositorMatchesExactPath) {
   for (uint64_t seed = 1; seed <= 32 / kMeshSeedDivisor; ++seed)
     expect_fast_matches(jittered_mesh(seed, 2.0, 4.0), seed % 2 == 0, {1u, 2u, 3u});
+}
+
+// Issue #23: the workers share the tile rows out by estimated work (row_balance.hpp), not as
+// r % workers. A 200x320 frame (five tile rows): a quad over the left part of every row (the
+// right tiles of rows 0, 1, 3 and 4 are cleared untouched), then a jittered mesh of 2-4 pixel cells
+// crowded into tile row 2 (nearly every block's work there), then big and thin triangles across
+// rows 1-3 and 0-4 with another compare op. At 2, 3 and 4 workers the crowded row gets a worker of
+// its own and the others share the rest in an order r % workers would not give (2 workers: rows
+// 0, 1, 3, 4 on one). A worker that picks its blocks by the interleaved rule (owns_tile_rows)
+// leaves blocks of its rows out: wrong bytes at 3 and 4 workers.
+Scene crowded_row_scene(uint64_t seed) {
+  fast_test::Random r(seed);
+  Scene scene;
+  scene.name = "test.fast.crowded_row." + std::to_string(seed);
+  scene.width = 200;
+  scene.height = 320;  // tile row 2 (pixels 128-191) is centred: the mesh is in it either way up
+  scene.depth_format = DepthFormat(seed % 4);
+  Draw quad;
+  for (const auto& [x, y] : {std::pair{-1.0f, -1.0f}, {0.2f, -1.0f}, {-1.0f, 1.0f}, {0.2f, 1.0f}})
+    quad.positions_clip.emplace_back(x, y, 0.8f + 0.05f * x + 0.05f * y, 1.0f);
+  quad.indices = {0, 1, 3, 0, 3, 2};
+  scene.draws.push_back(quad);
+  Draw mesh;
+  const uint32_t columns = 200 / 3, rows = 48 / 3;  // pixels 136-184: ndc y in [-0.15, 0.15]
+  for (uint32_t j = 0; j <= rows; ++j)
+    for (uint32_t i = 0; i <= columns; ++i)
+      mesh.positions_clip.emplace_back(-1.0f + 2.0f * (float(i) + float(r.range(-0.3, 0.3))) / float(columns),
+                                       -0.15f + 0.3f * (float(j) + float(r.range(-0.3, 0.3))) / float(rows),
+                                       float(r.range(0.0, 1.0)), 1.0f);
+  for (uint32_t j = 0; j < rows; ++j)
+    for (uint32_t i = 0; i < columns; ++i) {
+      const uint32_t v = j * (columns + 1) + i;
+      for (uint32_t k : {v, v + 1, v + columns + 2, v, v + columns + 2, v + columns + 1}) mesh.indices.push_back(k);
+    }
+  mesh.state.depth.compare_op = CompareOp((seed / 4) % 8);
+  mesh.state.depth.write_enable = seed % 3 != 0;
+  scene.draws.push_back(std::move(mesh));
+  Draw across;  // rows 1-3 (a thin sliver and a wide triangle) and 0-4
+  across.positions_clip = {
+      {-0.9f, -0.55f, 0.3f, 1.0f}, {-0.85f, 0.55f, 0.5f, 1.0f}, {-0.8f, -0.5f, 0.4f, 1.0f},  // thin, rows 1-3
+      {-0.2f, -0.5f, 0.6f, 1.0f},  {0.9f, 0.1f, 0.2f, 1.0f},    {0.1f, 0.55f, 0.7f, 1.0f},   // wide, rows 1-3
+      {0.3f, -0.98f, 0.1f, 1.0f},  {0.95f, 0.98f, 0.9f, 1.0f},  {0.5f, 0.9f, 0.5f, 1.0f}};   // rows 0-4
+  across.state.depth.compare_op = CompareOp((seed / 4 + 3) % 8);
+  scene.draws.push_back(std::move(across));
+  return scene;
+}
+
+TEST(FastRowBalance, WorkCrowdedIntoOneTileRowMatchesExactPath) {
+  for (uint64_t seed = 1; seed <= 8; ++seed)
+    expect_fast_matches(crowded_row_scene(seed), seed % 2 == 0, {1u, 2u, 3u, 4u});
 }
 
 // Triangles whose leftmost and topmost corners lie on a pixel's sample or 1/256 px beside it, with a

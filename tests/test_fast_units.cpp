@@ -7,6 +7,7 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <vector>
 
 #include "bench/bench_stats.hpp"
@@ -20,6 +21,7 @@
 #include "cpu_raster/fast/cpu_features.hpp"
 #include "cpu_raster/fast/exact_rows.hpp"
 #include "cpu_raster/fast/fast_vertices.hpp"
+#include "cpu_raster/fast/row_balance.hpp"
 #include "cpu_raster/fast/small_triangles.hpp"
 #include "cpu_raster/fast/small_window.hpp"
 #include "cpu_raster/fast/tile_depth_bounds.hpp"
@@ -380,6 +382,52 @@ TEST(FastBlockRows, SpanAnswersAsBlockByBlock) {
 }
 
 // G > 0 exactly where the exact 64-bit edge value E > 0, over random rectangles of a tile.
+// The tile rows' assignment (issue #23): every row to exactly one of the workers, the same
+// answer every time, and on a skewed estimate (perspective's: one row 40% of the work) a split
+// close to the best whole rows allow, where r % 2 gives 61/39.
+std::vector<uint64_t> worker_loads(const std::vector<uint64_t>& weights, const std::vector<uint32_t>& owner,
+                                   uint32_t workers) {
+  std::vector<uint64_t> load(workers, 0);
+  for (size_t r = 0; r < weights.size(); ++r) load[owner[r]] += weights[r];
+  return load;
+}
+
+TEST(FastRowBalance, EveryRowOwnedOnceDeterministicAndBalanced) {
+  const std::vector<uint64_t> skewed = {1, 1, 1, 1, 1, 1, 40, 880, 460, 170, 140, 120, 100, 100, 100, 100};
+  const uint64_t total = std::accumulate(skewed.begin(), skewed.end(), uint64_t{0});
+  fast_test::Random random(23);
+  std::vector<uint64_t> noisy(37);
+  for (uint64_t& w : noisy) w = random.below(1000) + (random.chance(0.1) ? 20000 : 0);
+  for (const std::vector<uint64_t>& weights : {skewed, noisy, std::vector<uint64_t>(16, 5), std::vector<uint64_t>{}}) {
+    const uint64_t sum = std::accumulate(weights.begin(), weights.end(), uint64_t{0});
+    const uint64_t heaviest = weights.empty() ? 0 : *std::max_element(weights.begin(), weights.end());
+    for (uint32_t workers = 1; workers <= 20; ++workers) {
+      SCOPED_TRACE("rows " + std::to_string(weights.size()) + " workers " + std::to_string(workers));
+      const std::vector<uint32_t> owner = balance_rows(weights, workers);
+      ASSERT_EQ(owner.size(), weights.size());
+      EXPECT_EQ(owner, balance_rows(weights, workers));
+      for (const uint32_t w : owner) EXPECT_LT(w, workers);
+      const std::vector<uint64_t> load = worker_loads(weights, owner, workers);
+      // greedy list scheduling: no worker ends above the mean by more than one row's weight
+      EXPECT_LE(*std::max_element(load.begin(), load.end()), sum / workers + heaviest);
+      if (workers <= weights.size() && heaviest > 0) {  // every worker gets a row
+        for (const uint64_t l : load) EXPECT_GT(l, 0u);
+      }
+    }
+  }
+  const std::vector<uint64_t> two = worker_loads(skewed, balance_rows(skewed, 2), 2);
+  EXPECT_LE(std::max(two[0], two[1]) * 1000, total * 510);  // 50.5% here; r % 2 gives 61%
+  const std::vector<uint64_t> four = worker_loads(skewed, balance_rows(skewed, 4), 4);
+  EXPECT_EQ(*std::max_element(four.begin(), four.end()), 880u);  // the heavy row alone bounds it
+  const std::vector<uint32_t> even = balance_rows(std::vector<uint64_t>(16, 5), 3);
+  const std::vector<uint64_t> counts = worker_loads(std::vector<uint64_t>(16, 1), even, 3);
+  EXPECT_EQ(*std::max_element(counts.begin(), counts.end()) - *std::min_element(counts.begin(), counts.end()), 1u);
+  // the estimate: a row no block reaches costs its clear; a reached row its fill, more per block
+  EXPECT_LT(tile_row_weight(0, 16), tile_row_weight(1, 16));
+  EXPECT_LT(tile_row_weight(1, 16), tile_row_weight(2, 16));
+  EXPECT_LT(tile_row_weight(3, 8), tile_row_weight(3, 16));
+}
+
 TEST(FastTileEdges, GFormAgreesWithExactEdgeValues) {
   fast_test::Random r(11);
   for (int trial = 0; trial < 400; ++trial) {

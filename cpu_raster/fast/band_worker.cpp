@@ -57,8 +57,14 @@ FastTriangle from_raster_primitive(const RasterPrimitive& p, const PixelRect& re
 
 BandWorker::BandWorker(FastFrame& frame, uint32_t index) : frame_(frame), index_(index), workers_(frame.workers) {
   batch_.reserve(kBatchSize);
-  owned_rows_.resize(size_t(std::max(frame.raster.tiles_y, 0)));
-  for (size_t r = 0; r < owned_rows_.size(); ++r) owned_rows_[r] = r % workers_ == index_;
+  const size_t rows = size_t(std::max(frame.raster.tiles_y, 0));
+  owned_rows_.resize(rows);
+  owned_before_.assign(rows + 1, 0);
+  const bool balanced = frame.row_worker.size() == rows;
+  for (size_t r = 0; r < rows; ++r) {
+    owned_rows_[r] = (balanced ? frame.row_worker[r] : r % workers_) == index_;
+    owned_before_[r + 1] = owned_before_[r] + owned_rows_[r];
+  }
 }
 
 void BandWorker::run() {
@@ -69,7 +75,8 @@ void BandWorker::run() {
       walk_exact(d);
     flush(frame_.draws[d].raster);
   }
-  for (int32_t ty = int32_t(index_); ty < frame_.raster.tiles_y; ty += int32_t(workers_)) clear_untouched(ty);
+  for (int32_t ty = 0; ty < frame_.raster.tiles_y; ++ty)
+    if (owns_tile_row(ty)) clear_untouched(ty);
 }
 
 // The tiles of a tile row no primitive reached, cleared a run of neighbours at a time: one fill per
@@ -89,11 +96,12 @@ void BandWorker::clear_untouched(int32_t ty) {
 
 bool BandWorker::owns_rows(int32_t y0, int32_t y1) const { return owns_tile_rows(y0 >> kTileOrder, y1 >> kTileOrder); }
 
+// Any assignment of rows (not only r % workers, where any workers_ consecutive rows hold one of
+// each worker's): the count of owned rows below t1 + 1 and below t0.
 bool BandWorker::owns_tile_rows(int32_t t0, int32_t t1) const {
-  if (uint32_t(t1 - t0 + 1) >= workers_) return true;
-  for (int32_t t = t0; t <= t1; ++t)
-    if (owns_tile_row(t)) return true;
-  return false;
+  t0 = std::max(t0, 0);
+  t1 = std::min(t1, int32_t(owned_rows_.size()) - 1);
+  return t0 <= t1 && owned_before_[size_t(t1) + 1] != owned_before_[size_t(t0)];
 }
 
 void BandWorker::walk_fast(uint32_t d) {

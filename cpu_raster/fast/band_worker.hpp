@@ -1,5 +1,5 @@
 // One worker of a fast render: it walks every draw in submission order and rasterizes into the
-// tile rows it owns (row r belongs to worker r % workers), so each pixel sees its primitives in
+// tile rows it owns (frame.row_worker, or r % workers), so each pixel sees its primitives in
 // order, whatever the number of threads (docs/lavapipe-rules.md §2.7: deterministic by construction).
 // Per primitive: assemble → clip-mask test (clipped triangles go through the exact path's clipper
 // and set-up) → rows test → fixed-point area, cull, swap → depth plane → tiles. Triangles that
@@ -64,6 +64,7 @@ class BandWorker {
   std::vector<FastTriangle> batch_;
   std::vector<TileTriangle> prepared_;  // flush: the batch's triangles in the current tile
   std::vector<uint8_t> owned_rows_;     // per tile row: 1 when this worker draws it
+  std::vector<uint32_t> owned_before_;  // per tile row r: how many rows below r this worker owns (r <= tiles_y)
   SmallBlock block_, next_block_;       // the small-triangle blocks being set up and drawn
 };
 

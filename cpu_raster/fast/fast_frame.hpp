@@ -47,6 +47,9 @@ struct FastFrame {
   std::vector<TileState> tiles;
   std::vector<FastDraw> draws;
   uint32_t workers = 1;
+  // Per tile row, the worker that draws it (row_balance.hpp); empty: row r belongs to worker
+  // r % workers.
+  std::vector<uint32_t> row_worker;
 };
 
 }  // namespace rastercmp::cpu::fast

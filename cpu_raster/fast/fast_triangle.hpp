@@ -20,7 +20,7 @@ struct FastTriangle {
   uint32_t owner = 0;
 };
 
-// Tiles are 64x64 pixels (llvmpipe's TILE_SIZE); tile row r belongs to worker r % workers.
+// Tiles are 64x64 pixels (llvmpipe's TILE_SIZE); each tile row belongs to one worker (FastFrame::row_worker).
 inline constexpr int32_t kTileOrder = 6;
 inline constexpr int32_t kTileSize = 1 << kTileOrder;
 

@@ -2,7 +2,8 @@
 //  1. frame: the exact path's frame context, the result buffers (not cleared: tiles are cleared
 //     by their workers), per-draw raster state and tiles;
 //  2. vertices: per fast draw, every position transformed and snapped once (in parallel);
-//  3. block rows (several workers): the tile rows each block of 8 small triangles may reach;
+//  3. block rows (several workers): the tile rows each block of 8 small triangles may reach, and
+//     from them which worker draws each tile row (row_balance.hpp);
 //  4. bands: one BandWorker per thread walks all draws and rasterizes its own tile rows.
 #include "cpu_raster/fast/render_fast.hpp"
 
@@ -19,8 +20,10 @@
 #include "cpu_raster/exact/render_exact.hpp"
 #include "cpu_raster/exact/setup_methods.hpp"
 #include "cpu_raster/fast/band_worker.hpp"
+#include "cpu_raster/fast/block_rows.hpp"
 #include "cpu_raster/fast/cpu_features.hpp"
 #include "cpu_raster/fast/frame_memory.hpp"
+#include "cpu_raster/fast/row_balance.hpp"
 #include "cpu_raster/fast/worker_pool.hpp"
 #include "model/depth_format.hpp"
 #include "model/render_result.hpp"
@@ -195,6 +198,43 @@ void check_index_ranges(const FastFrame& frame) {
   }
 }
 
+// Adds +1 at the first and -1 past the last tile row of each of n blocks to diff[0, tiles_y];
+// kBlockAnyRow (every worker sets such a block up) and kNoRow count nowhere. A mesh's neighbouring
+// blocks mostly reach the same rows: counted a run of equal values at a time.
+void count_block_rows(const uint32_t* block_rows, uint32_t n, size_t tiles_y, int32_t* diff) {
+  uint32_t b = 0;
+  while (b < n) {
+    const uint32_t packed = block_rows[b];
+    const uint32_t first = b;
+    while (++b < n && block_rows[b] == packed) {
+    }
+    const uint32_t lo = packed & 0xFFFFu, hi = packed >> 16;
+    if (packed == kBlockAnyRow || lo > hi || hi >= tiles_y) continue;
+    diff[lo] += int32_t(b - first);
+    diff[hi + 1] -= int32_t(b - first);
+  }
+}
+
+// Which worker draws each tile row (issue #23), from the blocks that reach each row (`reach`:
+// `tasks` arrays of tiles_y + 1 differences) and the row's width (tile_row_weight), whole rows
+// shared out by balance_rows. No block reaching any row: r % workers, as before.
+void balance_tile_rows(FastFrame& frame, const std::vector<int32_t>& reach, size_t tasks) {
+  const size_t tiles_y = size_t(std::max(frame.raster.tiles_y, 0));
+  std::vector<uint64_t> weights(tiles_y, 0);
+  uint64_t blocks = 0;
+  for (size_t t = 0; t < tasks; ++t) {
+    int64_t running = 0;
+    for (size_t r = 0; r < tiles_y; ++r) {
+      running += reach[t * (tiles_y + 1) + r];
+      weights[r] += uint64_t(running);
+      blocks += uint64_t(running);
+    }
+  }
+  if (blocks == 0) return;
+  for (uint64_t& w : weights) w = tile_row_weight(w, uint32_t(std::max(frame.raster.tiles_x, 0)));
+  frame.row_worker = balance_rows(weights, frame.workers);
+}
+
 // Phase 3 (several workers): which tile rows each block of small triangles may reach, measured
 // once, so that a worker sets up only the blocks it may draw into. Each block's indices are
 // checked before they are read through; a bad one: the full profile check, which throws.
@@ -213,13 +253,22 @@ void measure_all_block_rows(FastFrame& frame) {
     rows += count;
     for (uint32_t b = 0; b < count; b += kRowTaskBlocks) tasks.push_back({d, b, std::min(count, b + kRowTaskBlocks)});
   }
+  // Per task, the blocks that reach each tile row, as differences (+1 at a block's first row, -1
+  // past its last): the rows' work estimate (balance_tile_rows).
+  const size_t tiles_y = size_t(std::max(frame.raster.tiles_y, 0));
+  std::vector<int32_t> reach(tasks.size() * (tiles_y + 1), 0);
   std::atomic<size_t> next{0};
   std::atomic<bool> bad_index{false};
   worker_pool(frame.workers).run([&](uint32_t) {
-    for (size_t i = next++; i < tasks.size(); i = next++)
-      if (!measure_block_rows(frame, tasks[i].draw, tasks[i].begin, tasks[i].end)) bad_index = true;
+    for (size_t i = next++; i < tasks.size(); i = next++) {
+      const RowTask& task = tasks[i];
+      if (!measure_block_rows(frame, task.draw, task.begin, task.end)) bad_index = true;
+      count_block_rows(frame.draws[task.draw].block_rows + task.begin, task.end - task.begin, tiles_y,
+                       reach.data() + i * (tiles_y + 1));
+    }
   });
   if (bad_index) check_lavapipe_profile_support(*frame.scene);
+  balance_tile_rows(frame, reach, tasks.size());
 }
 
 // Phase 4: every worker walks every draw into its own tile rows.
