@@ -11,9 +11,9 @@ namespace rastercmp::cpu::fast {
 // The estimate of a tile row's work, in units of about 1,500 instructions (callgrind, Zen 5,
 // AVX-512 kernels; perspective at 1024x1024, session 12): each block of eight small triangles that
 // reaches the row costs about 8 (its set-up and drawing there: 12,000 instructions); each tile of
-// the row about 0.5 for its clear, and about 5 more where any block reaches the row (a reached row
-// is mostly a covered row: perspective's near tile rows hold 1-6 blocks of big triangles each and
-// cost about 1M instructions, 80 blocks' worth, to fill).
+// the row about 4 (half a block) for its clear, and about 40 (five blocks) more where any block
+// reaches the row (a reached row is mostly a covered row: perspective's near tile rows hold 1-6
+// blocks of big triangles each and cost about 1M instructions, 80 blocks' worth, to fill).
 inline constexpr uint64_t kRowWeightPerBlock = 8;
 inline constexpr uint64_t kRowWeightPerClearedTile = 4;
 inline constexpr uint64_t kRowWeightPerFilledTile = 40;
