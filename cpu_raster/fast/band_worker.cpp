@@ -381,7 +381,7 @@ void BandWorker::raster_exact_in_band(const RasterPrimitive& primitive, const De
     if (band.binned)  // llvmpipe's wrapping set-up: coverage from its bins, not a plane test
       rasterize_binned_rows(band, depth, frame_.targets);
     else
-      rasterize_primitive_rows(band, depth, frame_.targets);
+      rasterize_primitive_rows(band, depth, frame_.targets, frame_.raster.avx2);
   }
 }
 

@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "cpu_raster/fast/binned_tiles.hpp"
+#include "cpu_raster/fast/tile_kernel.hpp"
 
 namespace rastercmp::cpu::fast {
 namespace {
@@ -32,6 +33,15 @@ bool plane_columns(const EdgePlane& plane, int64_t sample_x, int64_t y_fixed, in
 
 namespace {
 
+// The owner writes of a covered (column, sample) that passed (rasterize_primitive's loop body).
+void write_owner(const RasterPrimitive& p, RenderTargets& targets, int32_t px, int32_t py, size_t i) {
+  if (p.per_sample) {
+    targets.owner[i] = p.owner;
+  } else {
+    for (uint32_t t = 0; t < targets.samples; ++t) targets.owner[targets.index(px, py, t)] = p.owner;
+  }
+}
+
 // The writes of one covered (column, sample) of a primitive (rasterize_primitive's loop body): with
 // an active depth test only evaluate_sample's depth work is left to do.
 void write_covered_sample(const RasterPrimitive& p, const DepthTestState& depth, RenderTargets& targets, int32_t px,
@@ -48,10 +58,30 @@ void write_covered_sample(const RasterPrimitive& p, const DepthTestState& depth,
     if (!verdict.passes()) return;
     if (depth.write) targets.depth_raw[i] = verdict.depth.raw;
   }
-  if (p.per_sample) {
-    targets.owner[i] = p.owner;
-  } else {
-    for (uint32_t t = 0; t < targets.samples; ++t) targets.owner[targets.index(px, py, t)] = p.owner;
+  write_owner(p, targets, px, py, i);
+}
+
+// Columns [x0, x1] of one sample row, all covered, with an active depth test (the branch of
+// write_covered_sample that computes only the depth): the raw depths eight columns at a time
+// (sample_depths_avx2, the same operations as sample_point and sample_depth), then the test and
+// the writes column by column as write_covered_sample does them.
+void write_covered_row_avx2(const RasterPrimitive& p, const DepthTestState& depth, RenderTargets& targets, int32_t py,
+                            uint32_t s, const SamplePoint& origin, int32_t x0, int32_t x1) {
+  constexpr int32_t kChunk = 64;
+  const KernelDepth kernel_depth{depth.format, depth.op,        depth.write,     depth.range.clamp,
+                                 depth.range.zmin, depth.range.zmax, depth.fma};
+  const SampleRowDepth row{p.depth.a0, p.depth.dzdx, p.depth.dzdy, p.offset.offset, origin.x, origin.y};
+  alignas(32) uint32_t raw[kChunk];
+  for (int32_t cx = x0; cx <= x1; cx += kChunk) {
+    const int32_t count = std::min(kChunk, x1 - cx + 1);
+    sample_depths_avx2(row, kernel_depth, cx, count, raw);
+    for (int32_t k = 0; k < count; ++k) {
+      const int32_t px = cx + k;
+      const size_t i = targets.index(px, py, s);
+      if (!depth_test_passes(depth.op, depth.format, raw[k], targets.depth_raw[i])) continue;
+      if (depth.write) targets.depth_raw[i] = raw[k];
+      write_owner(p, targets, px, py, i);
+    }
   }
 }
 
@@ -60,10 +90,13 @@ void write_covered_sample(const RasterPrimitive& p, const DepthTestState& depth,
 // rasterize_primitive (rasterize.cpp) with the loops over a row's columns and its samples swapped
 // (every (column, sample) of a primitive writes its own values: the order between them does not
 // matter) and each sample's columns cut to plane_columns of every plane.
-void rasterize_primitive_rows(const RasterPrimitive& p, const DepthTestState& depth, RenderTargets& targets) {
+void rasterize_primitive_rows(const RasterPrimitive& p, const DepthTestState& depth, RenderTargets& targets,
+                              bool avx2) {
   const std::optional<EdgeFrame32> frame32 = make_edge_frame32(p.planes, p.visit);  // as WorkSkips{} does
   const EdgeFrame32* edges32 = frame32 ? &*frame32 : nullptr;
   const uint32_t tested_samples = p.per_sample ? targets.samples : 1;
+  const bool rows_avx2 = avx2 && depth.active && !depth.compute_when_inactive && depth.format != DepthFormat::None &&
+                         !targets.depth_raw.empty();
   for (int32_t py = p.visit.y0; py <= p.visit.y1; ++py) {
     for (uint32_t s = 0; s < tested_samples; ++s) {
       const SamplePoint origin = sample_point(0, py, s, p.per_sample);
@@ -72,6 +105,10 @@ void rasterize_primitive_rows(const RasterPrimitive& p, const DepthTestState& de
       for (uint32_t i = 0; i < p.planes.count && any; ++i)
         any = plane_columns(p.planes.plane[i], origin.x_fixed, origin.y_fixed, x0, x1);
       if (!any) continue;
+      if (rows_avx2) {
+        write_covered_row_avx2(p, depth, targets, py, s, origin, x0, x1);
+        continue;
+      }
       for (int32_t px = x0; px <= x1; ++px) write_covered_sample(p, depth, targets, px, py, s, edges32);
     }
   }

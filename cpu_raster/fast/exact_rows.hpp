@@ -15,8 +15,10 @@ namespace rastercmp::cpu::fast {
 // gives `plane` a value > 0; false when none is left.
 bool plane_columns(const EdgePlane& plane, int64_t sample_x, int64_t y_fixed, int32_t& x0, int32_t& x1);
 
-// Same writes as rasterize_primitive(p, depth, targets).
-void rasterize_primitive_rows(const RasterPrimitive& p, const DepthTestState& depth, RenderTargets& targets);
+// Same writes as rasterize_primitive(p, depth, targets). avx2 (host_has_avx2_fma()): with an
+// active depth test, the raw depths of each sample row eight columns at a time.
+void rasterize_primitive_rows(const RasterPrimitive& p, const DepthTestState& depth, RenderTargets& targets,
+                              bool avx2);
 
 // Same writes as rasterize_primitive(p, depth, targets) for a binned primitive (p.binned): coverage
 // a 64x64 tile at a time from its bins, binned_covers only in partial tiles.

@@ -56,6 +56,18 @@ SmallKernelFn select_small_kernel_avx2(DepthFormat format, CompareOp op);
 // rectangles wider than one span (row_columns_avx2.hpp); x0[k] > x1[k]: none. For tests.
 void covered_columns_avx2(const KernelJob& job, int32_t* x0, int32_t* x1);
 
+// One row of samples of a primitive the exact rows draw (exact_rows.cpp): its depth plane and
+// polygon offset, the sample's x offset in the pixel and its y (float(py) + the sample's y offset).
+struct SampleRowDepth {
+  float a0 = 0, dzdx = 0, dzdy = 0, offset = 0;
+  float sx = 0, y = 0;
+};
+
+// raw[k], k < count rounded up to a multiple of 8 (raw holds that many): the raw depth the exact
+// path's sample_depth gives at x = float(x0 + k) + row.sx, y = row.y, with d's format (not None),
+// clamp and fma. Call only when host_has_avx2_fma().
+void sample_depths_avx2(const SampleRowDepth& row, const KernelDepth& d, int32_t x0, int32_t count, uint32_t* raw);
+
 // The AVX2 kernel for a depth format (None: coverage only) and compare op. Call only when
 // host_has_avx2_fma().
 KernelFn select_kernel_avx2(DepthFormat format, CompareOp op);

@@ -478,4 +478,28 @@ RASTERCMP_AVX2 void fill_words_avx2(uint32_t* p, size_t count, uint32_t value) {
   for (; i < count; ++i) p[i] = value;
 }
 
+// The raw depths of a row of samples for the exact rows (exact_rows.cpp): lane k is column x0 + k,
+// x = float(x0 + k) + sx as sample_point forms it, then sample_depth's operations one intrinsic each
+// (fragment_depth, to_raw).
+template <DepthFormat F>
+RASTERCMP_AVX2 void sample_depths(const SampleRowDepth& row, const KernelDepth& d, int32_t x0, int32_t count,
+                                  uint32_t* raw) {
+  const __m256 a0 = _mm256_set1_ps(row.a0), dzdx = _mm256_set1_ps(row.dzdx), dzdy = _mm256_set1_ps(row.dzdy);
+  const __m256 offset = _mm256_set1_ps(row.offset), sx = _mm256_set1_ps(row.sx), y = _mm256_set1_ps(row.y);
+  const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+  for (int32_t k = 0; k < count; k += 8) {
+    const __m256 x = _mm256_add_ps(_mm256_cvtepi32_ps(_mm256_add_epi32(_mm256_set1_epi32(x0 + k), lane)), sx);
+    const __m256 z = finish_depth8(mul_add8(dzdy, y, mul_add8(dzdx, x, a0, d.fma), d.fma), offset, d);
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(raw + k), to_raw<F>(z));
+  }
+}
+
+RASTERCMP_AVX2 void sample_depths_avx2(const SampleRowDepth& row, const KernelDepth& d, int32_t x0, int32_t count,
+                                       uint32_t* raw) {
+  if (d.format == DepthFormat::None) return;
+  with_depth_format(d.format, [&]<DepthFormat F>() RASTERCMP_AVX2 {
+    if constexpr (F != DepthFormat::None) sample_depths<F>(row, d, x0, count, raw);
+  });
+}
+
 }  // namespace rastercmp::cpu::fast
