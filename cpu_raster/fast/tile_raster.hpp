@@ -71,7 +71,8 @@ void raster_prepared(const FastTriangle& t, const TileTriangle& prepared, int32_
 
 // Writes the clear values (kOwnerBackground, the packed depth clear) into a tile's pixels.
 void clear_tile(int32_t tile_x, int32_t tile_y, const FrameRaster& frame);
-// The same for every pixel of r (whole tiles): one fill per attachment and pixel row.
+// The same for every pixel of r (whole tiles): one fill per attachment and pixel row, or one for
+// all of r when its rows span the whole width.
 void clear_rect(const PixelRect& r, const FrameRaster& frame);
 
 // p[0, count) = value, with 32-byte stores, streaming ones for long runs (tile_kernel_avx2.cpp).
