@@ -1,7 +1,9 @@
-// rastercmp explain SCENE.json --pixel X,Y [--sample S]: the sample's history on the CPU path
-// (cpu_raster/explain.hpp, RenderDoc pixel-history style), the Vulkan value there and a one-line
-// classification. Exit 0 when the sample matches (or differs only on a spec profile May sample),
-// 1 when its owner or raw depth differs, 2 bad input, 3 no Vulkan.
+// rastercmp explain SCENE.json --pixel X,Y [--sample S] [--capture DIR]: the sample's history on
+// the CPU path (cpu_raster/explain.hpp, RenderDoc pixel-history style), the Vulkan value there (or
+// the one recorded in DIR, as compare --capture judges it) and a one-line classification; with
+// --profile spec also the sample's owner alternatives (docs/compare.md, explain). Exit 0 when the
+// sample matches (or differs only on a spec profile May sample or by an allowed owner), 1 when its
+// owner or raw depth differs, 2 bad input (an unusable capture included), 3 no Vulkan.
 #include <fmt/core.h>
 
 #include <charconv>
@@ -10,6 +12,7 @@
 
 #include "app/commands.hpp"
 #include "app/options.hpp"
+#include "compare/case_run.hpp"
 #include "compare/depth_units.hpp"
 #include "compare/diff.hpp"
 #include "compare/explain_text.hpp"
@@ -23,8 +26,37 @@ struct ExplainArgs {
   std::string scene_path;
   std::string pixel;
   uint32_t sample = 0;
+  std::string capture_dir;
   RenderOptions options;
 };
+
+// The CPU options used and both renders of the scene.
+struct Renders {
+  CpuOptions cpu;
+  RenderResult expected, actual;
+};
+
+Renders render_on_device(const Scene& scene, const RenderOptions& options) {
+  Renders r{make_cpu_options(options, &scene), {}, {}};
+  VulkanRenderer vulkan(make_vk_options(options));
+  if (vulkan.device().sub_pixel_precision_bits != 0) r.cpu.sub_pixel_bits = vulkan.device().sub_pixel_precision_bits;
+  r.expected = render_cpu(scene, r.cpu);
+  r.actual = vulkan.render(scene);
+  for (const std::string& message : vulkan.validation_messages()) fmt::print(stderr, "validation: {}\n", message);
+  return r;
+}
+
+// The render recorded in `dir`, read and checked against the scene as compare --capture does
+// (CaseRunner::run_capture: the capture's limits set the CPU options). A capture that cannot be
+// judged is bad input.
+Renders read_capture(const Scene& scene, const RenderOptions& options, CompareProfile profile, const std::string& dir) {
+  if (!options.device.empty()) throw UsageError("--capture: the device is the capture's, not --device");
+  CaseRunner runner(
+      profile, [&options](const Scene& s) { return make_cpu_options(options, &s); }, capture_device(dir));
+  CaseResult result = runner.run_capture(scene, dir);
+  if (!result.expected || !result.actual) throw UsageError(result.message);  // "capture: FILE: what is wrong"
+  return {runner.cpu_options(scene), std::move(*result.expected), std::move(*result.actual)};
+}
 
 uint32_t parse_coordinate(std::string_view text, const std::string& whole) {
   uint32_t value = 0;
@@ -52,14 +84,12 @@ int run_explain(const ExplainArgs& args) {
   check_sample_in_scene(scene, x, y, args.sample);
 
   const CompareProfile profile = args.options.profile == "spec" ? CompareProfile::Spec : CompareProfile::Lavapipe;
-  CpuOptions cpu = make_cpu_options(args.options, &scene);
-  VulkanRenderer vulkan(make_vk_options(args.options));
-  if (vulkan.device().sub_pixel_precision_bits != 0) cpu.sub_pixel_bits = vulkan.device().sub_pixel_precision_bits;
-  const RenderResult expected = render_cpu(scene, cpu);
-  const RenderResult actual = vulkan.render(scene);
-  for (const std::string& message : vulkan.validation_messages()) fmt::print(stderr, "validation: {}\n", message);
+  const Renders renders = args.capture_dir.empty() ? render_on_device(scene, args.options)
+                                                   : read_capture(scene, args.options, profile, args.capture_dir);
+  const RenderResult& expected = renders.expected;
+  const RenderResult& actual = renders.actual;
 
-  fmt::print("{}", explain_sample_text(scene, cpu, expected, actual, profile, x, y, args.sample));
+  fmt::print("{}", explain_sample_text(scene, renders.cpu, expected, actual, profile, x, y, args.sample));
   const size_t i = expected.index(x, y, args.sample);
   const SampleClass c = classify_sample(expected, actual, profile, i);
   const bool depth_differs =
@@ -78,6 +108,8 @@ void add_explain_command(CLI::App& app, int& exit_code) {
   cmd->add_option("scene", args->scene_path, "scene file (JSON)")->required();
   cmd->add_option("--pixel", args->pixel, "pixel X,Y (0,0 is the top-left pixel)")->required();
   cmd->add_option("--sample", args->sample, "sample index for multisampled scenes (default 0)");
+  cmd->add_option("--capture", args->capture_dir,
+                  "explain the render recorded in this folder (rastercmp capture / render) instead of rendering");
   add_render_options(*cmd, args->options);
   cmd->callback([args, &exit_code] { exit_code = run_explain(*args); });
 }

@@ -9,6 +9,7 @@
 #include "compare/report.hpp"
 #include "cpu_raster/classic/classic_explain.hpp"
 #include "cpu_raster/classic/render_classic.hpp"
+#include "cpu_raster/cpu_raster.hpp"
 #include "cpu_raster/exact/explain.hpp"
 #include "model/image_io.hpp"
 
@@ -44,6 +45,62 @@ std::string tail_text(const RenderResult& expected, const RenderResult& actual, 
                      value_text(actual, i), "classification:", width, classification);
 }
 
+// The owners an exactly computing device leaves at sample `index` besides the estimate's
+// (RenderResult::owner_alternatives), in ascending order.
+std::vector<uint32_t> alternatives_at(const RenderResult& expected, size_t index) {
+  std::vector<uint32_t> out;
+  for (const OwnerAlternative& a : expected.owner_alternatives)
+    if (a.sample == index) out.push_back(a.owner);
+  return out;
+}
+
+// Which simulated devices leave `owner` there: "a device with floor vertex rounding, top-left tie
+// rule leaves it (and 2 other devices)", or the general reason where none is named.
+std::string devices_text(const std::vector<ExactDeviceOwner>& devices, uint32_t owner) {
+  std::vector<std::string> names;
+  for (const ExactDeviceOwner& d : devices)
+    if (d.owner == owner) names.push_back(d.device);
+  if (names.empty()) return "an exactly computing device (docs/spec-profile.md, Owners) leaves it";
+  const std::string more = names.size() > 1 ? fmt::format(" (and {} other devices)", names.size() - 1) : "";
+  return "a device with " + names.front() + " leaves it" + more;
+}
+
+// The observed owner judged against the estimate's and the alternatives (compare/diff.hpp).
+std::string observed_text(const RenderResult& expected, const RenderResult& actual, CompareProfile profile, size_t i,
+                          const std::vector<ExactDeviceOwner>& devices) {
+  const SampleClass c = classify_sample(expected, actual, profile, i);
+  const std::string owner = owner_text(actual.owner[i]);
+  if (c == SampleClass::AllowedOwner)
+    return owner + ": an allowed alternative (Pass): " + devices_text(devices, actual.owner[i]);
+  if (c == SampleClass::WrongOwner)
+    return owner +
+           ": neither the estimate's nor an allowed alternative (wrong owner, QualityWarning: only "
+           "arithmetic error leaves it there)";
+  if (c == SampleClass::Correct && actual.owner[i] != kOwnerBackground) return owner + ": the estimate's";
+  return owner + ": coverage, not the owner, is judged here (see classification)";
+}
+
+// Spec profile: the estimate's owner, the alternatives exact devices allow and what the judged
+// render left (docs/spec-profile.md "Owners"). Nothing without coverage classes.
+std::string owners_text(const Scene& scene, const CpuOptions& cpu_options, const RenderResult& expected,
+                        const RenderResult& actual, CompareProfile profile, uint32_t x, uint32_t y, uint32_t sample) {
+  if (profile != CompareProfile::Spec || expected.coverage_class.empty()) return "";
+  const size_t i = expected.index(x, y, sample);
+  const std::vector<uint32_t> alternatives = alternatives_at(expected, i);
+  std::vector<ExactDeviceOwner> devices;
+  if (!alternatives.empty()) devices = exact_device_owners_at(scene, cpu_options, x, y, sample);
+  std::string text =
+      "spec owners (docs/spec-profile.md, Owners):\n  estimate:     " + owner_text(expected.owner[i]) + "\n";
+  if (alternatives.empty())
+    text +=
+        "  alternatives: none (no exact device simulated here leaves another owner; Owners names what is not "
+        "simulated)\n";
+  for (size_t k = 0; k < alternatives.size(); ++k)
+    text += fmt::format("  {:<14}{}: {}\n", k == 0 ? "alternatives:" : "", owner_text(alternatives[k]),
+                        devices_text(devices, alternatives[k]));
+  return text + "  observed:     " + observed_text(expected, actual, profile, i, devices) + "\n";
+}
+
 std::string header_text(const Scene& scene, CompareProfile profile, uint32_t x, uint32_t y, uint32_t sample,
                         bool classic = false) {
   return fmt::format(
@@ -61,7 +118,8 @@ std::string explain_sample_text(const Scene& scene, const CpuOptions& cpu_option
            tail_text(expected, actual, cpu_method_label(cpu_options), profile, x, y, sample);
   const std::vector<FragmentRecord> history = explain_pixel(scene, cpu_options, x, y, sample);
   return header_text(scene, profile, x, y, sample) + format_explanation(history) +
-         tail_text(expected, actual, cpu_method_label(cpu_options), profile, x, y, sample);
+         tail_text(expected, actual, cpu_method_label(cpu_options), profile, x, y, sample) +
+         owners_text(scene, cpu_options, expected, actual, profile, x, y, sample);
 }
 
 std::vector<ExplainLink> write_case_explanations(const std::string& report_dir, const std::string& case_name,

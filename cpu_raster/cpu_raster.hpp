@@ -7,6 +7,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "cpu_raster/classic/method_registry.hpp"  // the stages and methods --method accepts
 #include "cpu_raster/exact/cpu_options.hpp"
@@ -17,6 +18,19 @@ namespace rastercmp {
 
 // Renders a scene. Throws NotSupportedError for state the profile cannot reproduce.
 RenderResult render_cpu(const Scene& scene, const CpuOptions& options);
+
+// Spec profile: the owner one exactly computing device leaves at a sample, and its choices in
+// words (docs/spec-profile.md "Owners", cpu_raster/spec/exact_owners.hpp).
+struct ExactDeviceOwner {
+  std::string device;  // e.g. "floor vertex rounding, top-left tie rule"
+  uint32_t owner = kOwnerBackground;
+};
+
+// Every simulated exact device's owner of sample (x, y, sample), for `rastercmp explain`; empty
+// where the profile simulates none (lines, undefined primitives). Throws NotSupportedError for
+// a scene the spec profile does not support.
+std::vector<ExactDeviceOwner> exact_device_owners_at(const Scene& scene, const CpuOptions& options, uint32_t x,
+                                                     uint32_t y, uint32_t sample);
 
 // Checks one STAGE=NAME choice against the stages and names the CPU renderer knows (the classic
 // path's tables and the exact path's snap / tie_break). Returns "" when it is known, else what is

@@ -6,7 +6,10 @@
 #include "cpu_raster/classic/render_classic.hpp"
 #include "cpu_raster/exact/render_exact.hpp"
 #include "cpu_raster/fast/render_fast.hpp"
+#include "cpu_raster/spec/exact_owners.hpp"
+#include "cpu_raster/spec/spec_primitives.hpp"
 #include "cpu_raster/spec/spec_profile.hpp"
+#include "cpu_raster/spec/subpixel.hpp"
 #include "model/errors.hpp"
 
 namespace rastercmp {
@@ -32,6 +35,19 @@ RenderResult render_cpu(const Scene& scene, const CpuOptions& options) {
   if (uses_classic_methods(options)) return render_classic(scene, options);  // cpu_raster/classic/
   if (options.profile == CpuProfile::Spec) return render_spec(scene, options);
   return render_lavapipe_profile(scene, options);
+}
+
+std::vector<ExactDeviceOwner> exact_device_owners_at(const Scene& scene, const CpuOptions& options, uint32_t x,
+                                                     uint32_t y, uint32_t sample) {
+  check_spec_profile_support(scene);
+  const uint32_t bits = cpu::spec::effective_sub_pixel_bits(options.sub_pixel_bits);
+  const cpu::spec::SpecPrimitives primitives = cpu::spec::build_spec_primitives(scene, options.fma, bits);
+  std::vector<ExactDeviceOwner> out;
+  if (primitives.undefined || !primitives.lines.empty()) return out;  // not simulated (exact_owners.hpp)
+  for (const cpu::spec::ExactDevice& device : cpu::spec::exact_devices(scene))
+    out.push_back({cpu::spec::describe_exact_device(scene, device),
+                   cpu::spec::exact_device_owner(scene, primitives.triangles, bits, device, x, y, sample)});
+  return out;
 }
 
 std::string method_choice_problem(const MethodChoice& choice) {

@@ -127,5 +127,30 @@ TEST(CliCapture, BrokenCapturesAreResourceErrorsNamingTheFile) {
   run_ok({"conformance", "--suite", suite.string(), "--out", (tmp / "out2").string(), "--captures", empty.string()}, 2);
 }
 
+// explain --capture: the NVIDIA H100 render of a coplanar triangle with other vertices, pushed back
+// by 3 r (tests/test_spec_owners.cpp): at (20, 20) the device left the biased triangle, an owner
+// an exact device with nearest rounding leaves there (docs/spec-profile.md "Owners"). No Vulkan
+// driver needed; a folder without a capture is bad input.
+TEST(CliCapture, ExplainJudgesACaptureAndNamesTheOwnerAlternative) {
+  const std::string scene = "depth/bias/x8_d24_unorm/constant";
+  const std::string capture = (kSourceDir / "tests" / "data" / "captures" / "nvidia-h100" / scene).string();
+  const std::vector<std::string> args = {"explain",   (kSourceDir / "scenes" / (scene + ".json")).string(),
+                                         "--pixel",   "20,20",
+                                         "--profile", "spec",
+                                         "--capture", capture};
+  const RunResult r = run_ok(args, 0, kNoVulkanDriver);
+  EXPECT_NE(r.out.find("  estimate:     draw 0 primitive 0"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("  alternatives: draw 1 primitive 0 (id 0x01000000): a device with nearest vertex rounding"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("  observed:     draw 1 primitive 0 (id 0x01000000): an allowed alternative (Pass)"),
+            std::string::npos)
+      << r.out;
+  const TempDir tmp;
+  std::vector<std::string> no_capture = args;
+  no_capture.back() = tmp.path().string();
+  run_ok(no_capture, 2, kNoVulkanDriver);
+}
+
 }  // namespace
 }  // namespace rastercmp::cli_test

@@ -13,6 +13,7 @@
 #include "model/errors.hpp"
 #include "model/host.hpp"
 #include "model/scene_io.hpp"
+#include "test_spec_support.hpp"
 
 namespace rastercmp {
 namespace {
@@ -123,6 +124,51 @@ TEST(ExplainText, ClassicMethodScenesGetTheirMethodsHistory) {
   }
   EXPECT_GE(scenes, 38u);
   fs::remove_all(dir);
+}
+
+// Spec profile: the owner alternatives (docs/spec-profile.md "Owners") on the diagonal quad of
+// tests/test_spec_owners.cpp, two coplanar triangles with other vertices whose common diagonal
+// x + y = 14 runs through the centres of the pixels x + y = 13: there the tie rule picks the owner,
+// so the other triangle is an alternative (left by the bottom-right rule); off it there is none.
+TEST(ExplainText, SpecProfileNamesTheOwnerAlternatives) {
+  Scene scene = spec_test::make_scene(16, 16);
+  scene.draws.push_back(spec_test::window_triangles(scene, {{2, 2}, {12, 2}, {2, 12}, {12, 2}, {12, 12}, {2, 12}}));
+  const CpuOptions cpu = spec_test::spec_options();
+  const RenderResult expected = render_cpu(scene, cpu);
+  const size_t tie = expected.index(5, 8), inside = expected.index(4, 4);
+  ASSERT_EQ(expected.coverage_class[tie], CoverageClass::Must);
+  ASSERT_EQ(expected.owner[inside], encode_owner(0, 0)) << "the scene changed";
+  const uint32_t other = expected.owner[tie] == encode_owner(0, 0) ? encode_owner(0, 1) : encode_owner(0, 0);
+  RenderResult actual = expected;
+  actual.owner[tie] = other;                  // an allowed owner
+  actual.owner[inside] = encode_owner(0, 1);  // a wrong owner: no device leaves the second triangle there
+  const auto explain = [&](uint32_t x, uint32_t y) {
+    return explain_sample_text(scene, cpu, expected, actual, CompareProfile::Spec, x, y, 0);
+  };
+  const std::string named = fmt::format("draw 0 primitive {} (id {:#010x})", owner_primitive(other), other);
+  const std::string allowed = explain(5, 8);
+  EXPECT_NE(allowed.find("spec owners (docs/spec-profile.md, Owners):\n  estimate:     draw 0 primitive"),
+            std::string::npos)
+      << allowed;
+  EXPECT_NE(allowed.find("  alternatives: " + named +
+                         ": a device with nearest vertex rounding, bottom-right tie "
+                         "rule, D32 rounding nearest leaves it (and 2 other devices)\n"),
+            std::string::npos)
+      << allowed;
+  EXPECT_NE(allowed.find("  observed:     " + named + ": an allowed alternative (Pass): a device with"),
+            std::string::npos)
+      << allowed;
+  const std::string wrong = explain(4, 4);
+  EXPECT_NE(wrong.find("  alternatives: none"), std::string::npos) << wrong;
+  EXPECT_NE(wrong.find("neither the estimate's nor an allowed alternative (wrong owner, QualityWarning"),
+            std::string::npos)
+      << wrong;
+  const std::string same = explain(9, 9);
+  EXPECT_NE(same.find("  alternatives: none"), std::string::npos) << same;
+  EXPECT_NE(same.find(": the estimate's\n"), std::string::npos) << same;
+  // The lavapipe profile has no alternatives to show.
+  EXPECT_EQ(explain_sample_text(scene, cpu, expected, actual, CompareProfile::Lavapipe, 5, 8, 0).find("spec owners"),
+            std::string::npos);
 }
 
 }  // namespace

@@ -219,6 +219,17 @@ std::vector<ExactDevice> exact_devices(const Scene& scene) {
   return devices;
 }
 
+std::string describe_exact_device(const Scene& scene, const ExactDevice& device) {
+  static constexpr std::array<const char*, 3> kSnap = {"nearest", "floor", "ceiling"};
+  static constexpr std::array<const char*, 3> kD32 = {"nearest", "down", "up"};
+  std::string text = std::string(kSnap[size_t(device.snap)]) + " vertex rounding, " +
+                     (device.tie == TieRule::TopLeft ? "top-left" : "bottom-right") + " tie rule";
+  if (scene.has_depth() && has_bias(scene))
+    text += device.bias_high ? ", bias r at its upper end, m = sqrt form" : ", bias r at its lower end, m = max form";
+  if (is_float(scene.depth_format)) text += std::string(", D32 rounding ") + kD32[size_t(device.d32)];
+  return text;
+}
+
 std::vector<OwnerAlternative> exact_owner_alternatives(const Scene& scene, const std::vector<SpecTriangle>& triangles,
                                                        uint32_t sub_pixel_bits, const std::vector<uint32_t>& contested,
                                                        const std::vector<uint32_t>& estimate_owner) {

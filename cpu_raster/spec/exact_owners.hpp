@@ -30,6 +30,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "cpu_raster/spec/spec_primitives.hpp"
@@ -54,6 +55,11 @@ struct ExactDevice {
 // with bottom-right; times both ends of r and m when a draw has depth bias; times the three D32
 // roundings for a D32 attachment.
 std::vector<ExactDevice> exact_devices(const Scene& scene);
+
+// A device's choices in words, those exact_devices(scene) varies: "floor vertex rounding,
+// top-left tie rule", plus "bias r at its upper end, m = sqrt form" with depth bias and "D32 rounding
+// up" with a D32 attachment (rastercmp explain, docs/compare.md).
+std::string describe_exact_device(const Scene& scene, const ExactDevice& device);
 
 // Upper bound of candidate x sample x device evaluations; beyond it no alternatives are computed.
 inline constexpr uint64_t kExactOwnerWorkLimit = uint64_t(1) << 26;
