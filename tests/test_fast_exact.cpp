@@ -110,6 +110,23 @@ INSTANTIATE_TEST_SUITE_P(Seeds, FastSmallMeshes, ::testing::Range<uint64_t>(1, 1
                            return "seed_" + std::to_string(param_info.param);
                          });
 
+// A grid of columns x rows cells over clip x in [-1, 1] and y in [y0, y0 + height], each vertex
+// moved by up to 0.3 of a cell and given a random depth, as an indexed list of two triangles a cell.
+Draw jittered_grid(fast_test::Random& r, uint32_t columns, uint32_t rows, float y0, float height) {
+  Draw draw;
+  for (uint32_t j = 0; j <= rows; ++j)
+    for (uint32_t i = 0; i <= columns; ++i)
+      draw.positions_clip.emplace_back(-1.0f + 2.0f * (float(i) + float(r.range(-0.3, 0.3))) / float(columns),
+                                       y0 + height * (float(j) + float(r.range(-0.3, 0.3))) / float(rows),
+                                       float(r.range(0.0, 1.0)), 1.0f);
+  for (uint32_t j = 0; j < rows; ++j)
+    for (uint32_t i = 0; i < columns; ++i) {
+      const uint32_t v = j * (columns + 1) + i;
+      for (uint32_t k : {v, v + 1, v + columns + 2, v, v + columns + 2, v + columns + 1}) draw.indices.push_back(k);
+    }
+  return draw;
+}
+
 // A jittered mesh of cells of cell_min..cell_max pixels, a list, strip or fan over the same
 // indices (read as strips and fans they make triangles that overlap inside a block, so the lanes'
 // order decides pixels), drawn twice; the format and first op follow the seed.
@@ -122,17 +139,7 @@ Scene jittered_mesh(uint64_t seed, double cell_min, double cell_max) {
   scene.depth_format = DepthFormat(seed % 4);
   const uint32_t columns = uint32_t(float(scene.width) / float(r.range(cell_min, cell_max)));
   const uint32_t rows = uint32_t(float(scene.height) / float(r.range(cell_min, cell_max)));
-  Draw draw;
-  for (uint32_t j = 0; j <= rows; ++j)
-    for (uint32_t i = 0; i <= columns; ++i)
-      draw.positions_clip.emplace_back(-1.0f + 2.0f * (float(i) + float(r.range(-0.3, 0.3))) / float(columns),
-                                       -1.0f + 2.0f * (float(j) + float(r.range(-0.3, 0.3))) / float(rows),
-                                       float(r.range(0.0, 1.0)), 1.0f);
-  for (uint32_t j = 0; j < rows; ++j)
-    for (uint32_t i = 0; i < columns; ++i) {
-      const uint32_t v = j * (columns + 1) + i;
-      for (uint32_t k : {v, v + 1, v + columns + 2, v, v + columns + 2, v + columns + 1}) draw.indices.push_back(k);
-    }
+  Draw draw = jittered_grid(r, columns, rows, -1.0f, 2.0f);
   draw.topology = seed % 3 == 0   ? Topology::TriangleList
                   : seed % 3 == 1 ? Topology::TriangleStrip
                                   : Topology::TriangleFan;
@@ -184,18 +191,8 @@ Scene crowded_row_scene(uint64_t seed) {
     quad.positions_clip.emplace_back(x, y, 0.8f + 0.05f * x + 0.05f * y, 1.0f);
   quad.indices = {0, 1, 3, 0, 3, 2};
   scene.draws.push_back(quad);
-  Draw mesh;
   const uint32_t columns = 200 / 3, rows = 48 / 3;  // pixels 136-184: ndc y in [-0.15, 0.15]
-  for (uint32_t j = 0; j <= rows; ++j)
-    for (uint32_t i = 0; i <= columns; ++i)
-      mesh.positions_clip.emplace_back(-1.0f + 2.0f * (float(i) + float(r.range(-0.3, 0.3))) / float(columns),
-                                       -0.15f + 0.3f * (float(j) + float(r.range(-0.3, 0.3))) / float(rows),
-                                       float(r.range(0.0, 1.0)), 1.0f);
-  for (uint32_t j = 0; j < rows; ++j)
-    for (uint32_t i = 0; i < columns; ++i) {
-      const uint32_t v = j * (columns + 1) + i;
-      for (uint32_t k : {v, v + 1, v + columns + 2, v, v + columns + 2, v + columns + 1}) mesh.indices.push_back(k);
-    }
+  Draw mesh = jittered_grid(r, columns, rows, -0.15f, 0.3f);
   mesh.state.depth.compare_op = CompareOp((seed / 4) % 8);
   mesh.state.depth.write_enable = seed % 3 != 0;
   scene.draws.push_back(std::move(mesh));

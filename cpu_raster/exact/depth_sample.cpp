@@ -8,21 +8,6 @@
 namespace rastercmp::cpu {
 namespace {
 
-template <class T>
-bool ordered_compare(CompareOp op, T a, T b) {
-  switch (op) {
-    case CompareOp::Never: return false;
-    case CompareOp::Less: return a < b;
-    case CompareOp::Equal: return a == b;
-    case CompareOp::LessOrEqual: return a <= b;
-    case CompareOp::Greater: return a > b;
-    case CompareOp::NotEqual: return a != b;
-    case CompareOp::GreaterOrEqual: return a >= b;
-    case CompareOp::Always: return true;
-  }
-  return false;
-}
-
 // LLVM's unordered predicates (ULT, UEQ, ...): true whenever an operand is NaN.
 bool unordered_compare(CompareOp op, float a, float b) {
   if (op == CompareOp::Never) return false;

@@ -13,6 +13,23 @@
 
 namespace rastercmp::cpu {
 
+// `a op b` with ordered comparisons (false for NaN operands except Always and NotEqual), the
+// compare ops of "Depth Comparison" on any ordered type.
+template <class T>
+bool ordered_compare(CompareOp op, T a, T b) {
+  switch (op) {
+    case CompareOp::Never: return false;
+    case CompareOp::Less: return a < b;
+    case CompareOp::Equal: return a == b;
+    case CompareOp::LessOrEqual: return a <= b;
+    case CompareOp::Greater: return a > b;
+    case CompareOp::NotEqual: return a != b;
+    case CompareOp::GreaterOrEqual: return a >= b;
+    case CompareOp::Always: return true;
+  }
+  return false;
+}
+
 // Every intermediate value, for explain; `raw` is what the attachment stores.
 struct SampleDepth {
   float interpolated = 0;  // before the offset

@@ -58,13 +58,10 @@ FastTriangle from_raster_primitive(const RasterPrimitive& p, const PixelRect& re
 BandWorker::BandWorker(FastFrame& frame, uint32_t index) : frame_(frame), index_(index), workers_(frame.workers) {
   batch_.reserve(kBatchSize);
   const size_t rows = size_t(std::max(frame.raster.tiles_y, 0));
-  owned_rows_.resize(rows);
   owned_before_.assign(rows + 1, 0);
   const bool balanced = frame.row_worker.size() == rows;
-  for (size_t r = 0; r < rows; ++r) {
-    owned_rows_[r] = (balanced ? frame.row_worker[r] : r % workers_) == index_;
-    owned_before_[r + 1] = owned_before_[r] + owned_rows_[r];
-  }
+  for (size_t r = 0; r < rows; ++r)
+    owned_before_[r + 1] = owned_before_[r] + ((balanced ? frame.row_worker[r] : r % workers_) == index_ ? 1 : 0);
 }
 
 void BandWorker::run() {
@@ -100,7 +97,7 @@ bool BandWorker::owns_rows(int32_t y0, int32_t y1) const { return owns_tile_rows
 // each worker's): the count of owned rows below t1 + 1 and below t0.
 bool BandWorker::owns_tile_rows(int32_t t0, int32_t t1) const {
   t0 = std::max(t0, 0);
-  t1 = std::min(t1, int32_t(owned_rows_.size()) - 1);
+  t1 = std::min(t1, int32_t(owned_before_.size()) - 2);
   return t0 <= t1 && owned_before_[size_t(t1) + 1] != owned_before_[size_t(t0)];
 }
 

@@ -29,7 +29,9 @@ class BandWorker {
   static constexpr size_t kBatchSize = 64;
 
  private:
-  bool owns_tile_row(int32_t tile_y) const { return owned_rows_[size_t(tile_y)] != 0; }
+  bool owns_tile_row(int32_t tile_y) const {
+    return owned_before_[size_t(tile_y) + 1] != owned_before_[size_t(tile_y)];
+  }
   bool owns_rows(int32_t y0, int32_t y1) const;  // pixel rows
   bool owns_tile_rows(int32_t tile_y0, int32_t tile_y1) const;
 
@@ -63,8 +65,9 @@ class BandWorker {
   uint32_t index_, workers_;
   std::vector<FastTriangle> batch_;
   std::vector<TileTriangle> prepared_;  // flush: the batch's triangles in the current tile
-  std::vector<uint8_t> owned_rows_;     // per tile row: 1 when this worker draws it
-  std::vector<uint32_t> owned_before_;  // per tile row r: how many rows below r this worker owns (r <= tiles_y)
+  // Per r <= tiles_y: how many tile rows below r this worker draws (row r is its own when the count
+  // grows from r to r + 1).
+  std::vector<uint32_t> owned_before_;
   SmallBlock block_, next_block_;       // the small-triangle blocks being set up and drawn
 };
 

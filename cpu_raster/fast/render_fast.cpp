@@ -220,17 +220,15 @@ void count_block_rows(const uint32_t* block_rows, uint32_t n, size_t tiles_y, in
 // shared out by balance_rows. No block reaching any row: r % workers, as before.
 void balance_tile_rows(FastFrame& frame, const std::vector<int32_t>& reach, size_t tasks) {
   const size_t tiles_y = size_t(std::max(frame.raster.tiles_y, 0));
-  std::vector<uint64_t> weights(tiles_y, 0);
-  uint64_t blocks = 0;
+  std::vector<uint64_t> weights(tiles_y, 0);  // first the blocks reaching each row
   for (size_t t = 0; t < tasks; ++t) {
     int64_t running = 0;
     for (size_t r = 0; r < tiles_y; ++r) {
       running += reach[t * (tiles_y + 1) + r];
       weights[r] += uint64_t(running);
-      blocks += uint64_t(running);
     }
   }
-  if (blocks == 0) return;
+  if (std::all_of(weights.begin(), weights.end(), [](uint64_t blocks) { return blocks == 0; })) return;
   for (uint64_t& w : weights) w = tile_row_weight(w, uint32_t(std::max(frame.raster.tiles_x, 0)));
   frame.row_worker = balance_rows(weights, frame.workers);
 }

@@ -138,12 +138,6 @@ Interval r_range(DepthFormat format, double piece_max_abs_z, double source_max_a
   return {lo, 2.0 * float_depth_r(info, std::max(piece_max_abs_z, source_max_abs_z))};
 }
 
-double dbclamp(double o, float clamp) {
-  if (clamp > 0) return std::min(o, double(clamp));
-  if (clamp < 0) return std::max(o, double(clamp));
-  return o;  // 0 or NaN
-}
-
 // What the depth intervals need beyond the gate: vertex range, bias over every r and m, precision.
 void set_interval_terms(const Scene& scene, const RasterState& state, const DepthPrimitive& p, DepthJudge& j) {
   constexpr double eps = kSpecRelativeAccuracy;
@@ -197,6 +191,12 @@ void set_interval_terms(const Scene& scene, const RasterState& state, const Dept
 }
 
 }  // namespace
+
+double dbclamp(double o, float clamp) {
+  if (clamp > 0) return std::min(o, double(clamp));
+  if (clamp < 0) return std::max(o, double(clamp));
+  return o;  // 0 or NaN
+}
 
 DepthJudge make_depth_judge(const Scene& scene, const RasterState& state, const DepthPrimitive& p) {
   DepthJudge j;

@@ -101,6 +101,10 @@ struct DepthJudge {
   double interval_reach_px = 0;            // widening of the plane value, in pixels of slope
 };
 
+// Vulkan "Depth Bias Computation": dbclamp(o) = min(o, clamp) for clamp > 0, max(o, clamp) for
+// clamp < 0, o for 0 (or NaN).
+double dbclamp(double o, float clamp);
+
 DepthJudge make_depth_judge(const Scene& scene, const RasterState& state, const DepthPrimitive& primitive);
 
 // The gate of a fragment of the primitive in the judged box centred on `pos_window`.

@@ -4,8 +4,10 @@
 #include <array>
 #include <cmath>
 
+#include "cpu_raster/exact/depth_sample.hpp"
 #include "cpu_raster/exact/raster_primitive.hpp"
 #include "cpu_raster/spec/coverage_map.hpp"
+#include "cpu_raster/spec/depth_gate.hpp"
 #include "cpu_raster/spec/subpixel.hpp"
 #include "model/depth_format.hpp"
 
@@ -35,13 +37,6 @@ struct SnappedPlane {
   std::array<bool, 3> top_left{};
   std::array<double, 2> bias{};  // o for bias_high false / true (0 without bias)
 };
-
-// Vulkan "Depth Bias Computation".
-double bias_clamp(double o, float clamp) {
-  if (clamp > 0) return std::min(o, double(clamp));
-  if (clamp < 0) return std::max(o, double(clamp));
-  return o;
-}
 
 SnappedPlane snapped_plane(const Scene& scene, const SpecTriangle& t, uint32_t bits, SnapRounding rounding) {
   SnappedPlane p;
@@ -85,8 +80,8 @@ SnappedPlane snapped_plane(const Scene& scene, const SpecTriangle& t, uint32_t b
     r_high = 2 * r_low;
   }
   const double m_max = std::max(std::fabs(a), std::fabs(b)), m_sqrt = std::sqrt(a * a + b * b);
-  p.bias[0] = bias_clamp(double(bias.slope_factor) * m_max + double(bias.constant_factor) * r_low, bias.clamp);
-  p.bias[1] = bias_clamp(double(bias.slope_factor) * m_sqrt + double(bias.constant_factor) * r_high, bias.clamp);
+  p.bias[0] = dbclamp(double(bias.slope_factor) * m_max + double(bias.constant_factor) * r_low, bias.clamp);
+  p.bias[1] = dbclamp(double(bias.slope_factor) * m_sqrt + double(bias.constant_factor) * r_high, bias.clamp);
   return p;
 }
 
@@ -144,20 +139,6 @@ double stored_key(DepthFormat format, double z, FloatRounding rounding) {
   return double(f);
 }
 
-bool passes_compare(CompareOp op, double fragment, double stored) {
-  switch (op) {
-    case CompareOp::Never: return false;
-    case CompareOp::Less: return fragment < stored;
-    case CompareOp::Equal: return fragment == stored;
-    case CompareOp::LessOrEqual: return fragment <= stored;
-    case CompareOp::Greater: return fragment > stored;
-    case CompareOp::NotEqual: return fragment != stored;
-    case CompareOp::GreaterOrEqual: return fragment >= stored;
-    case CompareOp::Always: return true;
-  }
-  return true;
-}
-
 // One device's owner of one sample: the triangles in draw order, each depth-tested against what
 // the earlier ones left (Vulkan "Depth Test": a passing fragment writes its depth when writes are
 // on; its owner is written whenever it passes).
@@ -178,7 +159,7 @@ uint32_t simulate_owner(const Scene& scene, const std::vector<const Candidate*>&
       double z = double(z_plane) + p.bias[device.bias_high ? 1 : 0];
       if (state.depth_clamp) z = std::clamp(z, z_min, z_max);  // "Depth Clamping and Range Adjustment"
       const double key = stored_key(scene.depth_format, z, device.d32);
-      if (!passes_compare(state.depth.compare_op, key, stored)) continue;
+      if (!ordered_compare(state.depth.compare_op, key, stored)) continue;
       if (state.depth.write_enable) stored = key;
     }
     owner = c->owner;
