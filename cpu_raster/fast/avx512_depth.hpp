@@ -55,4 +55,34 @@ RASTERCMP_AVX512 inline __m512i to_raw16(__m512 z) {
   }
 }
 
+// depth_test_passes (§3.6) on the covered lanes: D32 with the unordered predicates (true whenever
+// NaN is involved), UNORM unsigned.
+template <DepthFormat F, CompareOp Op>
+RASTERCMP_AVX512 inline __mmask16 passing(__mmask16 covered, __m512i fragment, __m512i stored) {
+  if constexpr (F == DepthFormat::None || Op == CompareOp::Always) {
+    return covered;
+  } else if constexpr (Op == CompareOp::Never) {
+    return 0;
+  } else if constexpr (is_float(F)) {
+    const __m512 a = _mm512_castsi512_ps(fragment), b = _mm512_castsi512_ps(stored);
+    if constexpr (Op == CompareOp::Less) return _mm512_mask_cmp_ps_mask(covered, a, b, _CMP_NGE_UQ);  // !(a >= b)
+    if constexpr (Op == CompareOp::Equal)
+      return _mm512_mask_cmp_ps_mask(covered, a, b, _CMP_EQ_UQ);  // !(a < b) && !(a > b)
+    if constexpr (Op == CompareOp::LessOrEqual) return _mm512_mask_cmp_ps_mask(covered, a, b, _CMP_NGT_UQ);
+    if constexpr (Op == CompareOp::Greater) return _mm512_mask_cmp_ps_mask(covered, a, b, _CMP_NLE_UQ);
+    if constexpr (Op == CompareOp::NotEqual) return _mm512_mask_cmp_ps_mask(covered, a, b, _CMP_NEQ_UQ);
+    return _mm512_mask_cmp_ps_mask(covered, a, b, _CMP_NLT_UQ);  // GreaterOrEqual: !(a < b)
+  } else {
+    if constexpr (Op == CompareOp::Less) return _mm512_mask_cmp_epu32_mask(covered, fragment, stored, _MM_CMPINT_LT);
+    if constexpr (Op == CompareOp::Equal) return _mm512_mask_cmp_epu32_mask(covered, fragment, stored, _MM_CMPINT_EQ);
+    if constexpr (Op == CompareOp::LessOrEqual)
+      return _mm512_mask_cmp_epu32_mask(covered, fragment, stored, _MM_CMPINT_LE);
+    if constexpr (Op == CompareOp::Greater)
+      return _mm512_mask_cmp_epu32_mask(covered, fragment, stored, _MM_CMPINT_NLE);
+    if constexpr (Op == CompareOp::NotEqual)
+      return _mm512_mask_cmp_epu32_mask(covered, fragment, stored, _MM_CMPINT_NE);
+    return _mm512_mask_cmp_epu32_mask(covered, fragment, stored, _MM_CMPINT_NLT);  // GreaterOrEqual
+  }
+}
+
 }  // namespace rastercmp::cpu::fast

@@ -103,6 +103,7 @@ void init_frame(FastFrame& frame, const Scene& scene, const CpuOptions& options,
   raster.tiles_x = int32_t((scene.width + kTileSize - 1) / kTileSize);
   raster.tiles_y = int32_t((scene.height + kTileSize - 1) / kTileSize);
   raster.avx2 = avx2;
+  raster.avx512 = avx512;
   raster.small_setup = avx512 ? setup_small_block_avx512 : avx2 ? setup_small_block_avx2 : nullptr;
   raster.small_pair_setup = avx512 ? setup_small_pair_avx512 : nullptr;
   raster.bounds = bounds;

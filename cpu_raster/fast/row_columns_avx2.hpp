@@ -6,7 +6,8 @@
 // those of the triangle are their intersection. An edge with gx_i = 0 covers whole rows or none:
 // its rows are cut once per job (flat_edge_rows); all-in edges (0, 0, 0) cover everything.
 //
-// Exactness. The three edges sit in lanes 0-2 of double vectors (lane 3 bounds nothing). n_i is an
+// Exactness. Four consecutive rows sit in the lanes of double vectors, one vector per bounding
+// edge (rows in the lanes, session 13: one edge's operations serve four rows). n_i is an
 // integer with |n_i| < 2^31 (a pixel of the tile, tile_edges.hpp), so q = n_i * (-1/gx_i), rounded
 // twice, is within 2^-19 of the quotient, and the candidate c (ceil(q) for L, floor(q) for U) is
 // within one of the bound. c is clamped to [u_first - 1, u_last + 1] (|c| <= 73: every value below is
@@ -27,68 +28,65 @@
 
 namespace rastercmp::cpu::fast {
 
+// The bounding edges of a job, four consecutive rows in the lanes of each vector (lane k: row
+// y + k): edges [0, lower) bound the columns below (gx > 0), [lower, count) above (gx < 0).
 struct RowColumns {
-  __m256d n, gy, gx, inv;  // per edge: G - 1 at origin_x in the current row, its steps, -1 / gx
-  __m256d lower;           // lanes with gx > 0 (all bits set)
-  __m256d upper;           // lanes with gx < 0
-  __m256d side;            // -1 for lower lanes, +1 otherwise: c + side is the first column tested
+  __m256d n[3];     // per bounding edge: G - 1 at origin_x in the batch's four rows
+  __m256d step[3];  // 4 * gy: the next batch
+  __m256d gx[3], inv[3];  // gx and -1 / gx
+  int lower = 0, count = 0;
   __m256d u_first, u_last, clamp_lo, clamp_hi;
 };
 
-// Lanes 0-2 of a job's three-edge array as doubles, lane 3 zero (the 16-byte load reads the
-// KernelJob field after the array, which the blend drops).
-RASTERCMP_AVX2 inline __m256d edges_as_doubles(const int32_t (&edge)[3]) {
-  const __m128i v = _mm_loadu_si128(reinterpret_cast<const __m128i*>(edge));
-  return _mm256_cvtepi32_pd(_mm_blend_epi32(v, _mm_setzero_si128(), 0x8));
-}
-
-RASTERCMP_AVX2 inline RowColumns row_columns_of(const KernelJob& j) {
-  static_assert(offsetof(KernelJob, gx) == offsetof(KernelJob, g_minus_1) + 12 &&
-                offsetof(KernelJob, gy) == offsetof(KernelJob, gx) + 12 &&
-                offsetof(KernelJob, gy) + 16 <= sizeof(KernelJob), "edges_as_doubles reads past each array");
-  RowColumns c;
-  c.gx = edges_as_doubles(j.gx);
-  c.n = edges_as_doubles(j.g_minus_1);
-  c.gy = edges_as_doubles(j.gy);
-  const __m256d zero = _mm256_setzero_pd(), one = _mm256_set1_pd(1.0);
-  c.lower = _mm256_cmp_pd(c.gx, zero, _CMP_GT_OQ);
-  c.upper = _mm256_cmp_pd(c.gx, zero, _CMP_LT_OQ);
-  const __m256d flat = _mm256_cmp_pd(c.gx, zero, _CMP_EQ_OQ);
-  c.inv = _mm256_andnot_pd(flat, _mm256_div_pd(_mm256_set1_pd(-1.0), _mm256_blendv_pd(c.gx, one, flat)));
-  c.side = _mm256_blendv_pd(one, _mm256_set1_pd(-1.0), c.lower);
+// The job's bounding edges for rows y0, y0 + 1, ... (y0 >= rect.y0: rows cut by flat edges skipped).
+// Rows past the rectangle's last may be computed by the last batch; their values are not used.
+RASTERCMP_AVX2 inline void init_row_columns(RowColumns& c, const KernelJob& j, int32_t y0) {
+  const __m256d rows = _mm256_setr_pd(0, 1, 2, 3);
+  int order[3], lower = 0, upper = 0;
+  for (int i = 0; i < 3; ++i)
+    if (j.gx[i] > 0) order[lower++] = i;
+  for (int i = 0; i < 3; ++i)
+    if (j.gx[i] < 0) order[lower + upper++] = i;
+  c.lower = lower;
+  c.count = lower + upper;
+  for (int e = 0; e < c.count; ++e) {
+    const int i = order[e];
+    const __m256d gy = _mm256_set1_pd(double(j.gy[i]));
+    const __m256d first = _mm256_add_pd(_mm256_set1_pd(double(j.g_minus_1[i])),  // exact integers
+                                        _mm256_mul_pd(gy, _mm256_set1_pd(double(y0 - j.rect.y0))));
+    c.n[e] = _mm256_fmadd_pd(gy, rows, first);
+    c.step[e] = _mm256_mul_pd(gy, _mm256_set1_pd(4.0));
+    c.gx[e] = _mm256_set1_pd(double(j.gx[i]));
+    c.inv[e] = _mm256_set1_pd(-1.0 / double(j.gx[i]));
+  }
   c.u_first = _mm256_set1_pd(double(j.rect.x0 - j.origin_x));
   c.u_last = _mm256_set1_pd(double(j.rect.x1 - j.origin_x));
-  c.clamp_lo = _mm256_sub_pd(c.u_first, one);
-  c.clamp_hi = _mm256_add_pd(c.u_last, one);
-  return c;
+  c.clamp_lo = _mm256_sub_pd(c.u_first, _mm256_set1_pd(1.0));
+  c.clamp_hi = _mm256_add_pd(c.u_last, _mm256_set1_pd(1.0));
 }
 
-RASTERCMP_AVX2 inline double max4(__m256d v) {
-  const __m128d m = _mm_max_pd(_mm256_castpd256_pd128(v), _mm256_extractf128_pd(v, 1));
-  return _mm_cvtsd_f64(_mm_max_sd(m, _mm_unpackhi_pd(m, m)));
-}
-
-RASTERCMP_AVX2 inline double min4(__m256d v) {
-  const __m128d m = _mm_min_pd(_mm256_castpd256_pd128(v), _mm256_extractf128_pd(v, 1));
-  return _mm_cvtsd_f64(_mm_min_sd(m, _mm_unpackhi_pd(m, m)));
-}
-
-// The current row's covered columns [u0, u1] (offsets from origin_x; u0 > u1: none), then steps
-// to the next row.
-RASTERCMP_AVX2 inline void next_row_columns(RowColumns& c, int32_t& u0, int32_t& u1) {
-  const __m256d q = _mm256_mul_pd(c.n, c.inv);
-  __m256d cand = _mm256_blendv_pd(_mm256_floor_pd(q), _mm256_ceil_pd(q), c.lower);
-  cand = _mm256_min_pd(_mm256_max_pd(cand, c.clamp_lo), c.clamp_hi);
-  const __m256d outer = _mm256_add_pd(cand, c.side);                 // c - 1 (L) or c + 1 (U)
-  const __m256d g_outer = _mm256_fmadd_pd(c.gx, outer, c.n);         // exact: integers below 2^53
-  const __m256d g_cand = _mm256_fmadd_pd(c.gx, cand, c.n);
-  const __m256d zero = _mm256_setzero_pd(), step = _mm256_sub_pd(zero, c.side);  // +1 (L), -1 (U)
-  const __m256d bound =
-      _mm256_add_pd(_mm256_add_pd(outer, _mm256_and_pd(_mm256_cmp_pd(g_outer, zero, _CMP_LT_OQ), step)),
-                    _mm256_and_pd(_mm256_cmp_pd(g_cand, zero, _CMP_LT_OQ), step));
-  c.n = _mm256_add_pd(c.n, c.gy);
-  u0 = int32_t(max4(_mm256_blendv_pd(c.u_first, bound, c.lower)));
-  u1 = int32_t(min4(_mm256_blendv_pd(c.u_last, bound, c.upper)));
+// The covered columns [u0[k], u1[k]] (offsets from origin_x; u0 > u1: none) of the batch's four
+// rows, then steps to the next four.
+RASTERCMP_AVX2 inline void next_row_columns(RowColumns& c, int32_t* u0, int32_t* u1) {
+  const __m256d zero = _mm256_setzero_pd(), one = _mm256_set1_pd(1.0);
+  __m256d lo = c.u_first, hi = c.u_last;
+  for (int e = 0; e < c.count; ++e) {
+    const __m256d q = _mm256_mul_pd(c.n[e], c.inv[e]);
+    const bool lower = e < c.lower;
+    __m256d cand = lower ? _mm256_ceil_pd(q) : _mm256_floor_pd(q);
+    cand = _mm256_min_pd(_mm256_max_pd(cand, c.clamp_lo), c.clamp_hi);
+    const __m256d outer = lower ? _mm256_sub_pd(cand, one) : _mm256_add_pd(cand, one);  // c - 1 (L), c + 1 (U)
+    const __m256d out_fails = _mm256_cmp_pd(_mm256_fmadd_pd(c.gx[e], outer, c.n[e]), zero, _CMP_LT_OQ);
+    const __m256d cand_fails = _mm256_cmp_pd(_mm256_fmadd_pd(c.gx[e], cand, c.n[e]), zero, _CMP_LT_OQ);
+    const __m256d moves = _mm256_add_pd(_mm256_and_pd(out_fails, one), _mm256_and_pd(cand_fails, one));
+    if (lower)
+      lo = _mm256_max_pd(lo, _mm256_add_pd(outer, moves));  // L = c - 1 + [G(c-1) < 0] + [G(c) < 0]
+    else
+      hi = _mm256_min_pd(hi, _mm256_sub_pd(outer, moves));  // U = c + 1 - [G(c+1) < 0] - [G(c) < 0]
+    c.n[e] = _mm256_add_pd(c.n[e], c.step[e]);
+  }
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(u0), _mm256_cvttpd_epi32(lo));
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(u1), _mm256_cvttpd_epi32(hi));
 }
 
 // Rows [y0, y1] of the job narrowed to those every edge with gx = 0 covers (G - 1 = g + gy * k >= 0
@@ -108,32 +106,32 @@ inline bool flat_edge_rows(const KernelJob& j, int32_t& y0, int32_t& y1) {
 struct CoveredRows {
   RowColumns columns;
   int32_t y = 0, y1 = -1, origin_x = 0;
+  int32_t u0[4], u1[4];
+  int k = 4;  // the next of the batch's rows in u0/u1 (4: none left)
 
   // The next such row y and its columns [x0, x1]; false after the last.
   RASTERCMP_AVX2 bool next(int32_t& row, int32_t& x0, int32_t& x1) {
-    for (; y <= y1; ++y) {
-      int32_t u0, u1;
-      next_row_columns(columns, u0, u1);
-      if (u0 > u1) continue;
+    for (; y <= y1; ++y, ++k) {
+      if (k == 4) {
+        next_row_columns(columns, u0, u1);
+        k = 0;
+      }
+      if (u0[k] > u1[k]) continue;
       row = y++;
-      x0 = origin_x + u0;
-      x1 = origin_x + u1;
+      x0 = origin_x + u0[k];
+      x1 = origin_x + u1[k++];
       return true;
     }
     return false;
   }
 };
 
-RASTERCMP_AVX2 inline CoveredRows covered_rows(const KernelJob& j) {
-  CoveredRows rows;
+RASTERCMP_AVX2 inline void init_covered_rows(CoveredRows& rows, const KernelJob& j) {
   rows.y = j.rect.y0;
   rows.y1 = j.rect.y1;
   rows.origin_x = j.origin_x;
-  if (!flat_edge_rows(j, rows.y, rows.y1)) return rows;
-  rows.columns = row_columns_of(j);
-  const __m256d skipped = _mm256_set1_pd(double(rows.y - j.rect.y0));  // rows cut by flat edges
-  rows.columns.n = _mm256_add_pd(rows.columns.n, _mm256_mul_pd(rows.columns.gy, skipped));  // exact integers
-  return rows;
+  flat_edge_rows(j, rows.y, rows.y1);  // no row left: y > y1, and next() computes nothing
+  init_row_columns(rows.columns, j, rows.y);
 }
 
 }  // namespace rastercmp::cpu::fast

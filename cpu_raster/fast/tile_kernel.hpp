@@ -72,4 +72,9 @@ void sample_depths_avx2(const SampleRowDepth& row, const KernelDepth& d, int32_t
 // host_has_avx2_fma().
 KernelFn select_kernel_avx2(DepthFormat format, CompareOp op);
 
+// The same kernel sixteen pixels per step (tile_kernel_avx512.cpp): the same pixels written with
+// the same values. Call only when host_has_avx512().
+KernelFn select_kernel_avx512(DepthFormat format, CompareOp op);
+SmallKernelFn select_small_kernel_avx512(DepthFormat format, CompareOp op);
+
 }  // namespace rastercmp::cpu::fast

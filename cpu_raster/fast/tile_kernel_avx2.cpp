@@ -195,31 +195,6 @@ RASTERCMP_AVX2 inline bool write_covered(const SpanDepth& s, uint32_t* depth, ui
 // no edge values per span, and the spans of an 8-60 px triangle mostly full instead of a third
 // full over its rectangle. A span may reach past the rectangle into the next tile of the row (this
 // worker's) or past the row's end (masked loads and stores); only covered lanes are written.
-// Mid-size triangles (rectangles wider than one span): per row the covered columns from the edges
-// (row_columns_avx2.hpp), then whole 8-pixel spans from the first of them, the last span masked:
-// no edge values per span, and the spans of an 8-60 px triangle mostly full instead of a third
-// full over its rectangle. A span may reach past the rectangle into the next tile of the row (this
-// worker's) or past the row's end (masked loads and stores); only covered lanes are written.
-// Calls row(y, x0, x1) for each row of the job that holds a covered pixel, with its covered
-// columns [x0, x1] (row_columns_avx2.hpp).
-template <typename Row>
-RASTERCMP_AVX2 inline void for_each_covered_row(const KernelJob& j, Row&& row) {
-  int32_t y0 = j.rect.y0, y1 = j.rect.y1;
-  if (!flat_edge_rows(j, y0, y1)) return;
-  RowColumns c = row_columns_of(j);
-  c.n = _mm256_add_pd(c.n, _mm256_mul_pd(c.gy, _mm256_set1_pd(double(y0 - j.rect.y0))));  // exact integers
-  for (int32_t y = y0; y <= y1; ++y) {
-    int32_t u0, u1;
-    next_row_columns(c, u0, u1);
-    if (u0 <= u1) row(y, j.origin_x + u0, j.origin_x + u1);
-  }
-}
-
-// Mid-size triangles (rectangles wider than one span): per row the covered columns from the edges
-// (row_columns_avx2.hpp), then whole 8-pixel spans from the first of them, the last span masked:
-// no edge values per span, and the spans of an 8-60 px triangle mostly full instead of a third
-// full over its rectangle. A span may reach past the rectangle into the next tile of the row (this
-// worker's) or past the row's end (masked loads and stores); only covered lanes are written.
 template <DepthFormat F, CompareOp Op>
 RASTERCMP_AVX2 bool row_spans(const KernelJob& j, const KernelDepth& d, const TileTarget& t) {
   const SpanDepth s = span_depth(j, d);
@@ -230,7 +205,8 @@ RASTERCMP_AVX2 bool row_spans(const KernelJob& j, const KernelDepth& d, const Ti
   uint32_t* const depth_base = t.depth;
   const size_t width = size_t(t.width);
   bool any = false;
-  CoveredRows rows = covered_rows(j);
+  CoveredRows rows;
+  init_covered_rows(rows, j);
   int32_t y, x, x_end;
   while (rows.next(y, x, x_end)) {
     const __m256 py = _mm256_set1_ps(float(y));
@@ -411,7 +387,8 @@ KernelFn select_kernel_avx2(DepthFormat format, CompareOp op) { return select_ke
 
 RASTERCMP_AVX2 void covered_columns_avx2(const KernelJob& j, int32_t* x0, int32_t* x1) {
   for (int32_t y = j.rect.y0; y <= j.rect.y1; ++y) x0[y - j.rect.y0] = 1, x1[y - j.rect.y0] = 0;
-  CoveredRows rows = covered_rows(j);
+  CoveredRows rows;
+  init_covered_rows(rows, j);
   int32_t y, first, last;
   while (rows.next(y, first, last)) x0[y - j.rect.y0] = first, x1[y - j.rect.y0] = last;
 }

@@ -44,8 +44,8 @@ DrawRaster make_draw_raster(const DepthTestState& depth, bool frame_bounds, bool
   draw.vector_ok = !(depth.active && unorm && depth.range.clamp && !(depth.range.zmin >= 0.0f));
   draw.bounds = frame_bounds && depth.active && depth_values_ordered(depth);
   if (avx2) {
-    draw.kernel_fn = select_kernel_avx2(draw.kernel.format, depth.op);
-    draw.small_fn = select_small_kernel_avx2(draw.kernel.format, depth.op);
+    draw.small_fn = avx512 ? select_small_kernel_avx512(draw.kernel.format, depth.op)
+                           : select_small_kernel_avx2(draw.kernel.format, depth.op);
     draw.grid_fn = select_grid_scatter(draw.kernel.format, depth.op);
     draw.grid_block_fn = select_grid_block(draw.kernel.format, depth.op);
     if (avx512) draw.window_block_fn = select_window_block_avx512(draw.kernel.format, depth.op);
@@ -113,7 +113,9 @@ void raster_prepared(const FastTriangle& t, const TileTriangle& prepared, int32_
   }
   bool wrote;
   if (frame.avx2 && draw.vector_ok && edges.fit == EdgeFit::Vector) {
-    wrote = select_kernel_avx2(draw.kernel.format, job.op)(job, draw.kernel, frame.target);
+    const KernelFn kernel = frame.avx512 ? select_kernel_avx512(draw.kernel.format, job.op)
+                                         : select_kernel_avx2(draw.kernel.format, job.op);
+    wrote = kernel(job, draw.kernel, frame.target);
   } else {
     DepthTestState depth = draw.depth;
     depth.op = job.op;  // Always when the bounds proved every sample passes (and the tile may hold no clear values yet)

@@ -22,7 +22,6 @@ struct DrawRaster {
   KernelDepth kernel;            // the same, for the AVX2 kernels
   bool vector_ok = true;         // the AVX2 kernels reproduce this state (UNORM depth stays below 2^24)
   bool bounds = false;           // tile depth bounds are used and kept for this draw
-  KernelFn kernel_fn = nullptr;  // the AVX2 kernels of this depth state (set when the host has AVX2)
   SmallKernelFn small_fn = nullptr;
   GridScatterFn grid_fn = nullptr;
   GridBlockFn grid_block_fn = nullptr;
@@ -36,6 +35,7 @@ struct FrameRaster {
   int32_t tiles_x = 0, tiles_y = 0;
   TileState* tiles = nullptr;  // tiles_x * tiles_y, row-major
   bool avx2 = false;
+  bool avx512 = false;  // the tile kernel sixteen pixels per step (tile_kernel_avx512.cpp)
   SmallSetupFn small_setup = nullptr;           // the eight-wide set-up for this host (AVX2 hosts)
   SmallPairSetupFn small_pair_setup = nullptr;  // the sixteen-wide one (AVX-512 hosts)
   bool bounds = false;                          // depth bounds usable in this frame (tile_depth_bounds.hpp)
