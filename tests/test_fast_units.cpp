@@ -1,6 +1,7 @@
 // Unit tests of the fast path's stages against the exact path's own functions: the per-vertex
-// pass (AVX2 and scalar), the 32-bit "G" edge form, the vector tile kernels against the scalar one, the tile depth-bounds verdicts, the row
-// columns of the exact rasterizer's planes, the benchmark statistics.
+// pass (AVX2 and scalar), the 32-bit "G" edge form, the vector tile kernels against the scalar
+// one, the tile depth-bounds verdicts, the row columns of the exact rasterizer's planes, the
+// benchmark statistics.
 #include <gtest/gtest.h>
 
 #include <algorithm>
