@@ -1,5 +1,6 @@
 // The covered columns of each row of a kernel job, worked out from its edges (row_spans in
-// tile_kernel_avx2.cpp; include only from code compiled for AVX2). In the "G" form (tile_edges.hpp)
+// tile_kernel_avx2.cpp, kernel16 in tile_kernel_avx512.cpp; include only from code compiled for
+// AVX2 or AVX-512). In the "G" form (tile_edges.hpp)
 // edge i covers the pixel at column offset u = x - origin_x of a row iff n_i + gx_i * u >= 0, with
 // n_i its G - 1 at origin_x in that row: the covered columns of one edge are an interval, bounded
 // below when gx_i > 0 (L = ceil(-n_i / gx_i)) and above when gx_i < 0 (U = floor(-n_i / gx_i)), and
