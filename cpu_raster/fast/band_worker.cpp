@@ -284,65 +284,89 @@ void BandWorker::raster_all_tiles(const FastTriangle& t, const DrawRaster& raste
 }
 
 // Tile by tile over the batch's union, each tile's triangles in submission order, from the first
-// whose writes are not all replaced by a later one (first_visible).
+// whose writes are not all replaced by a later one (first_visible). A tile visits only the
+// triangles whose rectangle reaches it (bin_batch): the others would draw nothing there.
 void BandWorker::flush(const DrawRaster& raster) {
   if (batch_.empty()) return;
   PixelRect all = batch_.front().rect;
   for (const FastTriangle& t : batch_)
     all = PixelRect{std::min(all.x0, t.rect.x0), std::min(all.y0, t.rect.y0), std::max(all.x1, t.rect.x1),
                     std::max(all.y1, t.rect.y1)};
-  for (int32_t ty = all.y0 >> kTileOrder; ty <= all.y1 >> kTileOrder; ++ty) {
-    if (!owns_tile_row(ty)) continue;
-    for (int32_t tx = all.x0 >> kTileOrder; tx <= all.x1 >> kTileOrder; ++tx) {
+  const int32_t tx0 = all.x0 >> kTileOrder, ty0 = all.y0 >> kTileOrder;
+  const int32_t tx1 = all.x1 >> kTileOrder, ty1 = all.y1 >> kTileOrder;
+  bin_batch(tx0, ty0, tx1, ty1);
+  size_t k = 0;
+  for (int32_t ty = ty0; ty <= ty1; ++ty) {
+    for (int32_t tx = tx0; tx <= tx1; ++tx, ++k) {
+      const uint8_t* list = bin_list_.data() + bin_first_[k];
+      const size_t count = bin_first_[k + 1] - bin_first_[k];
+      if (count == 0) continue;  // also every tile of a row this worker does not draw
       const PixelRect tile = tile_rect(tx, ty, frame_.raster.target);
-      if (may_hide(tile, raster)) {  // prepared once, drawn from the first visible
-        for (size_t i = first_visible(tile, raster); i < batch_.size(); ++i)
-          raster_prepared(batch_[i], prepared_[i], tx, ty, raster, frame_.raster);
+      if (may_hide(tile, list, count, raster)) {  // prepared once, drawn from the first visible
+        for (size_t i = first_visible(tile, list, count, raster); i < count; ++i)
+          raster_prepared(batch_[list[i]], prepared_[i], tx, ty, raster, frame_.raster);
         continue;
       }
-      for (const FastTriangle& t : batch_) {
-        const PixelRect r = rect_in_tile(t.rect, tile);
-        if (!r.empty()) raster_in_tile(t, r, tx, ty, raster, frame_.raster);
+      for (size_t i = 0; i < count; ++i) {
+        const FastTriangle& t = batch_[list[i]];
+        raster_in_tile(t, rect_in_tile(t.rect, tile), tx, ty, raster, frame_.raster);
       }
     }
   }
   batch_.clear();
 }
 
-// Whether a triangle of the batch may replace every value an earlier one leaves in the tile
-// (first_visible): depth bounds and writes on, and a triangle after the first that reaches the
-// tile whose rectangle holds the whole tile.
-bool BandWorker::may_hide(const PixelRect& tile, const DrawRaster& raster) const {
+// The per-tile lists of flush over tiles [tx0, tx1] x [ty0, ty1] (a counting sort: each triangle
+// counted in the tiles of its rectangle, then placed; rows of other workers get no entry).
+void BandWorker::bin_batch(int32_t tx0, int32_t ty0, int32_t tx1, int32_t ty1) {
+  static_assert(kBatchSize <= 256, "batch indices are bytes");
+  const int32_t columns = tx1 - tx0 + 1;
+  bin_first_.assign(size_t(columns) * size_t(ty1 - ty0 + 1) + 1, 0);
+  const auto for_each_tile = [&](const FastTriangle& t, auto&& visit) {
+    for (int32_t ty = t.rect.y0 >> kTileOrder; ty <= t.rect.y1 >> kTileOrder; ++ty) {
+      if (!owns_tile_row(ty)) continue;
+      for (int32_t tx = t.rect.x0 >> kTileOrder; tx <= t.rect.x1 >> kTileOrder; ++tx)
+        visit(size_t(ty - ty0) * size_t(columns) + size_t(tx - tx0));
+    }
+  };
+  for (const FastTriangle& t : batch_) for_each_tile(t, [&](size_t k) { ++bin_first_[k + 1]; });
+  for (size_t k = 1; k < bin_first_.size(); ++k) bin_first_[k] += bin_first_[k - 1];
+  bin_list_.resize(bin_first_.back());
+  std::vector<uint32_t>& next = bin_next_;
+  next.assign(bin_first_.begin(), bin_first_.end() - 1);
+  for (size_t i = 0; i < batch_.size(); ++i)
+    for_each_tile(batch_[i], [&](size_t k) { bin_list_[next[k]++] = uint8_t(i); });
+}
+
+// Whether a triangle of the tile's list may replace every value an earlier one leaves in the tile
+// (first_visible): depth bounds and writes on, and a triangle after the first whose rectangle
+// holds the whole tile.
+bool BandWorker::may_hide(const PixelRect& tile, const uint8_t* list, size_t count, const DrawRaster& raster) const {
   if (!raster.bounds || !raster.depth.write) return false;
-  bool earlier = false;
-  for (const FastTriangle& t : batch_) {
-    const PixelRect r = rect_in_tile(t.rect, tile);
-    if (r.empty()) continue;
-    if (earlier && r == tile) return true;
-    earlier = true;
-  }
+  for (size_t i = 1; i < count; ++i)
+    if (rect_in_tile(batch_[list[i]].rect, tile) == tile) return true;
   return false;
 }
 
-// The last triangle of the batch that covers every pixel of the tile and passes the depth test
-// against every fragment the batch's earlier triangles have in the tile (their ranges), with depth
-// writes on. Wherever an earlier triangle writes, the tile then holds one of those fragments when
-// this triangle comes, so it writes there too and replaces what the earlier one left; wherever no
-// earlier triangle writes, leaving them out changes nothing. Drawing from it therefore gives the
-// same bytes ("occluded batch triangles", docs/performance.md, log 54); it is itself drawn as
-// always, against what the tile holds. 0 when there is none or nothing can be proven. Fills
-// prepared_ with every triangle's edges and range in the tile (prepare_in_tile), which flush then
-// draws from.
-size_t BandWorker::first_visible(const PixelRect& tile, const DrawRaster& raster) {
-  prepared_.resize(batch_.size());
+// The position in the tile's list of the last triangle that covers every pixel of the tile and
+// passes the depth test against every fragment the list's earlier triangles have in it (their
+// ranges), with depth writes on. Wherever an earlier triangle writes, the tile then holds one of
+// those fragments when this triangle comes, so it writes there too and replaces what the earlier
+// one left; wherever no earlier triangle writes, leaving them out changes nothing. Drawing from it
+// therefore gives the same bytes ("occluded batch triangles", docs/performance.md, log 54); it is
+// itself drawn as always, against what the tile holds. 0 when there is none or nothing can be
+// proven. Fills prepared_[i] with list[i]'s edges and range in the tile (prepare_in_tile), which
+// flush then draws from.
+size_t BandWorker::first_visible(const PixelRect& tile, const uint8_t* list, size_t count, const DrawRaster& raster) {
+  prepared_.resize(count);
   bool earlier = false, provable = true;
   TileBounds fragments{UINT32_MAX, 0, BoundsState::Exact};  // range of the earlier triangles' fragments
   size_t first = 0;
-  for (size_t i = 0; i < batch_.size(); ++i) {
+  for (size_t i = 0; i < count; ++i) {
     TileTriangle& p = prepared_[i];
-    const PixelRect r = rect_in_tile(batch_[i].rect, tile);
-    p = r.empty() ? TileTriangle{} : prepare_in_tile(batch_[i], r, raster, true);  // TileTriangle{}: edges None
-    if (p.edges.fit == EdgeFit::None || !provable) continue;                       // no sample of r in the triangle
+    const FastTriangle& t = batch_[list[i]];
+    p = prepare_in_tile(t, rect_in_tile(t.rect, tile), raster, true);
+    if (p.edges.fit == EdgeFit::None || !provable) continue;  // no sample of the rectangle in the triangle
     if (!p.ranged) {
       provable = false;  // nothing later can be proven
       continue;

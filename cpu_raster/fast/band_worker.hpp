@@ -56,8 +56,9 @@ class BandWorker {
   void submit(const FastTriangle& t, const DrawRaster& raster);
   void raster_all_tiles(const FastTriangle& t, const DrawRaster& raster);
   void flush(const DrawRaster& raster);
-  bool may_hide(const PixelRect& tile, const DrawRaster& raster) const;
-  size_t first_visible(const PixelRect& tile, const DrawRaster& raster);
+  void bin_batch(int32_t tx0, int32_t ty0, int32_t tx1, int32_t ty1);
+  bool may_hide(const PixelRect& tile, const uint8_t* list, size_t count, const DrawRaster& raster) const;
+  size_t first_visible(const PixelRect& tile, const uint8_t* list, size_t count, const DrawRaster& raster);
   void prepare_tiles(const PixelRect& r, bool depth_write);
   void clear_untouched(int32_t tile_y);
 
@@ -65,6 +66,12 @@ class BandWorker {
   uint32_t index_, workers_;
   std::vector<FastTriangle> batch_;
   std::vector<TileTriangle> prepared_;  // flush: the batch's triangles in the current tile
+  // flush: per tile of the batch's union (row-major, this worker's rows), the batch's triangles
+  // whose rectangle reaches it, in submission order: tile k's are bin_list_[bin_first_[k],
+  // bin_first_[k + 1]).
+  std::vector<uint32_t> bin_first_;
+  std::vector<uint8_t> bin_list_;
+  std::vector<uint32_t> bin_next_;  // bin_batch's fill positions
   // Per r <= tiles_y: how many tile rows below r this worker draws (row r is its own when the count
   // grows from r to r + 1).
   std::vector<uint32_t> owned_before_;
