@@ -21,6 +21,7 @@
 #include "cpu_raster/fast/block_rows.hpp"
 #include "cpu_raster/fast/cpu_features.hpp"
 #include "cpu_raster/fast/exact_rows.hpp"
+#include "cpu_raster/fast/fast_frame.hpp"
 #include "cpu_raster/fast/fast_vertices.hpp"
 #include "cpu_raster/fast/row_balance.hpp"
 #include "cpu_raster/fast/small_triangles.hpp"
@@ -368,9 +369,11 @@ TEST(FastBlockRows, SpanAnswersAsBlockByBlock) {
     }
     ++answered;
     std::vector<uint32_t> alone(n);
+    const std::vector<FastVertex> vertices(positions, FastVertex{0, 0, 0, 0});
     for (uint32_t b = 0; b < n; ++b) {
       bool bad = false;
-      alone[b] = list_block_tile_rows_avx2(indices.data() + 24 * b, tile_rows.data(), positions, region, bad);
+      alone[b] = list_block_tile_rows_avx2(indices.data() + 24 * b, tile_rows.data(), vertices.data(), positions,
+                                           region, bad);
       ASSERT_FALSE(bad) << "trial " << trial << ": answered for a bad index";
       ASSERT_EQ(spans[b], alone[b]) << "trial " << trial << " block " << b;
     }
@@ -380,6 +383,52 @@ TEST(FastBlockRows, SpanAnswersAsBlockByBlock) {
   EXPECT_GT(answered, 1000);
   EXPECT_GT(declined, 1000);
   EXPECT_EQ(several_rows, 0);
+}
+
+// A full block with a corner to clip: kNoRow exactly when every lane has its three corners outside
+// one clip plane (the set-up would drop every lane), else kBlockAnyRow; without such a corner the
+// block's rows. Blocks of corners mostly outside, some outside different planes, some inside.
+TEST(FastBlockRows, BlocksWithEveryLaneOutsideOnePlaneAreLeftOut) {
+  if (!host_has_avx2_fma()) GTEST_SKIP() << "host without AVX2/FMA: the block-row phase does not run";
+  fast_test::Random r(13);
+  constexpr uint32_t kPositions = 512;
+  int left_out = 0, kept = 0;
+  for (int trial = 0; trial < 4000; ++trial) {
+    std::vector<FastVertex> vertices(kPositions);
+    std::vector<int16_t> tile_rows(kPositions + 8, 0);
+    const double inside = trial % 2 == 0 ? 0.0 : 0.3;
+    for (uint32_t i = 0; i < kPositions; ++i) {
+      const uint32_t plane = 1u << r.below(6);  // mostly the same plane: behind the camera, say
+      const uint32_t flags = r.chance(inside) ? 0 : r.chance(0.97) ? 1u : plane | (r.chance(0.3) ? 2u : 0u);
+      vertices[i] = FastVertex{0, 0, 0, flags};
+      tile_rows[i] = flags != 0 ? kRowUnknown : int16_t(r.below(16));
+    }
+    std::vector<uint32_t> indices(24);
+    for (uint32_t& index : indices) index = r.below(kPositions);
+    uint32_t shared_all = ~0u;
+    bool unknown = false;
+    for (int l = 0; l < 8; ++l) {
+      uint32_t shared = kVertexClipBits;
+      for (int k = 0; k < 3; ++k) {
+        shared &= vertices[indices[size_t(3 * l + k)]].flags;
+        unknown = unknown || tile_rows[indices[size_t(3 * l + k)]] == kRowUnknown;
+      }
+      shared_all = std::min(shared_all, shared);  // 0 when some lane shares no plane
+    }
+    bool bad = false;
+    const uint32_t rows =
+        list_block_tile_rows_avx2(indices.data(), tile_rows.data(), vertices.data(), kPositions, PixelRect{0, 0, 1023, 1023}, bad);
+    ASSERT_FALSE(bad);
+    if (!unknown) {
+      ASSERT_NE(rows, kBlockAnyRow) << "trial " << trial;
+      ASSERT_NE(rows, kNoRow) << "trial " << trial;
+      continue;
+    }
+    ASSERT_EQ(rows, shared_all != 0 ? kNoRow : kBlockAnyRow) << "trial " << trial;
+    ++(shared_all != 0 ? left_out : kept);
+  }
+  EXPECT_GT(left_out, 200);
+  EXPECT_GT(kept, 200);
 }
 
 // G > 0 exactly where the exact 64-bit edge value E > 0, over random rectangles of a tile.

@@ -25,13 +25,13 @@ bool block_outside(const SmallBlockInput& in) {
 template <Topology T, bool Indexed>
 bool measure_rows(FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end) {
   bool bad = false;
-  const uint32_t first = begin;
   const uint32_t positions = uint32_t(frame.scene->draws[d].positions_clip.size());
   if (positions == 0) return begin == end;                 // every corner would be out of range
   if constexpr (T == Topology::TriangleList && Indexed) {  // the full blocks of a mesh
     const uint32_t full_end = std::min(end, primitive_count(frame.scene->draws[d]) / 8);
     const uint32_t* indices = frame.scene->draws[d].indices.data();
     const int16_t* tile_rows = frame.draws[d].tile_rows;
+    const FastVertex* vertices = frame.draws[d].vertices;
     uint32_t* block_rows = frame.draws[d].block_rows;
     const PixelRect region = frame.exact.region;
     // small_blocks draws exist on AVX2 hosts only (AVX-512 hosts are AVX2 hosts too)
@@ -40,10 +40,12 @@ bool measure_rows(FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end) {
       const uint32_t* span = indices + 24 * size_t(begin);
       if (!span_tile_rows_avx2(span, n, tile_rows, positions, region, block_rows + begin))
         for (uint32_t b = 0; b < n; ++b)
-          block_rows[begin + b] = list_block_tile_rows_avx2(span + 24 * size_t(b), tile_rows, positions, region, bad);
+          block_rows[begin + b] =
+              list_block_tile_rows_avx2(span + 24 * size_t(b), tile_rows, vertices, positions, region, bad);
       begin += n;
     }
   }
+  const uint32_t generic = begin;  // blocks before it were measured whole, outside ones included
   SmallBlock block;
   fill_block_draw(frame, d, block);
   const uint32_t count = primitive_count(frame.scene->draws[d]);
@@ -55,8 +57,8 @@ bool measure_rows(FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end) {
   if (bad) return false;
   // A block with a clipped corner may reach any row, unless no lane has a corner inside the view
   // volume's planes (a camera's scene: most of the mesh behind, beside or past it): no worker sets
-  // those up.
-  for (uint32_t b = first; b < end; ++b) {
+  // those up. (The full blocks of an indexed list got that answer from list_block_tile_rows_avx2.)
+  for (uint32_t b = generic; b < end; ++b) {
     if (frame.draws[d].block_rows[b] != kBlockAnyRow) continue;
     fill_block_corners<T, Indexed>(frame.scene->draws[d].indices.data(), count, b, block);
     if (block_outside(block.in)) frame.draws[d].block_rows[b] = kNoRow;

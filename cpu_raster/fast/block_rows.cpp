@@ -95,7 +95,8 @@ uint32_t block_tile_rows(const SmallBlockInput& in, const int16_t* tile_rows, ui
 // low half; the last position's read reaches 2 bytes into the scratch's padding,
 // thread_row_scratch). kRowUnknown is INT16_MIN, below every row, so the minimum finds it. The
 // indices are checked against `positions` (> 0) before any gather.
-RASTERCMP_AVX2 uint32_t list_block_tile_rows_avx2(const uint32_t* indices, const int16_t* tile_rows, uint32_t positions,
+RASTERCMP_AVX2 uint32_t list_block_tile_rows_avx2(const uint32_t* indices, const int16_t* tile_rows,
+                                                  const FastVertex* vertices, uint32_t positions,
                                                   const PixelRect& region, bool& bad) {
   __m256i idx[3];
   for (int j = 0; j < 3; ++j) idx[j] = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(indices + 8 * j));
@@ -120,7 +121,19 @@ RASTERCMP_AVX2 uint32_t list_block_tile_rows_avx2(const uint32_t* indices, const
   lo = _mm256_min_epi32(lo, _mm256_shuffle_epi32(lo, 0xB1));
   hi = _mm256_max_epi32(hi, _mm256_shuffle_epi32(hi, 0xB1));
   const int32_t low = _mm256_cvtsi256_si32(lo), high = _mm256_cvtsi256_si32(hi);
-  return low == kRowUnknown ? kBlockAnyRow : pack_rows(low, high, region);
+  if (low != kRowUnknown) return pack_rows(low, high, region);
+  // A corner needs clipping (or failed to snap): the clip bits the three corners of each lane
+  // share, gathered from the vertices' flags (byte offset 16 * index + 12: index * 4 words, which
+  // stays below 2^31 for positions <= 2^27; beyond, every worker sets the block up, as before).
+  constexpr uint32_t kGatherablePositions = 1u << 27;
+  if (positions > kGatherablePositions) return kBlockAnyRow;
+  const int* flags = reinterpret_cast<const int*>(&vertices->flags);
+  __m256i shared = _mm256_set1_epi32(int32_t(kVertexClipBits));
+  for (int j = 0; j < 3; ++j)
+    shared = _mm256_and_si256(shared, _mm256_i32gather_epi32(flags, _mm256_slli_epi32(idx[j], 2), 4));
+  const bool every_lane_outside = _mm256_testz_si256(_mm256_cmpeq_epi32(shared, _mm256_setzero_si256()),
+                                                     _mm256_set1_epi32(-1));
+  return every_lane_outside ? kNoRow : kBlockAnyRow;
 }
 
 // Taken when the indices lie in a short range of positions (a mesh's neighbourhood), every

@@ -32,7 +32,7 @@ namespace rastercmp {
 namespace cpu::fast {
 namespace {
 
-constexpr size_t kVertexBlock = 16384;  // positions per task of the vertex phase
+constexpr size_t kVertexBlock = 4096;  // positions per task of the vertex phase
 
 // Stored depth values keep the order the bounds rely on (tile_depth_bounds.hpp) in every draw.
 bool frame_bounds_usable(const Scene& scene, const std::vector<FastDraw>& draws) {
@@ -238,7 +238,7 @@ void balance_tile_rows(FastFrame& frame, const std::vector<int32_t>& reach, size
 // once, so that a worker sets up only the blocks it may draw into. Each block's indices are
 // checked before they are read through; a bad one: the full profile check, which throws.
 void measure_all_block_rows(FastFrame& frame) {
-  constexpr uint32_t kRowTaskBlocks = 4096;
+  constexpr uint32_t kRowTaskBlocks = 1024;
   size_t blocks = 0;
   for (uint32_t d = 0; d < frame.draws.size(); ++d)
     if (frame.draws[d].small_blocks) blocks += (primitive_count(frame.scene->draws[d]) + 7) / 8;
