@@ -291,6 +291,18 @@ TEST(FastBenchScenes, SmallVersionsMatchExactPath) {
   expect_fast_matches(bench::msaa_grid_scene(24, 96), true);
 }
 
+// Triangles that need clipping, set up once by the block-row phase and drawn from its table by
+// every worker (clipped_pieces.hpp): two draws of a camera mesh crossing the view volume's sides
+// and far plane (a table per draw, each worker's walk through it in order), at 2-4 workers.
+TEST(FastClippedPieces, TableOfPiecesMatchesExactPath) {
+  Scene scene = bench::perspective_scene(48, 160);
+  Draw second = scene.draws.front();
+  for (glm::vec4& p : second.positions_clip) p.y += 0.15f * p.w;  // shifted up the screen, overlapping
+  second.state.depth.compare_op = CompareOp::LessOrEqual;
+  scene.draws.push_back(std::move(second));
+  expect_fast_matches(scene, true, {2u, 3u, 4u});
+}
+
 // render_cpu_fast as the bench and render_cpu call it (its own choice of workers) on a scene big
 // enough for two.
 TEST(FastBenchScenes, ProductionEntryPointMatchesExactPath) {

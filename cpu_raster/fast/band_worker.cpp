@@ -11,6 +11,7 @@
 #include "cpu_raster/exact/depth_plane.hpp"
 #include "cpu_raster/exact/pipeline_cull.hpp"
 #include "cpu_raster/exact/triangle_setup.hpp"
+#include "cpu_raster/fast/clipped_pieces.hpp"
 #include "cpu_raster/fast/exact_rows.hpp"
 #include "cpu_raster/fast/small_block_input.hpp"
 #include "cpu_raster/fast/tile_depth_bounds.hpp"
@@ -36,27 +37,11 @@ bool edges_leave_direct_range(const FastVertex& v0, const FastVertex& v1, const 
   return !in_direct_range({fixed(v0), fixed(v1), fixed(v2)});
 }
 
-FastTriangle from_raster_primitive(const RasterPrimitive& p, const PixelRect& region) {
-  FastTriangle t;
-  for (int k = 0; k < 3; ++k) {
-    t.x_fixed[k] = p.vertex_fixed[k].x.raw;
-    t.y_fixed[k] = p.vertex_fixed[k].y.raw;
-  }
-  t.rect = intersect(p.bbox, region);  // coverage lies in the bounding box (§2.5)
-  if (p.has_depth) {
-    t.a0 = p.depth.a0;
-    t.dzdx = p.depth.dzdx;
-    t.dzdy = p.depth.dzdy;
-    t.offset = p.offset.offset;
-  }
-  t.owner = p.owner;
-  return t;
-}
-
 }  // namespace
 
 BandWorker::BandWorker(FastFrame& frame, uint32_t index) : frame_(frame), index_(index), workers_(frame.workers) {
   batch_.reserve(kBatchSize);
+  clipped_next_.assign(frame.draws.size(), 0);
   const size_t rows = size_t(std::max(frame.raster.tiles_y, 0));
   owned_before_.assign(rows + 1, 0);
   const bool balanced = frame.row_worker.size() == rows;
@@ -234,33 +219,28 @@ void BandWorker::triangle(uint32_t d, uint32_t primitive, uint32_t a, uint32_t b
   submit(t, fd.raster);
 }
 
-// The exact path's clipper and set-up (front_end.cpp run_triangle) for a triangle that needs clipping.
+// A triangle that needs clipping: its pieces from the block-row phase's table when the draw has
+// one (clipped_pieces.hpp), else the exact path's clipper and set-up here (for_each_piece); the
+// pieces that reach this worker's rows are drawn, in the clipper's order.
 void BandWorker::clipped_triangle(uint32_t d, uint32_t primitive, uint32_t a, uint32_t b, uint32_t c) {
-  const Draw& draw = frame_.scene->draws[d];
   const FastDraw& fd = frame_.draws[d];
-  const FrameContext& exact = frame_.exact;
-  const bool depth_clip = draw.state.depth_clip_enabled();
-  std::array<ClipVertex, 3> corners;
-  const uint32_t positions[3] = {a, b, c};
-  for (int k = 0; k < 3; ++k)
-    corners[k] = make_clip_vertex(draw.positions_clip[positions[k]], exact.viewport, depth_clip, exact.fma);
-  const ClippedTriangles clipped = clip_triangle(corners, exact.viewport);
-  for (const auto& piece : clipped.triangles) {
-    const std::array<WindowVertex, 3> window{piece[0].window, piece[1].window, piece[2].window};
-    if (fd.pipelined(primitive) && draw.state.cull_mode != CullMode::None &&
-        pipeline_cull_drops(pipeline_cull_determinant(window), draw.state.cull_mode, draw.state.front_face))
-      continue;
-    const TriangleSetup setup = setup_triangle(window, encode_owner(d, primitive), fd.setup);
-    if (setup.fate != SetupFate::Rasterized) continue;
-    if (setup.raster.binned) {  // llvmpipe's wrapping arithmetic: the exact rasterizer, in order
-      if (!batch_.empty()) flush(fd.raster);
-      raster_exact_in_band(setup.raster, fd.raster.depth);
-      continue;
+  const auto draw_piece = [&](const FastTriangle& t) {
+    if (!t.rect.empty() && owns_rows(t.rect.y0, t.rect.y1)) submit(t, fd.raster);
+  };
+  if (fd.clipped.ready) {
+    const std::vector<ClippedPrimitive>& list = fd.clipped.primitives;
+    size_t& next = clipped_next_[d];  // the walk meets a draw's primitives in increasing order
+    while (next < list.size() && list[next].primitive < primitive) ++next;
+    if (next < list.size() && list[next].primitive == primitive && !list[next].in_place) {
+      const ClippedPrimitive& entry = list[next];
+      for (uint32_t k = entry.first; k < entry.first + entry.count; ++k) draw_piece(fd.clipped.pieces[k]);
+      return;
     }
-    const FastTriangle t = from_raster_primitive(setup.raster, exact.region);
-    if (t.rect.empty() || !owns_rows(t.rect.y0, t.rect.y1)) continue;
-    submit(t, fd.raster);
   }
+  for_each_piece(frame_, d, primitive, a, b, c, draw_piece, [&](const RasterPrimitive& binned) {
+    if (!batch_.empty()) flush(fd.raster);  // llvmpipe's wrapping arithmetic: the exact rasterizer, in order
+    raster_exact_in_band(binned, fd.raster.depth);
+  });
 }
 
 void BandWorker::submit(const FastTriangle& t, const DrawRaster& raster) {

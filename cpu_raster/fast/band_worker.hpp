@@ -72,6 +72,7 @@ class BandWorker {
   std::vector<uint32_t> bin_first_;
   std::vector<uint8_t> bin_list_;
   std::vector<uint32_t> bin_next_;  // bin_batch's fill positions
+  std::vector<size_t> clipped_next_;  // per draw: the first entry of its ClippedTable not yet walked past
   // Per r <= tiles_y: how many tile rows below r this worker draws (row r is its own when the count
   // grows from r to r + 1).
   std::vector<uint32_t> owned_before_;

@@ -14,6 +14,20 @@
 
 namespace rastercmp::cpu::fast {
 
+// The pieces of one clipped triangle (clipped_pieces.hpp).
+struct ClippedPrimitive {
+  uint32_t primitive = 0;
+  uint32_t first = 0, count = 0;  // ClippedTable::pieces[first, first + count)
+  bool in_place = false;          // a piece takes llvmpipe's wrapping set-up: the walk clips it itself
+};
+
+// Per draw, sorted by primitive: the clipped triangles the block-row phase set up (clipped_pieces.hpp).
+struct ClippedTable {
+  std::vector<ClippedPrimitive> primitives;
+  std::vector<FastTriangle> pieces;  // rectangles cut to the draw region (maybe empty)
+  bool ready = false;                // every clipped triangle of the draw is in it
+};
+
 struct FastDraw {
   // Triangles of a single-sample frame take the fast walk; anything else (lines, 4x) the exact
   // front end and rasterizer, restricted to each worker's rows.
@@ -34,6 +48,7 @@ struct FastDraw {
   DrawRaster raster;
   bool small_blocks = false;       // set up eight triangles at a time (small_triangles.hpp)
   uint32_t* block_rows = nullptr;  // per block of 8: the tile rows it may reach (band_worker.cpp)
+  ClippedTable clipped;            // several workers: its clipped triangles, set up once
 };
 
 // block_rows value of a block that must be set up by every worker.

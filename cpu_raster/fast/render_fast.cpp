@@ -21,6 +21,7 @@
 #include "cpu_raster/exact/setup_methods.hpp"
 #include "cpu_raster/fast/band_worker.hpp"
 #include "cpu_raster/fast/block_rows.hpp"
+#include "cpu_raster/fast/clipped_pieces.hpp"
 #include "cpu_raster/fast/cpu_features.hpp"
 #include "cpu_raster/fast/frame_memory.hpp"
 #include "cpu_raster/fast/row_balance.hpp"
@@ -256,17 +257,24 @@ void measure_all_block_rows(FastFrame& frame) {
   // past its last): the rows' work estimate (balance_tile_rows).
   const size_t tiles_y = size_t(std::max(frame.raster.tiles_y, 0));
   std::vector<int32_t> reach(tasks.size() * (tiles_y + 1), 0);
+  std::vector<ClippedTable> clipped(tasks.size());  // the tasks' clipped triangles (clipped_pieces.hpp)
   std::atomic<size_t> next{0};
   std::atomic<bool> bad_index{false};
   worker_pool(frame.workers).run([&](uint32_t) {
     for (size_t i = next++; i < tasks.size(); i = next++) {
       const RowTask& task = tasks[i];
-      if (!measure_block_rows(frame, task.draw, task.begin, task.end)) bad_index = true;
+      if (!measure_block_rows(frame, task.draw, task.begin, task.end)) {
+        bad_index = true;
+        continue;
+      }
       count_block_rows(frame.draws[task.draw].block_rows + task.begin, task.end - task.begin, tiles_y,
                        reach.data() + i * (tiles_y + 1));
+      clip_block_triangles(frame, task.draw, task.begin, task.end, clipped[i]);
     }
   });
   if (bad_index) check_lavapipe_profile_support(*frame.scene);
+  for (size_t i = 0; i < tasks.size(); ++i) append_clipped(frame.draws[tasks[i].draw].clipped, clipped[i]);
+  for (FastDraw& fd : frame.draws) fd.clipped.ready = fd.small_blocks;
   balance_tile_rows(frame, reach, tasks.size());
 }
 

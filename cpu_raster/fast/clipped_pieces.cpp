@@ -1,0 +1,82 @@
+#include "cpu_raster/fast/clipped_pieces.hpp"
+
+#include "cpu_raster/fast/small_block_input.hpp"
+
+namespace rastercmp::cpu::fast {
+
+FastTriangle fast_triangle_of(const RasterPrimitive& p, const PixelRect& region) {
+  FastTriangle t;
+  for (int k = 0; k < 3; ++k) {
+    t.x_fixed[k] = p.vertex_fixed[k].x.raw;
+    t.y_fixed[k] = p.vertex_fixed[k].y.raw;
+  }
+  t.rect = intersect(p.bbox, region);  // coverage lies in the bounding box (§2.5)
+  if (p.has_depth) {
+    t.a0 = p.depth.a0;
+    t.dzdx = p.depth.dzdx;
+    t.dzdy = p.depth.dzdy;
+    t.offset = p.offset.offset;
+  }
+  t.owner = p.owner;
+  return t;
+}
+
+namespace {
+
+template <Topology T, bool Indexed>
+void clip_blocks(const FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end, ClippedTable& table) {
+  const Draw& draw = frame.scene->draws[d];
+  const FastDraw& fd = frame.draws[d];
+  const uint32_t count = primitive_count(draw);
+  SmallBlock block;
+  for (uint32_t b = begin; b < end; ++b) {
+    if (fd.block_rows[b] != kBlockAnyRow) continue;  // known rows: no corner needs clipping
+    fill_block_corners<T, Indexed>(draw.indices.data(), count, b, block);
+    const SmallBlockInput& in = block.in;
+    for (uint32_t l = 0; l < in.count; ++l) {
+      const size_t at = size_t(l) * in.stride;
+      const uint32_t a = in.corners[0][at], bb = in.corners[1][at], c = in.corners[2][at];
+      const uint32_t fa = fd.vertices[a].flags, fb = fd.vertices[bb].flags, fc = fd.vertices[c].flags;
+      // BandWorker::triangle's first two verdicts: no corner to clip, or all outside one plane
+      if (((fa | fb | fc) & kVertexClipBits) == 0 || (fa & fb & fc & kVertexClipBits) != 0) continue;
+      ClippedPrimitive entry;
+      entry.primitive = block.first + l;
+      entry.first = uint32_t(table.pieces.size());
+      for_each_piece(
+          frame, d, entry.primitive, a, bb, c, [&](const FastTriangle& t) { table.pieces.push_back(t); },
+          [&](const RasterPrimitive&) { entry.in_place = true; });
+      entry.count = uint32_t(table.pieces.size()) - entry.first;
+      table.primitives.push_back(entry);
+    }
+  }
+}
+
+}  // namespace
+
+void clip_block_triangles(const FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end, ClippedTable& table) {
+  const Draw& draw = frame.scene->draws[d];
+  const bool indexed = !draw.indices.empty();
+  switch (draw.topology) {
+    case Topology::TriangleList:
+      return indexed ? clip_blocks<Topology::TriangleList, true>(frame, d, begin, end, table)
+                     : clip_blocks<Topology::TriangleList, false>(frame, d, begin, end, table);
+    case Topology::TriangleStrip:
+      return indexed ? clip_blocks<Topology::TriangleStrip, true>(frame, d, begin, end, table)
+                     : clip_blocks<Topology::TriangleStrip, false>(frame, d, begin, end, table);
+    case Topology::TriangleFan:
+      return indexed ? clip_blocks<Topology::TriangleFan, true>(frame, d, begin, end, table)
+                     : clip_blocks<Topology::TriangleFan, false>(frame, d, begin, end, table);
+    default: return;
+  }
+}
+
+void append_clipped(ClippedTable& table, const ClippedTable& part) {
+  const uint32_t offset = uint32_t(table.pieces.size());
+  for (ClippedPrimitive entry : part.primitives) {
+    entry.first += offset;
+    table.primitives.push_back(entry);
+  }
+  table.pieces.insert(table.pieces.end(), part.pieces.begin(), part.pieces.end());
+}
+
+}  // namespace rastercmp::cpu::fast

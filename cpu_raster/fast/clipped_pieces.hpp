@@ -1,0 +1,64 @@
+// Triangles that need clipping, set up once per frame instead of once per worker. A clipped
+// triangle's corners give no tile row (their window positions say nothing before clipping), so
+// its block is set up by every worker, and each ran the exact clipper and set-up on it
+// (perspective's 614 clipped triangles at the screen's sides and far plane: about 15% of each
+// worker's walk, session 13). With several workers the block-row phase, which already visits
+// those blocks, now clips them, one task each, into a ClippedTable per draw; the walk then
+// draws the stored pieces in its rows. The pieces are the exact path's (clip_triangle,
+// pipeline cull, setup_triangle), computed by the same function either way (for_each_piece).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "cpu_raster/exact/clip_triangle.hpp"
+#include "cpu_raster/exact/clip_vertex.hpp"
+#include "cpu_raster/exact/pipeline_cull.hpp"
+#include "cpu_raster/exact/rasterize.hpp"
+#include "cpu_raster/exact/triangle_setup.hpp"
+#include "cpu_raster/fast/fast_frame.hpp"
+#include "cpu_raster/fast/fast_triangle.hpp"
+#include "model/render_result.hpp"
+
+namespace rastercmp::cpu::fast {
+
+FastTriangle fast_triangle_of(const RasterPrimitive& p, const PixelRect& region);
+
+// The exact path's clipper and set-up (front_end.cpp run_triangle) for triangle `primitive` of
+// draw d (positions a, b, c), which needs clipping: piece(t) for each piece the fast kernels draw
+// (t.rect cut to the draw region, maybe empty), binned(p) for each that takes llvmpipe's wrapping
+// set-up, in the clipper's order.
+template <class Piece, class Binned>
+void for_each_piece(const FastFrame& frame, uint32_t d, uint32_t primitive, uint32_t a, uint32_t b, uint32_t c,
+                    Piece&& piece, Binned&& binned) {
+  const Draw& draw = frame.scene->draws[d];
+  const FastDraw& fd = frame.draws[d];
+  const FrameContext& exact = frame.exact;
+  const bool depth_clip = draw.state.depth_clip_enabled();
+  std::array<ClipVertex, 3> corners;
+  const uint32_t positions[3] = {a, b, c};
+  for (int k = 0; k < 3; ++k)
+    corners[k] = make_clip_vertex(draw.positions_clip[positions[k]], exact.viewport, depth_clip, exact.fma);
+  const ClippedTriangles clipped = clip_triangle(corners, exact.viewport);
+  for (const auto& p : clipped.triangles) {
+    const std::array<WindowVertex, 3> window{p[0].window, p[1].window, p[2].window};
+    if (fd.pipelined(primitive) && draw.state.cull_mode != CullMode::None &&
+        pipeline_cull_drops(pipeline_cull_determinant(window), draw.state.cull_mode, draw.state.front_face))
+      continue;
+    const TriangleSetup setup = setup_triangle(window, encode_owner(d, primitive), fd.setup);
+    if (setup.fate != SetupFate::Rasterized) continue;
+    if (setup.raster.binned)
+      binned(setup.raster);
+    else
+      piece(fast_triangle_of(setup.raster, exact.region));
+  }
+}
+
+// Adds the clipped triangles of blocks [begin, end) of draw d whose rows are kBlockAnyRow (and
+// that some lane of which needs clipping) to `table`, in primitive order.
+void clip_block_triangles(const FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end, ClippedTable& table);
+
+// Appends `part` (the next primitives of the same draw) to `table`.
+void append_clipped(ClippedTable& table, const ClippedTable& part);
+
+}  // namespace rastercmp::cpu::fast
