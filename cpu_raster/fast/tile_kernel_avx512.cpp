@@ -45,9 +45,71 @@ RASTERCMP_AVX512 inline __m512 depth16(const Plane16& p, __m512 px, __m512 py) {
   return z;
 }
 
+// One step: the depth test and writes of the `covered` pixels of sixteen columns from x in row y.
+template <DepthFormat F, CompareOp Op>
+RASTERCMP_AVX512 inline __mmask16 step16(const Plane16& plane, __m512i lane, __m512i owner, uint32_t* owner_row,
+                                         uint32_t* depth_row, int32_t x, __m512 py, __mmask16 covered) {
+  __mmask16 pass = covered;
+  if constexpr (F != DepthFormat::None) {
+    const __m512 px = _mm512_cvtepi32_ps(_mm512_add_epi32(_mm512_set1_epi32(x), lane));  // exact below 2^24
+    const __m512i raw = to_raw16<F>(depth16(plane, px, py));
+    if constexpr (Op != CompareOp::Always)
+      pass = passing<F, Op>(covered, raw, _mm512_maskz_loadu_epi32(covered, depth_row + x));
+    if (plane.write) _mm512_mask_storeu_epi32(depth_row + x, pass, raw);
+  }
+  _mm512_mask_storeu_epi32(owner_row + x, pass, owner);
+  return pass;
+}
+
+// Jobs at most 32 columns wide from origin_x: per row the edges' G - 1 of one or two steps of
+// sixteen columns (32-bit, stepped by gy from row to row: the AVX2 kernel's narrow loop, and
+// within tile_edges.hpp's bound: a pixel at most 8 columns past the tile has |G| < 71 * 2^24 < 2^31),
+// covered where all three are >= 0 and the column lies in the rectangle. Cheaper than the covered
+// columns for a narrow triangle: a few operations per row instead of a division per edge and
+// four rows.
+template <DepthFormat F, CompareOp Op>
+RASTERCMP_AVX512 bool narrow16(const KernelJob& j, const KernelDepth& d, const TileTarget& t) {
+  const Plane16 plane = plane16(j, d);
+  const __m512i lane = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+  const __m512i owner = _mm512_set1_epi32(int32_t(j.owner));
+  const bool two = j.rect.x1 - j.origin_x >= 16;
+  __m512i e[3], gy[3], half[3];
+  for (int i = 0; i < 3; ++i) {
+    e[i] = _mm512_add_epi32(_mm512_set1_epi32(j.g_minus_1[i]), _mm512_mullo_epi32(lane, _mm512_set1_epi32(j.gx[i])));
+    gy[i] = _mm512_set1_epi32(j.gy[i]);
+    half[i] = _mm512_set1_epi32(16 * j.gx[i]);
+  }
+  const __m512i column = _mm512_add_epi32(_mm512_set1_epi32(j.origin_x), lane);
+  const __mmask16 in_rect[2] = {
+      __mmask16(_mm512_cmpge_epi32_mask(column, _mm512_set1_epi32(j.rect.x0)) &
+                _mm512_cmple_epi32_mask(column, _mm512_set1_epi32(j.rect.x1))),
+      __mmask16(_mm512_cmple_epi32_mask(_mm512_add_epi32(column, _mm512_set1_epi32(16)), _mm512_set1_epi32(j.rect.x1)))};
+  const size_t width = size_t(t.width);
+  __mmask16 any = 0;
+  for (int32_t y = j.rect.y0; y <= j.rect.y1; ++y) {
+    const __m512 py = _mm512_set1_ps(float(y));
+    uint32_t* const owner_row = t.owner + size_t(y) * width;
+    uint32_t* const depth_row = F != DepthFormat::None ? t.depth + size_t(y) * width : nullptr;
+    const __mmask16 covered =
+        in_rect[0] & _mm512_cmpge_epi32_mask(_mm512_ternarylogic_epi32(e[0], e[1], e[2], 0xFE), _mm512_setzero_si512());
+    if (covered) any |= step16<F, Op>(plane, lane, owner, owner_row, depth_row, j.origin_x, py, covered);
+    if (two) {
+      const __mmask16 right =
+          in_rect[1] & _mm512_cmpge_epi32_mask(_mm512_ternarylogic_epi32(_mm512_add_epi32(e[0], half[0]),
+                                                                          _mm512_add_epi32(e[1], half[1]),
+                                                                          _mm512_add_epi32(e[2], half[2]), 0xFE),
+                                               _mm512_setzero_si512());
+      if (right) any |= step16<F, Op>(plane, lane, owner, owner_row, depth_row, j.origin_x + 16, py, right);
+    }
+    for (int i = 0; i < 3; ++i) e[i] = _mm512_add_epi32(e[i], gy[i]);
+  }
+  return any != 0;
+}
+
 template <DepthFormat F, CompareOp Op>
 RASTERCMP_AVX512 bool kernel16(const KernelJob& j, const KernelDepth& d, const TileTarget& t) {
   if constexpr (Op == CompareOp::Never && F != DepthFormat::None) return false;
+  if (j.rect.x1 - j.origin_x < 32) return narrow16<F, Op>(j, d, t);
   const Plane16 plane = plane16(j, d);
   const __m512i lane = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
   const __m512i owner = _mm512_set1_epi32(int32_t(j.owner));
