@@ -6,8 +6,6 @@
 #include <cmath>
 
 #include "cpu_raster/exact/assemble.hpp"
-#include "cpu_raster/exact/clip_triangle.hpp"
-#include "cpu_raster/exact/clip_vertex.hpp"
 #include "cpu_raster/exact/depth_plane.hpp"
 #include "cpu_raster/exact/pipeline_cull.hpp"
 #include "cpu_raster/exact/triangle_setup.hpp"

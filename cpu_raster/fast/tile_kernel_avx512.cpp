@@ -1,8 +1,9 @@
-// The tile kernel (tile_kernel.hpp) on AVX-512 hosts: each row's covered columns from the edges
-// (row_columns_avx2.hpp, the same code as the AVX2 kernel's), then sixteen pixels per step, the
-// columns past the row's last covered one masked off. A step has no branch on its data: the masked
-// loads and stores touch only covered pixels (so never a pixel outside the rectangle, which lies
-// inside one tile and the framebuffer), and the depth test is a mask. The depth arithmetic is
+// The tile kernel (tile_kernel.hpp) on AVX-512 hosts, sixteen pixels per step with the uncovered
+// columns masked off. Coverage: for jobs at most 32 columns wide from origin_x, each row's edge
+// values (narrow16, one or two steps per row); for wider ones, each row's covered columns from the
+// edges (row_columns_avx2.hpp, the same code as the AVX2 kernel's). A step has no branch on its
+// data: the masked loads and stores touch only covered pixels (so never a pixel outside the
+// rectangle, which lies inside one tile and the framebuffer), and the depth test is a mask. The depth arithmetic is
 // avx512_depth.hpp's, avx2_depth.hpp's operations one intrinsic each on sixteen lanes.
 #include <immintrin.h>
 
