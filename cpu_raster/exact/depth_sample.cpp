@@ -6,16 +6,6 @@
 #include "model/depth_format.hpp"
 
 namespace rastercmp::cpu {
-namespace {
-
-// LLVM's unordered predicates (ULT, UEQ, ...): true whenever an operand is NaN.
-bool unordered_compare(CompareOp op, float a, float b) {
-  if (op == CompareOp::Never) return false;
-  if (std::isnan(a) || std::isnan(b)) return true;
-  return ordered_compare(op, a, b);
-}
-
-}  // namespace
 
 float interpolate_depth(const DepthPlane& plane, float px, float py, bool fma) {
   return mul_add(plane.dzdy, py, mul_add(plane.dzdx, px, plane.a0, fma), fma);  // lp_bld_interp.c
@@ -62,10 +52,5 @@ uint32_t clear_depth_raw(DepthFormat format, float clear_value) {
   return 0;
 }
 
-bool depth_test_passes(CompareOp op, DepthFormat format, uint32_t fragment_raw, uint32_t stored_raw) {
-  if (is_float(format))  // docs/lavapipe-rules.md §3.6
-    return unordered_compare(op, float_from_bits(fragment_raw), float_from_bits(stored_raw));
-  return ordered_compare(op, fragment_raw, stored_raw);
-}
 
 }  // namespace rastercmp::cpu

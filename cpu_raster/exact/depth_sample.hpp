@@ -6,9 +6,12 @@
 //   D16: bits(fl(fl(z*(65535/65536)) + 128)) & 0xFFFF;  D24: rne(fl(z*16777215));  D32: z
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 
 #include "cpu_raster/exact/depth_plane.hpp"
+#include "cpu_raster/exact/float_ops.hpp"
+#include "model/depth_format.hpp"
 #include "model/scene.hpp"
 
 namespace rastercmp::cpu {
@@ -57,7 +60,19 @@ uint32_t depth_to_raw(DepthFormat format, float z);
 // The clear value as llvmpipe packs it (util_pack_z: lrint in double; D32: the float bits).
 uint32_t clear_depth_raw(DepthFormat format, float clear_value);
 
+// LLVM's unordered predicates (ULT, UEQ, ...): true whenever an operand is NaN.
+inline bool unordered_compare(CompareOp op, float a, float b) {
+  if (op == CompareOp::Never) return false;
+  if (std::isnan(a) || std::isnan(b)) return true;
+  return ordered_compare(op, a, b);
+}
+
 // The depth test: unsigned compare for UNORM formats, unordered IEEE compare for D32 (§3.6).
-bool depth_test_passes(CompareOp op, DepthFormat format, uint32_t fragment_raw, uint32_t stored_raw);
+// Inline: the fast path's exact rows call it per sample.
+inline bool depth_test_passes(CompareOp op, DepthFormat format, uint32_t fragment_raw, uint32_t stored_raw) {
+  if (is_float(format))  // docs/lavapipe-rules.md §3.6
+    return unordered_compare(op, float_from_bits(fragment_raw), float_from_bits(stored_raw));
+  return ordered_compare(op, fragment_raw, stored_raw);
+}
 
 }  // namespace rastercmp::cpu
