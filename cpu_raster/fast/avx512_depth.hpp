@@ -3,6 +3,14 @@
 // operations, one IEEE operation per intrinsic, on sixteen lanes.
 #pragma once
 
+// GCC 12's own AVX-512 headers pass _mm512_undefined_*() as the merge source of unmasked
+// operations, which -Wuninitialized reports at every use once inlined (a false positive). The
+// translation units with 512-bit intrinsics include this header before their code.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wuninitialized"
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
+
 #include <immintrin.h>
 
 #include "cpu_raster/fast/cpu_features.hpp"

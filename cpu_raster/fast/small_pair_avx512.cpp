@@ -6,13 +6,6 @@
 // wider one of the two blocks when they differ (test FastSmallTriangles.PairSetupEqualsTwoBlocks).
 #include <immintrin.h>
 
-// GCC 12's own AVX-512 headers pass _mm512_undefined_*() as the merge source of unmasked
-// operations, which -Wuninitialized reports at every use once inlined (a false positive).
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic ignored "-Wuninitialized"
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#endif
-
 #include <algorithm>
 
 #include "cpu_raster/fast/avx512_depth.hpp"

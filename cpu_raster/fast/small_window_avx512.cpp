@@ -2,13 +2,6 @@
 // is avx512_depth.hpp's (avx2_depth.hpp's, operation for operation, on sixteen lanes).
 #include <immintrin.h>
 
-// GCC 12's own AVX-512 headers pass _mm512_undefined_ps() as the merge source of vminps and
-// friends, which -Wuninitialized reports at every use once inlined (a false positive: unmasked).
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic ignored "-Wuninitialized"
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#endif
-
 #include <algorithm>
 #include <array>
 #include <bit>

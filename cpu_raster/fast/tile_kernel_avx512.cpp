@@ -3,16 +3,10 @@
 // values (narrow16, one or two steps per row); for wider ones, each row's covered columns from the
 // edges (row_columns_avx2.hpp, the same code as the AVX2 kernel's). A step has no branch on its
 // data: the masked loads and stores touch only covered pixels (so never a pixel outside the
-// rectangle, which lies inside one tile and the framebuffer), and the depth test is a mask. The depth arithmetic is
-// avx512_depth.hpp's, avx2_depth.hpp's operations one intrinsic each on sixteen lanes.
+// rectangle, which lies inside one tile and the framebuffer), and the depth test is a mask. The
+// depth arithmetic is avx512_depth.hpp's: avx2_depth.hpp's operations, one intrinsic each, on
+// sixteen lanes.
 #include <immintrin.h>
-
-// GCC 12's own AVX-512 headers pass _mm512_undefined_ps() as the merge source of vminps and
-// friends, which -Wuninitialized reports at every use once inlined (a false positive: unmasked).
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic ignored "-Wuninitialized"
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#endif
 
 #include "cpu_raster/fast/avx512_depth.hpp"
 #include "cpu_raster/fast/cpu_features.hpp"
@@ -126,16 +120,7 @@ RASTERCMP_AVX512 bool kernel16(const KernelJob& j, const KernelDepth& d, const T
     for (; x <= x_end; x += 16) {
       const uint32_t left = uint32_t(x_end - x + 1);
       const __mmask16 columns = __mmask16(left >= 16 ? 0xFFFFu : (1u << left) - 1u);
-      __mmask16 pass = columns;
-      if constexpr (F != DepthFormat::None) {
-        const __m512 px = _mm512_cvtepi32_ps(_mm512_add_epi32(_mm512_set1_epi32(x), lane));  // exact below 2^24
-        const __m512i raw = to_raw16<F>(depth16(plane, px, py));
-        if constexpr (Op != CompareOp::Always)
-          pass = passing<F, Op>(columns, raw, _mm512_maskz_loadu_epi32(columns, depth_row + x));
-        if (plane.write) _mm512_mask_storeu_epi32(depth_row + x, pass, raw);
-      }
-      _mm512_mask_storeu_epi32(owner_row + x, pass, owner);
-      any |= pass;
+      any |= step16<F, Op>(plane, lane, owner, owner_row, depth_row, x, py, columns);
     }
   }
   return any != 0;
