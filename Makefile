@@ -13,7 +13,7 @@ SAN_ENV := ASAN_OPTIONS=detect_leaks=1:halt_on_error=1:abort_on_error=0:exitcode
   UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1:exitcode=$(SAN_EXITCODE) \
   LSAN_OPTIONS=suppressions=$(CURDIR)/tests/sanitizer/lsan.supp:print_suppressions=0:exitcode=$(SAN_EXITCODE)
 
-.PHONY: setup build conformance test test-unit build-san test-sanitize fuzz bench soak clean
+.PHONY: setup build conformance test test-unit build-san test-sanitize fuzz bench soak properties clean
 
 setup:
 	@bash scripts/setup.sh
@@ -82,6 +82,22 @@ SOAK_SEED  ?= 1
 SOAK_COUNT ?= 1000000
 soak: build
 	@$(BUILD)/app/rastercmp soak --seed $(SOAK_SEED) --count $(SOAK_COUNT) --out $(OUT)/soak
+
+# rapidcheck's properties with fresh seeds (ctest fixes one, tests/CMakeLists.txt): PROPERTY_RUNS
+# runs of every property binary; each failure's output, with the RC_PARAMS line that replays it,
+# is kept in $(OUT)/properties/, and the target fails if there was one.
+PROPERTY_RUNS ?= 20
+PROPERTY_TESTS := test_spec_properties test_cpu_invariants test_compare_diff test_conformance_expectations \
+  test_methods_depth test_methods_fill test_methods_line_clip test_methods_lines test_methods_polygon_clip \
+  test_methods_visibility
+properties: build
+	@mkdir -p $(OUT)/properties
+	@failed=0; for run in $$(seq 1 $(PROPERTY_RUNS)); do for t in $(PROPERTY_TESTS); do \
+	  log=$(OUT)/properties/$$t-run$$run.log; \
+	  if env -u RC_PARAMS $(BUILD)/tests/$$t --gtest_brief=1 > $$log 2>&1; then rm -f $$log; \
+	  else failed=$$((failed + 1)); echo "properties: $$t failed (run $$run): $$log"; fi; done; done; \
+	  echo "properties: $(PROPERTY_RUNS) runs of $(words $(PROPERTY_TESTS)) binaries, $$failed failed"; \
+	  test $$failed -eq 0
 
 clean:
 	rm -rf $(BUILD) $(BUILD_SAN) $(OUT)
