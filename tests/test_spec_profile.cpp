@@ -446,6 +446,83 @@ TEST(SpecProfile, DepthBiasShiftsTheIntervalAndCanMakeItUndefined) {
   EXPECT_FALSE(judge(clamped, render_cpu(scene, lavapipe_options())).any());
 }
 
+// docs/spec-profile.md "Lavapipe deviations", depth extrapolated past the vertices. lavapipe's depth
+// plane runs through the float window vertices, its coverage through the snapped ones; a sample
+// covered only after snapping gets a depth outside the vertices' range, which the profile rejects
+// and the property tests accept as that deviation (accept_float_plane_extrapolation). Both scenes
+// are tests/test_spec_properties.cpp failures, reduced to the primitive that wrote the sample.
+struct ExtrapolatedSample {
+  uint32_t x, y, sample, lavapipe_raw, lo_raw;
+  DepthTerm lo_term;
+};
+
+void expect_extrapolation_deviation(const Scene& scene, const ExtrapolatedSample& e) {
+  const RenderResult exact = render_cpu(scene, lavapipe_options());
+  RenderResult spec = spec_render(scene);
+  const size_t i = exact.index(e.x, e.y, e.sample);
+  EXPECT_NE(exact.owner[i], kOwnerBackground);
+  EXPECT_EQ(exact.depth_raw[i], e.lavapipe_raw);
+  EXPECT_EQ(spec.depth_interval[i].lo_raw, e.lo_raw);
+  EXPECT_EQ(spec.depth_interval[i].lo_term, e.lo_term);
+  const Violations before = judge(spec, exact);
+  EXPECT_EQ(before.depth_outside, 1u) << describe(before);
+  EXPECT_EQ(accept_float_plane_extrapolation(scene, 8, spec, exact), 1u);
+  EXPECT_TRUE(depth_in_interval(exact.depth_format, spec.depth_interval[i], exact.depth_raw[i]));
+  const Violations after = judge(spec, exact);
+  EXPECT_FALSE(after.any()) << describe(after);
+}
+
+// A clipped at the far plane (z_f = 0.375, reversed depth range 0.625..0.375, depth clip on):
+// the piece's vertex (2.5, 2.49930096) snaps to (2.5, 2.5), the pixel centre; lavapipe's plane
+// there is 0.375 - 0.3289 x 0.00070 = 0.374770 (raw 24560.6 -> 24561), below every vertex depth by
+// more than the precision allowance (lo 0.374802 -> raw 24562).
+TEST(SpecProfile, LavapipeDepthExtrapolatedPastAClippedFarPlaneIsTheKnownDeviation) {
+  Scene scene = make_scene(10, 27);
+  scene.depth_format = DepthFormat::D16Unorm;
+  scene.viewport = Viewport{2.5f, 3, 4, -4, 0.625f, 0.375f};
+  Draw draw;
+  draw.state.depth.compare_op = CompareOp::Less;
+  draw.positions_clip = {{4.2773438f, -1.1894531f, 0.53f, 1},
+                         {-4.1796875f, -0.21741152f, 0.58000004f, 1},
+                         {0.13476562f, -2, 3.94f, 1}};
+  scene.draws.push_back(draw);
+  expect_extrapolation_deviation(scene, {2, 2, 0, 24561, 24562, DepthTerm::Precision});
+}
+
+// B: 4x, a vertex behind the eye (w = -1.25), depth bias (-40, 0.25, clamp 1/64) clamped to
+// 0.015625. Sample 1 of pixel (2, 2), at (2.875, 2.375), lies 0.00116 px outside the float piece's
+// edge from (2.868, 0) to (2.888, 5.936), where z = 0, and inside the snapped one; lavapipe's plane
+// there is -0.00055, plus the bias 0.015078 (raw 988), while the vertices' range plus the bias
+// less the precision allowance is 0.015305 (raw 1003).
+TEST(SpecProfile, LavapipeDepthExtrapolatedPastAClippedEdgeWithBiasIsTheKnownDeviation) {
+  Scene scene = make_scene(4, 21, 4);
+  scene.depth_format = DepthFormat::D16Unorm;
+  Draw draw;
+  draw.state.depth.compare_op = CompareOp::LessOrEqual;
+  draw.state.depth_bias = DepthBias{true, -40.0f, 0.25f, 0.015625f};
+  draw.positions_clip = {{1.3085938f, 0.065476194f, 0.81f, 1},
+                         {-0.9147072f, -1.080073f, -0.3125f, -1.25f},
+                         {0.49023438f, -0.22690637f, 0.04f, 1}};
+  scene.draws.push_back(draw);
+  expect_extrapolation_deviation(scene, {2, 2, 1, 988, 1003, DepthTerm::Bias});
+}
+
+// Inside the float triangle nothing is accepted: the sloped triangle of
+// DepthIntervalsHoldLavapipeAndRejectOneStepPastABound with a stored depth moved past its bound.
+TEST(SpecProfile, DepthPastTheIntervalInsideTheFloatTriangleIsNotAcceptedAsExtrapolation) {
+  Scene scene = make_scene(16, 16);
+  scene.depth_format = DepthFormat::D16Unorm;
+  Draw draw = window_triangles(scene, {{2, 2}, {14, 2}, {2, 14}}, 0.25f);
+  draw.positions_clip[1].z = 0.75f;
+  scene.draws.push_back(draw);
+  RenderResult spec = spec_render(scene);
+  RenderResult moved = render_cpu(scene, lavapipe_options());
+  const size_t i = moved.index(4, 4);
+  moved.depth_raw[i] = spec.depth_interval[i].lo_raw - 1;
+  EXPECT_EQ(accept_float_plane_extrapolation(scene, 8, spec, moved), 0u);
+  EXPECT_EQ(judge(spec, moved).depth_outside, 1u);
+}
+
 TEST(SpecProfile, NotSupportedAndBadOptions) {
   Scene scene = make_scene(16, 16);
   scene.draws.push_back(window_triangles(scene, {{2, 2}, {10, 2}, {2, 10}}));

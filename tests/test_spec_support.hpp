@@ -2,6 +2,8 @@
 // count of spec violations of a render, and a readable description of the first one.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -11,6 +13,8 @@
 #include <glm/vec4.hpp>
 
 #include "cpu_raster/cpu_raster.hpp"
+#include "cpu_raster/exact/raster_primitive.hpp"
+#include "cpu_raster/spec/spec_primitives.hpp"
 #include "cpu_raster/spec/spec_profile.hpp"
 #include "model/render_result.hpp"
 #include "model/scene.hpp"
@@ -106,6 +110,66 @@ inline Violations judge(const RenderResult& spec, const RenderResult& render) {
     }
   }
   return v;
+}
+
+// docs/spec-profile.md "Lavapipe deviations", depth extrapolated past the vertices: lavapipe
+// interpolates depth over the plane through the unsnapped float window vertices
+// (docs/lavapipe-rules.md §3.2) but covers samples with the vertices snapped to 1/256 px (§2.2), so
+// a sample that the snapped triangle covers but the float one does not gets the plane's value
+// outside the triangle, past the vertices' depth range, which "Basic Polygon Rasterization" rules
+// out (barycentric coordinates "each in the range [0,1]"; a clipped polygon's fragments a convex
+// combination of its vertices' values). Per sample whose stored depth lies outside its interval:
+// when some depth-writing piece's float triangle misses the sample (lavapipe's sample location) by
+// at most what lavapipe's snapping moves a vertex (sqrt(2)/256 px), and the stored value lies in
+// the interval the profile computes for that piece with its vertex depth range stretched to the
+// float plane's value at the sample, that is this deviation: the sample's interval in `spec` is
+// widened to the stored value. Returns how many samples were.
+inline uint64_t accept_float_plane_extrapolation(const Scene& scene, uint32_t bits, RenderResult& spec,
+                                                 const RenderResult& exact) {
+  if (spec.depth_interval.empty() || !exact.has_depth()) return 0;
+  const cpu::spec::SpecPrimitives primitives = cpu::spec::build_spec_primitives(scene, spec_options(bits).fma, bits);
+  const double reach = std::sqrt(2.0) / 256.0;
+  uint64_t accepted = 0;
+  for (size_t i = 0; i < exact.depth_raw.size(); ++i) {
+    if (spec.coverage_class[i] == CoverageClass::MustNot || exact.owner[i] == kOwnerBackground) continue;
+    DepthInterval& d = spec.depth_interval[i];
+    const uint32_t raw = exact.depth_raw[i];
+    if (depth_in_interval(exact.depth_format, d, raw)) continue;
+    const size_t pixel = i / exact.samples;
+    const uint32_t px = uint32_t(pixel % exact.width), py = uint32_t(pixel / exact.width), s = uint32_t(i % exact.samples);
+    const glm::dvec2 p = exact.samples > 1 ? glm::dvec2(px + cpu::kStandardSamples4x[s].x, py + cpu::kStandardSamples4x[s].y)
+                                           : glm::dvec2(px + 0.5, py + 0.5);
+    for (const cpu::spec::SpecTriangle& t : primitives.triangles) {
+      if (!t.depth.writes || !t.depth.plane_defined || t.depth.bias_any) continue;
+      const auto area = [](glm::dvec2 a, glm::dvec2 b, glm::dvec2 c) {
+        return (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
+      };
+      glm::dvec2 v[3];
+      for (size_t k = 0; k < 3; ++k) v[k] = glm::dvec2(t.window[k].x, t.window[k].y);
+      const double whole = area(v[0], v[1], v[2]);
+      if (whole == 0) continue;
+      double z = 0, outside = 0;
+      for (size_t k = 0; k < 3; ++k) {
+        const glm::dvec2 b = v[(k + 1) % 3], c = v[(k + 2) % 3];
+        const double weight = area(p, b, c) / whole;
+        z += weight * double(t.window[k].z);
+        const double edge = std::hypot(c.x - b.x, c.y - b.y);
+        if (weight < 0 && edge > 0) outside = std::max(outside, -weight * std::fabs(whole) / edge);
+      }
+      if (outside == 0 || outside > reach) continue;  // inside the float triangle, or too far to be covered
+      cpu::spec::DepthJudge stretched = t.depth;
+      stretched.vertex_lo = std::min(stretched.vertex_lo, z);
+      stretched.vertex_hi = std::max(stretched.vertex_hi, z);
+      const DepthInterval widened = cpu::spec::depth_format_interval(
+          exact.depth_format, cpu::spec::fragment_depth_range(stretched, glm::dvec2(px + 0.5, py + 0.5)));
+      if (!depth_in_interval(exact.depth_format, widened, raw)) continue;
+      d.lo_raw = std::min(d.lo_raw, raw);
+      d.hi_raw = std::max(d.hi_raw, raw);
+      ++accepted;
+      break;
+    }
+  }
+  return accepted;
 }
 
 inline std::string describe(const Violations& v) {
