@@ -523,6 +523,49 @@ TEST(SpecProfile, DepthPastTheIntervalInsideTheFloatTriangleIsNotAcceptedAsExtra
   EXPECT_EQ(judge(spec, moved).depth_outside, 1u);
 }
 
+// test_spec_properties found it (1 run in 900): without depth clipping the triangle crosses
+// w_c = 0, and all three vertices have x_c / w_c = 1.6, so its plane holds the clip-space origin:
+// the exact clipped polygon is the single point x_c = y_c = w_c = 0, which has no window position
+// and no area. lavapipe's float clipper returns noise there (clip positions of size 1e-7, one
+// w_c = -2.9e-12), a piece at window (6.5, -7), (6.5, 1.002), (-61526.6, -7) that reaches past the
+// viewport's right side x = -1. The profile called its pixels (0..5, 0) Must; lavapipe covers
+// nothing (its draw region ends at the viewport). No piece with a clipper-made vertex at w_c <= 0
+// and no box outside the viewport rectangle is Must now.
+Scene behind_eye_edge_on_scene(const Viewport& viewport) {
+  Scene scene = make_scene(9, 19);
+  scene.viewport = viewport;
+  Draw draw;
+  draw.state.depth_clamp = true;
+  draw.state.depth_clip = false;
+  draw.positions_clip = {{1.6f, 0.25f, 1.64f, 1}, {-2.4f, -0.5625f, -2.46f, -1.5f}, {1.6f, 0.3755474f, 1.64f, 1}};
+  draw.indices = {0, 2, 1};
+  scene.draws.push_back(draw);
+  return scene;
+}
+
+TEST(SpecProfile, PieceOfAClippedPolygonDegenerateAtTheOriginIsNeverMust) {
+  // The viewport (x -16..-1, y -7..1) lies left of the framebuffer.
+  const Scene scene = behind_eye_edge_on_scene(Viewport{-16, -7, 15, 8, 0.625f, 0});
+  const cpu::spec::SpecPrimitives primitives = cpu::spec::build_spec_primitives(scene, true, 8);
+  ASSERT_EQ(primitives.triangles.size(), 1u);
+  EXPECT_FALSE(primitives.triangles[0].shape_certain);
+  const std::vector<std::string> rows = class_rows(scene, classify(scene));
+  EXPECT_EQ(rows[0], "???????..");
+  EXPECT_EQ(count(rows, 'M'), 0u);
+  EXPECT_EQ(count(rows, '?'), 7u);
+  const Violations v = judge(spec_render(scene), render_cpu(scene, lavapipe_options()));
+  EXPECT_FALSE(v.any()) << describe(v);
+
+  // Over the framebuffer (x 0..15, y 0..8) the same noise piece spans the viewport, and lavapipe
+  // covers all 9 x 8 pixels there; a device clipping exactly covers none: May, not Must.
+  const Scene inside = behind_eye_edge_on_scene(Viewport{0, 0, 15, 8, 0.625f, 0});
+  const std::vector<std::string> inside_rows = class_rows(inside, classify(inside));
+  EXPECT_EQ(count(inside_rows, 'M'), 0u);
+  EXPECT_EQ(count(inside_rows, '?'), 72u);
+  const Violations w = judge(spec_render(inside), render_cpu(inside, lavapipe_options()));
+  EXPECT_FALSE(w.any()) << describe(w);
+}
+
 TEST(SpecProfile, NotSupportedAndBadOptions) {
   Scene scene = make_scene(16, 16);
   scene.draws.push_back(window_triangles(scene, {{2, 2}, {10, 2}, {2, 10}}));

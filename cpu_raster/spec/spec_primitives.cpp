@@ -125,6 +125,9 @@ void add_triangle(const DrawContext& ctx, const cpu::AssembledPrimitive& prim, S
                                glm::dvec2(t.window[2].x, t.window[2].y)},
                               ctx.bits);
     t.facing = facing_gate(draw.state, t.snapped.area_sign);
+    t.shape_certain = std::none_of(piece.begin(), piece.end(), [](const ClipVertex& v) {
+      return v.made_by_clipper && !(v.pos_clip.w > 0.0f);
+    });
     const ClipError error = clip_error(ctx, {&piece[0], &piece[1], &piece[2]}, {source[0], source[1], source[2]});
     t.depth = make_depth_judge(*ctx.scene, draw.state,
                                depth_primitive(ctx, {t.window[0], t.window[1], t.window[2]}, error,

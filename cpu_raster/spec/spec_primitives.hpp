@@ -28,6 +28,11 @@ struct SpecTriangle {
   std::array<glm::vec4, 3> source_clip{};  // the primitive before clipping
   SnappedTriangle snapped;
   Gate facing = Gate::Certain;  // culling: certainly kept, possibly culled
+  // False when a vertex the clipper made has w_c <= 0: the clipped polygon lies in the clip volume,
+  // -w_c <= x_c, y_c <= w_c, so its exact vertex sits at w_c = 0 and x_c = y_c = 0 (within rounding),
+  // where the projection divides 0 by 0 and the polygon's window image has no area. The piece's
+  // window shape is rounding noise then: it may cover samples, never certainly.
+  bool shape_certain = true;
   DepthJudge depth;
 };
 

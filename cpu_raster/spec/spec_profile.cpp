@@ -33,6 +33,33 @@ cpu::PixelRect triangle_pixels(const SnappedTriangle& t, uint32_t bits, bool mul
   return pixels_near(t.x_min, t.x_max, t.y_min, t.y_max, bits, multisample, region);
 }
 
+// The viewport rectangle in window pixels: the image of the clip volume -w_c <= x_c, y_c <= w_c
+// (Vulkan "Primitive Clipping", "Controlling the Viewport"), where every clipped primitive lies.
+struct ViewportRect {
+  double x0 = 0, x1 = 0, y0 = 0, y1 = 0;
+};
+
+ViewportRect viewport_rect(const Viewport& v) {
+  const double y_end = double(v.y) + double(v.height);
+  return {double(v.x), double(v.x) + double(v.width), std::min(double(v.y), y_end), std::max(double(v.y), y_end)};
+}
+
+// The box lies strictly inside the viewport rectangle: its sides bound a triangle's clipped
+// polygon as its edges do, so a box across them cannot be FULL (the same rule as for lines).
+bool box_inside_viewport(const ViewportRect& r, const ToleranceBox& box, uint32_t bits) {
+  const double unit = std::ldexp(1.0, -int(bits));
+  const double x0 = double(box.cx - box.half) * unit, x1 = double(box.cx + box.half) * unit;
+  const double y0 = double(box.cy - box.half) * unit, y1 = double(box.cy + box.half) * unit;
+  return x0 > r.x0 && x1 < r.x1 && y0 > r.y0 && y1 < r.y1;
+}
+
+// FULL only for a piece whose shape is certain, and inside the viewport rectangle.
+Coverage capped(Coverage coverage, const SpecTriangle& t, const ViewportRect& viewport, const ToleranceBox& box,
+                uint32_t bits) {
+  if (coverage != Coverage::Full) return coverage;
+  return t.shape_certain && box_inside_viewport(viewport, box, bits) ? Coverage::Full : Coverage::Partial;
+}
+
 // The depth a primitive may write at pixel (px, py), where it may cover the pixel with `gate`. A
 // gate of Never (the fragment fails against the clear value) still counts: the fragment may pass
 // against a value an earlier draw wrote (a GREATER probe over a LESS-drawn quad).
@@ -49,16 +76,17 @@ using TouchCounts = std::vector<uint8_t>;
 
 // Row by row: whole FULL spans at once, classify_box only near the edges.
 void add_triangle(CoverageMap& map, DepthIntervalMap* depths, TouchCounts* touches, const SpecTriangle& t,
-                  uint32_t bits, bool multisample, uint32_t width) {
+                  const ViewportRect& viewport, uint32_t bits, bool multisample, uint32_t width) {
   const cpu::PixelRect r = triangle_pixels(t.snapped, bits, multisample, map.region());
   for (int32_t py = r.y0; py <= r.y1; ++py) {
     const RowSpans spans = row_spans(t.snapped, py, bits, multisample);
     const int64_t first = std::max<int64_t>(spans.touch_first, r.x0), last = std::min<int64_t>(spans.touch_last, r.x1);
     for (int64_t x = first; x <= last; ++x) {
       const int32_t px = int32_t(x);
-      const Coverage coverage = (x >= spans.full_first && x <= spans.full_last)
-                                    ? Coverage::Full
-                                    : classify_box(t.snapped, pixel_box(px, py, bits, multisample));
+      const ToleranceBox box = pixel_box(px, py, bits, multisample);
+      const Coverage coverage = capped((x >= spans.full_first && x <= spans.full_last) ? Coverage::Full
+                                                                                       : classify_box(t.snapped, box),
+                                       t, viewport, box, bits);
       if (coverage == Coverage::None) continue;
       const Gate gate = triangle_gate_at(t, px, py);
       map.add(px, py, coverage, gate);
@@ -72,13 +100,15 @@ void add_triangle(CoverageMap& map, DepthIntervalMap* depths, TouchCounts* touch
 }
 
 void add_shared_edge(CoverageMap& map, const std::vector<SpecTriangle>& triangles, const SharedEdge& shared,
-                     uint32_t bits, bool multisample) {
+                     const ViewportRect& viewport, uint32_t bits, bool multisample) {
+  if (!triangles[shared.first].shape_certain || !triangles[shared.second].shape_certain) return;
   const cpu::PixelRect r =
       cpu::intersect(triangle_pixels(triangles[shared.first].snapped, bits, multisample, map.region()),
                      triangle_pixels(triangles[shared.second].snapped, bits, multisample, map.region()));
   for (int32_t py = r.y0; py <= r.y1; ++py)
     for (int32_t px = r.x0; px <= r.x1; ++px)
-      if (!map.is_must(px, py) && promoted(triangles, shared, pixel_box(px, py, bits, multisample)) &&
+      if (!map.is_must(px, py) && box_inside_viewport(viewport, pixel_box(px, py, bits, multisample), bits) &&
+          promoted(triangles, shared, pixel_box(px, py, bits, multisample)) &&
           triangle_gate_at(triangles[shared.first], px, py) == Gate::Certain &&
           triangle_gate_at(triangles[shared.second], px, py) == Gate::Certain)
         map.make_must(px, py);
@@ -157,10 +187,11 @@ std::vector<CoverageClass> classify(const Scene& scene, const CpuOptions& option
     contest->touches.assign(size_t(scene.width) * scene.height, 0);
     touches = &contest->touches;
   }
+  const ViewportRect viewport = viewport_rect(scene.effective_viewport());
   for (const SpecTriangle& t : primitives.triangles)
-    add_triangle(map, depths, touches, t, bits, multisample, scene.width);
+    add_triangle(map, depths, touches, t, viewport, bits, multisample, scene.width);
   for (const SharedEdge& shared : find_shared_edges(primitives.triangles))
-    add_shared_edge(map, primitives.triangles, shared, bits, multisample);
+    add_shared_edge(map, primitives.triangles, shared, viewport, bits, multisample);
   for (const SpecLine& line : primitives.lines) add_line(map, depths, line, bits, multisample);
   if (touches != nullptr) {
     // Only Must pixels: a May sample takes any owner anyway.
