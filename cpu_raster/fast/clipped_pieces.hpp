@@ -1,10 +1,10 @@
 // Triangles that need clipping, set up once per frame instead of once per worker. A clipped
 // triangle's corners give no tile row (their window positions say nothing before clipping), so
 // its block is set up by every worker, and each ran the exact clipper and set-up on it
-// (perspective's 614 clipped triangles at the screen's sides and far plane: about 15% of each
-// worker's walk, session 13). With several workers the block-row phase, which already visits
-// those blocks, now clips them, one task each, into a ClippedTable per draw; the walk then
-// draws the stored pieces in its rows. The pieces are the exact path's (clip_triangle,
+// (perspective's 614 clipped triangles at the screen's sides and far plane: about 10% of each
+// worker's profile, session 13). With several workers the block-row phase, which already visits
+// those blocks, now clips each once (the task that measures its block) into a ClippedTable per
+// draw; the walk then draws the stored pieces in its rows. The pieces are the exact path's (clip_triangle,
 // pipeline cull, setup_triangle), computed by the same function either way (for_each_piece).
 #pragma once
 
@@ -22,6 +22,8 @@
 
 namespace rastercmp::cpu::fast {
 
+// The fast path's triangle for a set-up primitive: its snapped corners (post-swap), its bounding
+// box cut to the draw region, depth plane and offset, owner.
 FastTriangle fast_triangle_of(const RasterPrimitive& p, const PixelRect& region);
 
 // The exact path's clipper and set-up (front_end.cpp run_triangle) for triangle `primitive` of
