@@ -35,11 +35,11 @@ RASTERCMP_AVX512 inline Depth16 depth16(const KernelDepth& d) {
   return Depth16{d.fma, d.clamp, d.write, _mm512_set1_ps(d.zmin), _mm512_set1_ps(d.zmax)};
 }
 
-// finish_depth8 with o = 0 (small triangles come from draws without depth bias): min(z, 1),
-// max(z, 0), the depth clamp; vminps/vmaxps return their second operand on NaN and when both
-// operands are zeros. finish_depth8's z + 0 is left out: it changes only -0 (into +0), and
-// max(min(-0, 1), +0) is already the second operand, +0; NaN stays NaN through it and becomes 1
-// through min(z, 1) either way.
+// finish_depth8 after its + o: min(z, 1), max(z, 0), the depth clamp; vminps/vmaxps return their
+// second operand on NaN and when both operands are zeros. The tile kernel adds o first; small
+// triangles (draws without depth bias, o = 0) leave the z + 0 out: it changes only -0 (into +0),
+// and max(min(-0, 1), +0) is already the second operand, +0; NaN stays NaN through it and becomes
+// 1 through min(z, 1) either way.
 RASTERCMP_AVX512 inline __m512 finish_depth16(__m512 z, const Depth16& d) {
   z = _mm512_max_ps(_mm512_min_ps(z, _mm512_set1_ps(1.0f)), _mm512_setzero_ps());
   if (d.clamp) z = _mm512_max_ps(_mm512_min_ps(z, d.zmax), d.zmin);

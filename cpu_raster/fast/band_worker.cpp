@@ -158,8 +158,8 @@ void BandWorker::triangle(uint32_t d, uint32_t primitive, uint32_t a, uint32_t b
   const FastVertex& v2 = fd.vertices[c];
   const uint32_t flags = v0.flags | v1.flags | v2.flags;
   if (flags & kVertexClipBits) {
-    if (v0.flags & v1.flags & v2.flags & kVertexClipBits) return;  // all outside one plane: ClipFate::Outside
-    return clipped_triangle(d, primitive, a, b, c);
+    if (needs_clipping(v0.flags, v1.flags, v2.flags)) clipped_triangle(d, primitive, a, b, c);
+    return;  // otherwise all three outside one plane: ClipFate::Outside
   }
   if (flags & kVertexSnapFailed) return;       // SetupFate::NonFinite
   if (edges_leave_direct_range(v0, v1, v2)) {  // llvmpipe's int32 set-up wraps: the exact path's (§7.5)
@@ -217,23 +217,22 @@ void BandWorker::triangle(uint32_t d, uint32_t primitive, uint32_t a, uint32_t b
   submit(t, fd.raster);
 }
 
-// A triangle that needs clipping: its pieces from the block-row phase's table when the draw has
-// one (clipped_pieces.hpp), else the exact path's clipper and set-up here (for_each_piece); the
-// pieces that reach this worker's rows are drawn, in the clipper's order.
+// A triangle that needs clipping: its pieces from the block-row phase's table when it is there
+// (clipped_pieces.hpp; the table is empty with one worker and for draws not set up eight at a
+// time), else the exact path's clipper and set-up here (for_each_piece); the pieces that reach
+// this worker's rows are drawn, in the clipper's order.
 void BandWorker::clipped_triangle(uint32_t d, uint32_t primitive, uint32_t a, uint32_t b, uint32_t c) {
   const FastDraw& fd = frame_.draws[d];
   const auto draw_piece = [&](const FastTriangle& t) {
     if (!t.rect.empty() && owns_rows(t.rect.y0, t.rect.y1)) submit(t, fd.raster);
   };
-  if (fd.clipped.ready) {
-    const std::vector<ClippedPrimitive>& list = fd.clipped.primitives;
-    size_t& next = clipped_next_[d];  // the walk meets a draw's primitives in increasing order
-    while (next < list.size() && list[next].primitive < primitive) ++next;
-    if (next < list.size() && list[next].primitive == primitive && !list[next].in_place) {
-      const ClippedPrimitive& entry = list[next];
-      for (uint32_t k = entry.first; k < entry.first + entry.count; ++k) draw_piece(fd.clipped.pieces[k]);
-      return;
-    }
+  const std::vector<ClippedPrimitive>& list = fd.clipped.primitives;
+  size_t& next = clipped_next_[d];  // the walk meets a draw's primitives in increasing order
+  while (next < list.size() && list[next].primitive < primitive) ++next;
+  if (next < list.size() && list[next].primitive == primitive && !list[next].in_place) {
+    const ClippedPrimitive& entry = list[next];
+    for (uint32_t k = entry.first; k < entry.first + entry.count; ++k) draw_piece(fd.clipped.pieces[k]);
+    return;
   }
   for_each_piece(frame_, d, primitive, a, b, c, draw_piece, [&](const RasterPrimitive& binned) {
     if (!batch_.empty()) flush(fd.raster);  // llvmpipe's wrapping arithmetic: the exact rasterizer, in order

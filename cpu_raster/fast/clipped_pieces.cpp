@@ -36,9 +36,7 @@ void clip_blocks(const FastFrame& frame, uint32_t d, uint32_t begin, uint32_t en
     for (uint32_t l = 0; l < in.count; ++l) {
       const size_t at = size_t(l) * in.stride;
       const uint32_t a = in.corners[0][at], bb = in.corners[1][at], c = in.corners[2][at];
-      const uint32_t fa = fd.vertices[a].flags, fb = fd.vertices[bb].flags, fc = fd.vertices[c].flags;
-      // BandWorker::triangle's first two verdicts: no corner to clip, or all outside one plane
-      if (((fa | fb | fc) & kVertexClipBits) == 0 || (fa & fb & fc & kVertexClipBits) != 0) continue;
+      if (!needs_clipping(fd.vertices[a].flags, fd.vertices[bb].flags, fd.vertices[c].flags)) continue;
       ClippedPrimitive entry;
       entry.primitive = block.first + l;
       entry.first = uint32_t(table.pieces.size());

@@ -25,7 +25,6 @@ struct ClippedPrimitive {
 struct ClippedTable {
   std::vector<ClippedPrimitive> primitives;
   std::vector<FastTriangle> pieces;  // rectangles cut to the draw region (maybe empty)
-  bool ready = false;                // every clipped triangle of the draw is in it
 };
 
 struct FastDraw {

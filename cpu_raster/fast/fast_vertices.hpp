@@ -21,6 +21,12 @@ namespace rastercmp::cpu::fast {
 inline constexpr uint32_t kVertexClipBits = 0x3Fu;      // cpu::ClipPlane bits 0..5
 inline constexpr uint32_t kVertexSnapFailed = 1u << 6;  // snap_vertex gave nullopt (NaN, Inf, out of range)
 
+// A triangle with these corner flags goes through the clipper: some corner is outside a clip
+// plane, and not all three outside the same one (that is ClipFate::Outside: nothing to draw).
+inline bool needs_clipping(uint32_t f0, uint32_t f1, uint32_t f2) {
+  return ((f0 | f1 | f2) & kVertexClipBits) != 0 && (f0 & f1 & f2 & kVertexClipBits) == 0;
+}
+
 // Trivial on purpose: a draw's array is allocated without initialisation and filled by a pass.
 // 16 bytes: the snapped coordinates are not stored but recomputed where they are used
 // (snap_fixed, a subtraction, an exact multiply and a conversion): the array is written once and

@@ -274,7 +274,6 @@ void measure_all_block_rows(FastFrame& frame) {
   });
   if (bad_index) check_lavapipe_profile_support(*frame.scene);
   for (size_t i = 0; i < tasks.size(); ++i) append_clipped(frame.draws[tasks[i].draw].clipped, clipped[i]);
-  for (FastDraw& fd : frame.draws) fd.clipped.ready = fd.small_blocks;
   balance_tile_rows(frame, reach, tasks.size());
 }
 

@@ -18,26 +18,25 @@
 namespace rastercmp::cpu::fast {
 namespace {
 
-// The job's plane and the draw's depth state in registers (stores to the attachments may alias
-// the job and the KernelDepth, so their fields would be reloaded after each store otherwise).
+// The job's plane and the draw's depth state (avx512_depth.hpp's Depth16) in registers: stores to
+// the attachments may alias the job and the KernelDepth, whose fields would be reloaded after each
+// store otherwise.
 struct Plane16 {
-  __m512 a0, dzdx, dzdy, offset, zmin, zmax;
-  bool fma, clamp, write;
+  __m512 a0, dzdx, dzdy, offset;
+  Depth16 depth;
 };
 
 RASTERCMP_AVX512 inline Plane16 plane16(const KernelJob& j, const KernelDepth& d) {
-  return Plane16{_mm512_set1_ps(j.a0),     _mm512_set1_ps(j.dzdx), _mm512_set1_ps(j.dzdy),
-                 _mm512_set1_ps(j.offset), _mm512_set1_ps(d.zmin), _mm512_set1_ps(d.zmax),
-                 d.fma,                    d.clamp,                d.write};
+  return Plane16{_mm512_set1_ps(j.a0), _mm512_set1_ps(j.dzdx), _mm512_set1_ps(j.dzdy), _mm512_set1_ps(j.offset),
+                 depth16(d)};
 }
 
 // fragment_depth (tile_kernel_avx2.cpp) in the same order: fl(FMA?(dzdy, py, FMA?(dzdx, px, a0)) + o),
-// min(z, 1), max(z, 0), then the depth clamp.
-RASTERCMP_AVX512 inline __m512 depth16(const Plane16& p, __m512 px, __m512 py) {
-  __m512 z = _mm512_add_ps(mul_add16(p.dzdy, py, mul_add16(p.dzdx, px, p.a0, p.fma), p.fma), p.offset);
-  z = _mm512_max_ps(_mm512_min_ps(z, _mm512_set1_ps(1.0f)), _mm512_setzero_ps());
-  if (p.clamp) z = _mm512_max_ps(_mm512_min_ps(z, p.zmax), p.zmin);
-  return z;
+// then finish_depth16 (min(z, 1), max(z, 0), the depth clamp).
+RASTERCMP_AVX512 inline __m512 fragment_depth16(const Plane16& p, __m512 px, __m512 py) {
+  const bool fma = p.depth.fma;
+  return finish_depth16(_mm512_add_ps(mul_add16(p.dzdy, py, mul_add16(p.dzdx, px, p.a0, fma), fma), p.offset),
+                        p.depth);
 }
 
 // One step: the depth test and writes of the `covered` pixels of sixteen columns from x in row y.
@@ -47,10 +46,10 @@ RASTERCMP_AVX512 inline __mmask16 step16(const Plane16& plane, __m512i lane, __m
   __mmask16 pass = covered;
   if constexpr (F != DepthFormat::None) {
     const __m512 px = _mm512_cvtepi32_ps(_mm512_add_epi32(_mm512_set1_epi32(x), lane));  // exact below 2^24
-    const __m512i raw = to_raw16<F>(depth16(plane, px, py));
+    const __m512i raw = to_raw16<F>(fragment_depth16(plane, px, py));
     if constexpr (Op != CompareOp::Always)
       pass = passing<F, Op>(covered, raw, _mm512_maskz_loadu_epi32(covered, depth_row + x));
-    if (plane.write) _mm512_mask_storeu_epi32(depth_row + x, pass, raw);
+    if (plane.depth.write) _mm512_mask_storeu_epi32(depth_row + x, pass, raw);
   }
   _mm512_mask_storeu_epi32(owner_row + x, pass, owner);
   return pass;
