@@ -31,7 +31,6 @@ bool measure_rows(FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end) {
     const uint32_t full_end = std::min(end, primitive_count(frame.scene->draws[d]) / 8);
     const uint32_t* indices = frame.scene->draws[d].indices.data();
     const int16_t* tile_rows = frame.draws[d].tile_rows;
-    const FastVertex* vertices = frame.draws[d].vertices;
     uint32_t* block_rows = frame.draws[d].block_rows;
     const PixelRect region = frame.exact.region;
     // small_blocks draws exist on AVX2 hosts only (AVX-512 hosts are AVX2 hosts too)
@@ -41,7 +40,7 @@ bool measure_rows(FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end) {
       if (!span_tile_rows_avx2(span, n, tile_rows, positions, region, block_rows + begin))
         for (uint32_t b = 0; b < n; ++b)
           block_rows[begin + b] =
-              list_block_tile_rows_avx2(span + 24 * size_t(b), tile_rows, vertices, positions, region, bad);
+              list_block_tile_rows_avx2(span + 24 * size_t(b), tile_rows, positions, region, bad);
       begin += n;
     }
   }

@@ -35,7 +35,7 @@ RASTERCMP_AVX2 void index_span_avx2(const uint32_t* indices, size_t count, uint3
   largest = max_epu32_of(hi);
 }
 
-// The lowest and highest of tile_rows[first..last] (kRowUnknown, INT16_MIN, is the lowest).
+// The lowest and highest of tile_rows[first..last] (unknown rows are the lowest).
 RASTERCMP_AVX2 void row_span_avx2(const int16_t* tile_rows, uint32_t first, uint32_t last, int32_t& lowest,
                                   int32_t& highest) {
   __m256i lo = _mm256_set1_epi16(INT16_MAX), hi = _mm256_set1_epi16(INT16_MIN);
@@ -82,7 +82,7 @@ uint32_t block_tile_rows(const SmallBlockInput& in, const int16_t* tile_rows, ui
         return kBlockAnyRow;
       }
       const int16_t row = tile_rows[position];
-      if (row == kRowUnknown) return kBlockAnyRow;
+      if (is_unknown_row(row)) return kBlockAnyRow;
       lo = std::min(lo, int32_t(row));
       hi = std::max(hi, int32_t(row));
     }
@@ -93,11 +93,11 @@ uint32_t block_tile_rows(const SmallBlockInput& in, const int16_t* tile_rows, ui
 // block_tile_rows for a full block of an indexed list: its 24 corners are consecutive in the
 // index buffer; three AVX2 gathers of 32 bits at 2-byte steps fetch their rows (each row is the
 // low half; the last position's read reaches 2 bytes into the scratch's padding,
-// thread_row_scratch). kRowUnknown is INT16_MIN, below every row, so the minimum finds it. The
-// indices are checked against `positions` (> 0) before any gather.
+// thread_row_scratch). Unknown rows lie below every known row, so the minimum finds them; their
+// low bits hold the corners' clip bits (unknown_row), which the "outside one plane" test ANDs per
+// lane. The indices are checked against `positions` (> 0) before any gather.
 RASTERCMP_AVX2 uint32_t list_block_tile_rows_avx2(const uint32_t* indices, const int16_t* tile_rows,
-                                                  const FastVertex* vertices, uint32_t positions,
-                                                  const PixelRect& region, bool& bad) {
+                                                  uint32_t positions, const PixelRect& region, bool& bad) {
   __m256i idx[3];
   for (int j = 0; j < 3; ++j) idx[j] = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(indices + 8 * j));
   const __m256i largest = _mm256_max_epu32(idx[0], _mm256_max_epu32(idx[1], idx[2]));
@@ -121,16 +121,13 @@ RASTERCMP_AVX2 uint32_t list_block_tile_rows_avx2(const uint32_t* indices, const
   lo = _mm256_min_epi32(lo, _mm256_shuffle_epi32(lo, 0xB1));
   hi = _mm256_max_epi32(hi, _mm256_shuffle_epi32(hi, 0xB1));
   const int32_t low = _mm256_cvtsi256_si32(lo), high = _mm256_cvtsi256_si32(hi);
-  if (low != kRowUnknown) return pack_rows(low, high, region);
+  if (!is_unknown_row(low)) return pack_rows(low, high, region);
   // A corner needs clipping (or failed to snap): the clip bits the three corners of each lane
-  // share, gathered from the vertices' flags (byte offset 16 * index + 12: index * 4 words, which
-  // stays below 2^31 for positions <= 2^27; beyond, every worker sets the block up, as before).
-  constexpr uint32_t kGatherablePositions = 1u << 27;
-  if (positions > kGatherablePositions) return kBlockAnyRow;
-  const int* flags = reinterpret_cast<const int*>(&vertices->flags);
+  // share (row_clip_bits: an unknown row's low bits, none for a known row).
+  const __m256i last_unknown = _mm256_set1_epi32(kRowUnknown + 0x7F);
   __m256i shared = _mm256_set1_epi32(int32_t(kVertexClipBits));
   for (int j = 0; j < 3; ++j)
-    shared = _mm256_and_si256(shared, _mm256_i32gather_epi32(flags, _mm256_slli_epi32(idx[j], 2), 4));
+    shared = _mm256_and_si256(shared, _mm256_andnot_si256(_mm256_cmpgt_epi32(r[j], last_unknown), r[j]));
   const bool every_lane_outside = _mm256_testz_si256(_mm256_cmpeq_epi32(shared, _mm256_setzero_si256()),
                                                      _mm256_set1_epi32(-1));
   return every_lane_outside ? kNoRow : kBlockAnyRow;
@@ -149,7 +146,7 @@ RASTERCMP_AVX2 bool span_tile_rows_avx2(const uint32_t* indices, uint32_t n, con
   if (largest >= positions || largest - smallest >= kSpanPositions) return false;
   int32_t lowest = 0, highest = 0;
   row_span_avx2(tile_rows, smallest, largest, lowest, highest);
-  if (lowest == kRowUnknown) return false;
+  if (is_unknown_row(lowest)) return false;
   const uint32_t rows = pack_rows(lowest, highest, region);
   if (lowest != highest && rows != kNoRow) return false;  // several tile rows: the blocks may differ
   std::fill_n(block_rows, n, rows);

@@ -21,9 +21,9 @@ uint32_t block_tile_rows(const SmallBlockInput& in, const int16_t* tile_rows, ui
 // AVX2 hosts only: the same for a full block of an indexed list (24 consecutive indices), except
 // that a block whose every lane has its three corners outside one clip plane (the set-up drops
 // such lanes: ClipFate::Outside) gets kNoRow: nobody sets it up. tile_rows is readable 2 bytes
-// past its last position (thread_row_scratch); vertices are the draw's (their flags).
-uint32_t list_block_tile_rows_avx2(const uint32_t* indices, const int16_t* tile_rows, const FastVertex* vertices,
-                                   uint32_t positions, const PixelRect& region, bool& bad);
+// past its last position (thread_row_scratch).
+uint32_t list_block_tile_rows_avx2(const uint32_t* indices, const int16_t* tile_rows, uint32_t positions,
+                                   const PixelRect& region, bool& bad);
 
 // AVX2 hosts only: the rows of n full blocks of an indexed list (24 * n consecutive indices) at
 // once, written to block_rows[0..n), when that is cheap and gives every block exactly what

@@ -36,7 +36,8 @@ void clip_blocks(const FastFrame& frame, uint32_t d, uint32_t begin, uint32_t en
     for (uint32_t l = 0; l < in.count; ++l) {
       const size_t at = size_t(l) * in.stride;
       const uint32_t a = in.corners[0][at], bb = in.corners[1][at], c = in.corners[2][at];
-      if (!needs_clipping(fd.vertices[a].flags, fd.vertices[bb].flags, fd.vertices[c].flags)) continue;
+      if (!needs_clipping(row_clip_bits(fd.tile_rows[a]), row_clip_bits(fd.tile_rows[bb]), row_clip_bits(fd.tile_rows[c])))
+        continue;  // the clip bits from the compact rows (fast_vertices.hpp): 2 bytes a corner
       ClippedPrimitive entry;
       entry.primitive = block.first + l;
       entry.first = uint32_t(table.pieces.size());

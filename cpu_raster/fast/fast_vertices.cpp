@@ -19,7 +19,7 @@ uint32_t transform_vertices_scalar(const VertexJob& job, size_t begin, size_t en
     const auto y = snap_vertex(w.y, 0.5f, SnapRounding::NearestEven);
     if (!x || !y) v.flags |= kVertexSnapFailed;
     // |y->raw| <= 2^25 (Fixed24_8::kMaxMagnitude), so the row fits 16 bits
-    rows[k] = v.flags ? kRowUnknown : int16_t(y->raw >> (kFixedOrder + 6));
+    rows[k] = v.flags ? unknown_row(v.flags) : int16_t(y->raw >> (kFixedOrder + 6));
     all_flags |= v.flags;
   }
   return all_flags;

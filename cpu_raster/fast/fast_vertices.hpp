@@ -55,9 +55,17 @@ struct VertexJob {
   bool depth_clip = true;
 };
 
-// Per vertex, the 64-pixel tile row of its snapped y (y_fixed >> 14), or kRowUnknown when the
-// vertex needs clipping or failed to snap: a compact copy for the block row test (band_worker.cpp).
+// Per vertex, the 64-pixel tile row of its snapped y (y_fixed >> 14, in [-2048, 2048] since
+// |y_fixed| <= 2^25), or, when the vertex needs clipping or failed to snap, unknown_row(flags):
+// kRowUnknown with the vertex's flags (7 bits) in its low bits, below every known row. A compact
+// copy for the block-row phase (block_rows.hpp), which reads both the rows and the shared clip
+// bits from it (2 bytes a position instead of the FastVertex's 16).
 inline constexpr int16_t kRowUnknown = INT16_MIN;
+inline constexpr int16_t unknown_row(uint32_t flags) { return int16_t(kRowUnknown | int32_t(flags & 0x7Fu)); }
+inline constexpr bool is_unknown_row(int32_t row) { return row < kRowUnknown + 0x80; }
+// The clip bits an entry of tile_rows holds (none for a known row).
+inline constexpr uint32_t row_clip_bits(int32_t row) { return is_unknown_row(row) ? uint32_t(row) & kVertexClipBits : 0; }
+static_assert(kVertexSnapFailed <= 0x7Fu && -2048 > kRowUnknown + 0x80, "flags fit below every known row");
 
 // Fills out[begin, end) and rows[begin, end) from job.pos_clip[begin, end); returns the OR of
 // the vertices' flags.

@@ -91,9 +91,9 @@ RASTERCMP_AVX2 uint32_t transform_vertices_avx2(const VertexJob& job, size_t beg
         _mm256_andnot_si256(_mm256_castps_si256(_mm256_and_ps(ok_x, ok_y)), _mm256_set1_epi32(int(kVertexSnapFailed)));
     const __m256i lane_flags = _mm256_or_si256(clip_mask8(p, job.depth_clip), failed);
     all_flags = _mm256_or_si256(all_flags, lane_flags);
-    // the tile row of y (kRowUnknown where a flag is set), packed to 16 bits
+    // the tile row of y (unknown_row(flags) where a flag is set), packed to 16 bits
     const __m256i row = _mm256_blendv_epi8(
-        _mm256_srai_epi32(fy, kFixedOrder + 6), _mm256_set1_epi32(kRowUnknown),
+        _mm256_srai_epi32(fy, kFixedOrder + 6), _mm256_or_si256(_mm256_set1_epi32(kRowUnknown), lane_flags),
         _mm256_xor_si256(_mm256_cmpeq_epi32(lane_flags, _mm256_setzero_si256()), _mm256_set1_epi32(-1)));
     const __m128i row16 = _mm_packs_epi32(_mm256_castsi256_si128(row), _mm256_extracti128_si256(row, 1));
     _mm_storeu_si128(reinterpret_cast<__m128i*>(rows + k), row16);
