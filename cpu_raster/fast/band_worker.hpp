@@ -2,9 +2,9 @@
 // tile rows it owns (frame.row_worker, or r % workers), so each pixel sees its primitives in
 // order, whatever the number of threads (docs/lavapipe-rules.md §2.7: deterministic by construction).
 // Per primitive: assemble → clip-mask test (clipped triangles go through the exact path's clipper
-// and set-up) → rows test → fixed-point area, cull, swap → depth plane → tiles. Triangles that
-// span several tiles are collected (up to kBatchSize) and drawn tile by tile, so that a tile stays
-// in cache while all of them are drawn into it.
+// and set-up) → rows test → fixed-point area, cull, swap → depth plane → tiles. Triangles the
+// scalar set-up takes are collected (up to kBatchSize, until a small triangle comes) and drawn
+// tile by tile, so that a tile stays in cache while all of them are drawn into it.
 #pragma once
 
 #include <array>
@@ -54,7 +54,6 @@ class BandWorker {
   void clipped_triangle(uint32_t draw_index, uint32_t primitive, uint32_t a, uint32_t b, uint32_t c);
 
   void submit(const FastTriangle& t, const DrawRaster& raster);
-  void raster_all_tiles(const FastTriangle& t, const DrawRaster& raster);
   void flush(const DrawRaster& raster);
   void bin_batch(int32_t tx0, int32_t ty0, int32_t tx1, int32_t ty1);
   bool may_hide(const PixelRect& tile, const uint8_t* list, size_t count, const DrawRaster& raster) const;
