@@ -78,23 +78,26 @@ RASTERCMP_AVX512 bool narrow16(const KernelJob& j, const KernelDepth& d, const T
       __mmask16(_mm512_cmpge_epi32_mask(column, _mm512_set1_epi32(j.rect.x0)) &
                 _mm512_cmple_epi32_mask(column, _mm512_set1_epi32(j.rect.x1))),
       __mmask16(_mm512_cmple_epi32_mask(_mm512_add_epi32(column, _mm512_set1_epi32(16)), _mm512_set1_epi32(j.rect.x1)))};
+  // the job's and target's fields in locals: the stores below may alias them (no reload per row)
   const size_t width = size_t(t.width);
+  const int32_t x = j.origin_x, y1 = j.rect.y1;
+  uint32_t* owner_row = t.owner + size_t(j.rect.y0) * width;
+  uint32_t* depth_row = F != DepthFormat::None ? t.depth + size_t(j.rect.y0) * width : nullptr;
   __mmask16 any = 0;
-  for (int32_t y = j.rect.y0; y <= j.rect.y1; ++y) {
+  for (int32_t y = j.rect.y0; y <= y1; ++y, owner_row += width) {
     const __m512 py = _mm512_set1_ps(float(y));
-    uint32_t* const owner_row = t.owner + size_t(y) * width;
-    uint32_t* const depth_row = F != DepthFormat::None ? t.depth + size_t(y) * width : nullptr;
     const __mmask16 covered =
         in_rect[0] & _mm512_cmpge_epi32_mask(_mm512_ternarylogic_epi32(e[0], e[1], e[2], 0xFE), _mm512_setzero_si512());
-    if (covered) any |= step16<F, Op>(plane, lane, owner, owner_row, depth_row, j.origin_x, py, covered);
+    if (covered) any |= step16<F, Op>(plane, lane, owner, owner_row, depth_row, x, py, covered);
     if (two) {
       const __mmask16 right =
           in_rect[1] & _mm512_cmpge_epi32_mask(_mm512_ternarylogic_epi32(_mm512_add_epi32(e[0], half[0]),
                                                                           _mm512_add_epi32(e[1], half[1]),
                                                                           _mm512_add_epi32(e[2], half[2]), 0xFE),
                                                _mm512_setzero_si512());
-      if (right) any |= step16<F, Op>(plane, lane, owner, owner_row, depth_row, j.origin_x + 16, py, right);
+      if (right) any |= step16<F, Op>(plane, lane, owner, owner_row, depth_row, x + 16, py, right);
     }
+    if constexpr (F != DepthFormat::None) depth_row += width;
     for (int i = 0; i < 3; ++i) e[i] = _mm512_add_epi32(e[i], gy[i]);
   }
   return any != 0;
