@@ -13,7 +13,9 @@
 #include "cpu_raster/exact/depth_sample.hpp"
 #include "cpu_raster/exact/edge_plane.hpp"
 #include "cpu_raster/exact/fixed_point.hpp"
+#include "cpu_raster/exact/triangle_setup.hpp"
 #include "cpu_raster/fast/binned_tiles.hpp"
+#include "cpu_raster/fast/clipped_pieces.hpp"
 #include "cpu_raster/fast/cpu_features.hpp"
 #include "cpu_raster/fast/fast_vertices.hpp"
 #include "cpu_raster/fast/small_triangles.hpp"
@@ -458,6 +460,71 @@ TEST(FastBinnedTiles, TileCoverageIsBinnedCoversPixelByPixel) {
   EXPECT_GT(partial_tiles, 200);
   EXPECT_GT(covered, 100000);
   EXPECT_GT(uncovered, 100000);
+}
+
+// setup_piece (the lean set-up of clipped pieces) gives setup_triangle then fast_triangle_of for
+// every piece it draws, drops exactly what setup_triangle does not rasterize, and hands back
+// (Full) only what takes llvmpipe's wrapping set-up or fails to snap: random window triangles of
+// every size and facing, corners past the direct range and the 24.8 bound, NaN corners, every
+// cull mode, depth format and bias, regions that cut them or miss them.
+TEST(FastClippedPieces, LeanSetUpGivesTheExactPathsTriangle) {
+  fast_test::Random r(29);
+  int drawn = 0, dropped = 0, full = 0;
+  for (int trial = 0; trial < 40000; ++trial) {
+    RasterState state;
+    state.cull_mode = r.chance(0.5) ? CullMode::None : CullMode(r.below(4));
+    state.front_face = r.chance(0.5) ? FrontFace::CounterClockwise : FrontFace::Clockwise;
+    state.depth.test_enable = r.chance(0.8);
+    state.depth_bias = DepthBias{r.chance(0.3), float(r.range(-4, 4)), float(r.range(-2, 2)), float(r.range(-0.01, 0.01))};
+    SetupContext ctx;
+    ctx.framebuffer = PixelRect{0, 0, 255, 191};
+    const int32_t x0 = int32_t(r.below(200)), y0 = int32_t(r.below(150));
+    ctx.region = PixelRect{x0, y0, x0 + int32_t(r.below(256 - uint32_t(x0))), y0 + int32_t(r.below(192 - uint32_t(y0)))};
+    ctx.state = &state;
+    ctx.depth_format = DepthFormat(r.below(4));
+    std::array<WindowVertex, 3> window;
+    const double spread = r.chance(0.1) ? 3e7 : r.chance(0.3) ? 400.0 : 12.0;  // past 2^23 fixed units; large; small
+    const bool near_region = r.chance(0.7);  // most around the region, some anywhere
+    const double cx = near_region ? r.range(ctx.region.x0 - 4, ctx.region.x1 + 4) : r.range(-40, 300);
+    const double cy = near_region ? r.range(ctx.region.y0 - 4, ctx.region.y1 + 4) : r.range(-40, 230);
+    for (WindowVertex& v : window)
+      v = WindowVertex{float(cx + r.range(-spread, spread)), float(cy + r.range(-spread, spread)), float(r.range(-0.2, 1.2))};
+    if (r.chance(0.01)) window[r.below(3)].y = std::nanf("");
+    if (r.chance(0.02)) window[1] = window[0];  // degenerate
+    const uint32_t owner = 1 + r.below(1000);
+    const TriangleSetup setup = setup_triangle(window, owner, ctx);
+    FastTriangle lean;
+    switch (setup_piece(window, owner, ctx, ctx.region, lean)) {
+      case PieceSetup::Drawn: {
+        ++drawn;
+        ASSERT_EQ(setup.fate, SetupFate::Rasterized) << "trial " << trial;
+        ASSERT_FALSE(setup.raster.binned) << "trial " << trial;
+        const FastTriangle want = fast_triangle_of(setup.raster, ctx.region);
+        for (int k = 0; k < 3; ++k) {
+          ASSERT_EQ(lean.x_fixed[k], want.x_fixed[k]) << "trial " << trial;
+          ASSERT_EQ(lean.y_fixed[k], want.y_fixed[k]) << "trial " << trial;
+        }
+        ASSERT_EQ(lean.rect, want.rect) << "trial " << trial;
+        ASSERT_EQ(std::bit_cast<uint32_t>(lean.a0), std::bit_cast<uint32_t>(want.a0)) << "trial " << trial;
+        ASSERT_EQ(std::bit_cast<uint32_t>(lean.dzdx), std::bit_cast<uint32_t>(want.dzdx)) << "trial " << trial;
+        ASSERT_EQ(std::bit_cast<uint32_t>(lean.dzdy), std::bit_cast<uint32_t>(want.dzdy)) << "trial " << trial;
+        ASSERT_EQ(std::bit_cast<uint32_t>(lean.offset), std::bit_cast<uint32_t>(want.offset)) << "trial " << trial;
+        ASSERT_EQ(lean.owner, want.owner) << "trial " << trial;
+        break;
+      }
+      case PieceSetup::Dropped:
+        ++dropped;
+        ASSERT_NE(setup.fate, SetupFate::Rasterized) << "trial " << trial;
+        break;
+      case PieceSetup::Full:
+        ++full;
+        ASSERT_TRUE(setup.fate != SetupFate::Rasterized || setup.raster.binned) << "trial " << trial;
+        break;
+    }
+  }
+  EXPECT_GT(drawn, 12000);  // 16943, 18703 and 4354 of the 40000
+  EXPECT_GT(dropped, 12000);
+  EXPECT_GT(full, 2500);
 }
 
 }  // namespace

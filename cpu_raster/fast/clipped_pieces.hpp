@@ -5,7 +5,8 @@
 // worker's profile, session 13). With several workers the block-row phase, which already visits
 // those blocks, now clips each once (the task that measures its block) into a ClippedTable per
 // draw; the walk then draws the stored pieces in its rows. The pieces are the exact path's (clip_triangle,
-// pipeline cull, setup_triangle), computed by the same function either way (for_each_piece).
+// pipeline cull, setup_triangle, or setup_piece, its lean twin for the pieces the kernels draw),
+// computed by the same function either way (for_each_piece).
 #pragma once
 
 #include <cstdint>
@@ -25,6 +26,16 @@ namespace rastercmp::cpu::fast {
 // The fast path's triangle for a set-up primitive: its snapped corners (post-swap), its bounding
 // box cut to the draw region, depth plane and offset, owner.
 FastTriangle fast_triangle_of(const RasterPrimitive& p, const PixelRect& region);
+
+// setup_triangle then fast_triangle_of for a piece, without the parts of the RasterPrimitive the
+// fast kernels never read (edge and scissor planes, visit rectangle, which cost about two thirds
+// of a piece's set-up): the same snap (§2.2), area, cull and swap (§2.3), bounding box and region
+// test (§2.5), depth plane and offset (§3.2, §4.3), in the same operations. Full: the piece needs
+// what only setup_triangle does (a corner that fails to snap, or an edge past llvmpipe's direct
+// range: its wrapping set-up, §7.5), so call that. Dropped: setup_triangle would not rasterize it.
+enum class PieceSetup { Drawn, Dropped, Full };
+PieceSetup setup_piece(const std::array<WindowVertex, 3>& window, uint32_t owner, const SetupContext& context,
+                       const PixelRect& region, FastTriangle& out);
 
 // The exact path's clipper and set-up (front_end.cpp run_triangle) for triangle `primitive` of
 // draw d (positions a, b, c), which needs clipping: piece(t) for each piece the fast kernels draw
@@ -47,6 +58,10 @@ void for_each_piece(const FastFrame& frame, uint32_t d, uint32_t primitive, uint
     if (fd.pipelined(primitive) && draw.state.cull_mode != CullMode::None &&
         pipeline_cull_drops(pipeline_cull_determinant(window), draw.state.cull_mode, draw.state.front_face))
       continue;
+    FastTriangle t;
+    const PieceSetup lean = setup_piece(window, encode_owner(d, primitive), fd.setup, exact.region, t);
+    if (lean == PieceSetup::Drawn) piece(t);
+    if (lean != PieceSetup::Full) continue;
     const TriangleSetup setup = setup_triangle(window, encode_owner(d, primitive), fd.setup);
     if (setup.fate != SetupFate::Rasterized) continue;
     if (setup.raster.binned)

@@ -1,6 +1,7 @@
 // The fast path's triangle after set-up: what the tile kernels need, in 64 bytes.
-// Produced either by fast_setup (unclipped triangles) or from the exact path's RasterPrimitive
-// (clipped triangles); either way the numbers are the exact path's (docs/lavapipe-rules.md §2.2-§4.3).
+// Produced by BandWorker::triangle (unclipped triangles), by setup_piece (clipped pieces) or from
+// the exact path's RasterPrimitive; either way the numbers are the exact path's
+// (docs/lavapipe-rules.md §2.2-§4.3).
 #pragma once
 
 #include <cstdint>
