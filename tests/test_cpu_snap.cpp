@@ -1,6 +1,10 @@
 // Snapping to 24.8 fixed point (docs/lavapipe-rules.md §2.2, §5.3), with answers worked out by hand.
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <random>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -25,6 +29,29 @@ TEST(CpuSnap, TiesAtOddMultiplesOfHalfASubpixelRoundToEven) {
   EXPECT_EQ(snap(0.5f + 5.0f / 512, SnapRounding::NearestEven), 2);   // 2.5 -> 2
   EXPECT_EQ(snap(0.5f - 1.0f / 512, SnapRounding::NearestEven), 0);   // -0.5 -> -0
   EXPECT_EQ(snap(0.5f - 3.0f / 512, SnapRounding::NearestEven), -2);  // -1.5 -> -2
+}
+
+// round_nearest_even is std::nearbyint (default rounding mode) for every float kind: ties around
+// zero, 2^22 and 2^23, the last fractions below 2^23, signed zeros, denormals, Inf, NaN, and a
+// million random bit patterns (every exponent).
+TEST(CpuSnap, NearestEvenRoundingIsNearbyint) {
+  const auto same = [](float v) {
+    const float want = std::nearbyint(v), got = round_nearest_even(v);
+    if (std::isnan(want)) return std::isnan(got);
+    return std::bit_cast<uint32_t>(want) == std::bit_cast<uint32_t>(got);
+  };
+  const float two23 = 8388608.0f, inf = std::numeric_limits<float>::infinity();
+  std::vector<float> values = {0.0f, -0.0f, 0.5f, -0.5f, 1.5f, -1.5f, 2.5f, -2.5f, 0.49999997f, -0.49999997f,
+                               4194304.5f, -4194303.5f, two23 - 0.5f, -(two23 - 0.5f), two23, two23 + 1,
+                               -two23 - 2, 1e-45f, -1e-45f, 1e-38f, inf, -inf, std::nanf(""),
+                               std::nextafter(two23, 0.0f), std::nextafter(-two23, 0.0f)};
+  std::mt19937 rng(7);
+  for (int i = 0; i < 1000000; ++i) values.push_back(std::bit_cast<float>(uint32_t(rng())));
+  for (int i = 0; i < 100000; ++i) values.push_back(float(int32_t(rng() % 20000000) - 10000000) * 0.25f);  // quarters: ties
+  int wrong = 0;
+  for (float v : values) wrong += same(v) ? 0 : 1;
+  EXPECT_EQ(wrong, 0);
+  EXPECT_TRUE(same(0.5f) && std::bit_cast<uint32_t>(round_nearest_even(-0.25f)) == 0x80000000u);  // -0
 }
 
 TEST(CpuSnap, RoundHalfAwayMovesTiesAwayFromZero) {

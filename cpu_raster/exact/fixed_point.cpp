@@ -11,14 +11,6 @@ std::optional<int32_t> to_int32(float integral_value) {
   return static_cast<int32_t>(integral_value);
 }
 
-// fl(fl(x - offset) * 256), rounded to an integral float.
-float snapped_float(float x_window, float pixel_offset, SnapRounding rounding) {
-  const float shifted = x_window - pixel_offset;                         // a float subtraction first (§2.2)
-  const float scaled = shifted * float(kFixedOne);                       // exact: a power of two
-  return rounding == SnapRounding::NearestEven ? std::nearbyint(scaled)  // default rounding mode: to nearest even
-                                               : std::round(scaled);     // half away from zero
-}
-
 }  // namespace
 
 int32_t snap_vertex_saturating(float x_window, float pixel_offset, SnapRounding rounding) {
@@ -26,13 +18,6 @@ int32_t snap_vertex_saturating(float x_window, float pixel_offset, SnapRounding 
   constexpr float kTwo31 = 2147483648.0f;
   if (!(rounded >= -kTwo31 && rounded < kTwo31)) return INT32_MIN;  // NaN too
   return static_cast<int32_t>(rounded);
-}
-
-std::optional<Fixed24_8> snap_vertex(float x_window, float pixel_offset, SnapRounding rounding) {
-  const float rounded = snapped_float(x_window, pixel_offset, rounding);
-  const std::optional<int32_t> raw = to_int32(rounded);
-  if (!raw) return std::nullopt;
-  return Fixed24_8{*raw};
 }
 
 std::optional<int32_t> util_iround(float value) {
