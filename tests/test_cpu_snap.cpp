@@ -41,13 +41,16 @@ TEST(CpuSnap, NearestEvenRoundingIsNearbyint) {
     return std::bit_cast<uint32_t>(want) == std::bit_cast<uint32_t>(got);
   };
   const float two23 = 8388608.0f, inf = std::numeric_limits<float>::infinity();
-  std::vector<float> values = {0.0f, -0.0f, 0.5f, -0.5f, 1.5f, -1.5f, 2.5f, -2.5f, 0.49999997f, -0.49999997f,
-                               4194304.5f, -4194303.5f, two23 - 0.5f, -(two23 - 0.5f), two23, two23 + 1,
-                               -two23 - 2, 1e-45f, -1e-45f, 1e-38f, inf, -inf, std::nanf(""),
-                               std::nextafter(two23, 0.0f), std::nextafter(-two23, 0.0f)};
+  const float ties[] = {0.5f, -0.5f, 1.5f, -1.5f, 2.5f, -2.5f, 4194304.5f, -4194303.5f, two23 - 0.5f, -(two23 - 0.5f)};
+  const float bounds[] = {0.0f, -0.0f, 0.49999997f, -0.49999997f, two23, two23 + 1, -two23 - 2};
+  const float odd[] = {1e-45f, -1e-45f, 1e-38f, inf, -inf, std::nanf(""), std::nextafter(two23, 0.0f)};
+  std::vector<float> values(std::begin(ties), std::end(ties));
+  values.insert(values.end(), std::begin(bounds), std::end(bounds));
+  values.insert(values.end(), std::begin(odd), std::end(odd));
   std::mt19937 rng(7);
   for (int i = 0; i < 1000000; ++i) values.push_back(std::bit_cast<float>(uint32_t(rng())));
-  for (int i = 0; i < 100000; ++i) values.push_back(float(int32_t(rng() % 20000000) - 10000000) * 0.25f);  // quarters: ties
+  for (int i = 0; i < 100000; ++i)
+    values.push_back(float(int32_t(rng() % 20000000) - 10000000) * 0.25f);  // quarters: ties
   int wrong = 0;
   for (float v : values) wrong += same(v) ? 0 : 1;
   EXPECT_EQ(wrong, 0);

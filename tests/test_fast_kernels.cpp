@@ -475,20 +475,25 @@ TEST(FastClippedPieces, LeanSetUpGivesTheExactPathsTriangle) {
     state.cull_mode = r.chance(0.5) ? CullMode::None : CullMode(r.below(4));
     state.front_face = r.chance(0.5) ? FrontFace::CounterClockwise : FrontFace::Clockwise;
     state.depth.test_enable = r.chance(0.8);
-    state.depth_bias = DepthBias{r.chance(0.3), float(r.range(-4, 4)), float(r.range(-2, 2)), float(r.range(-0.01, 0.01))};
+    state.depth_bias =
+        DepthBias{r.chance(0.3), float(r.range(-4, 4)), float(r.range(-2, 2)), float(r.range(-0.01, 0.01))};
     SetupContext ctx;
     ctx.framebuffer = PixelRect{0, 0, 255, 191};
     const int32_t x0 = int32_t(r.below(200)), y0 = int32_t(r.below(150));
-    ctx.region = PixelRect{x0, y0, x0 + int32_t(r.below(256 - uint32_t(x0))), y0 + int32_t(r.below(192 - uint32_t(y0)))};
+    const int32_t x1 = x0 + int32_t(r.below(256 - uint32_t(x0))), y1 = y0 + int32_t(r.below(192 - uint32_t(y0)));
+    ctx.region = PixelRect{x0, y0, x1, y1};
     ctx.state = &state;
     ctx.depth_format = DepthFormat(r.below(4));
     std::array<WindowVertex, 3> window;
-    const double spread = r.chance(0.1) ? 3e7 : r.chance(0.3) ? 400.0 : 12.0;  // past 2^23 fixed units; large; small
+    // past the direct range (2^23 fixed units), large, small
+    const double spread = r.chance(0.1) ? 3e7 : r.chance(0.3) ? 400.0 : 12.0;
     const bool near_region = r.chance(0.7);  // most around the region, some anywhere
     const double cx = near_region ? r.range(ctx.region.x0 - 4, ctx.region.x1 + 4) : r.range(-40, 300);
     const double cy = near_region ? r.range(ctx.region.y0 - 4, ctx.region.y1 + 4) : r.range(-40, 230);
-    for (WindowVertex& v : window)
-      v = WindowVertex{float(cx + r.range(-spread, spread)), float(cy + r.range(-spread, spread)), float(r.range(-0.2, 1.2))};
+    for (WindowVertex& v : window) {
+      const float x = float(cx + r.range(-spread, spread)), y = float(cy + r.range(-spread, spread));
+      v = WindowVertex{x, y, float(r.range(-0.2, 1.2))};
+    }
     if (r.chance(0.01)) window[r.below(3)].y = std::nanf("");
     if (r.chance(0.02)) window[1] = window[0];  // degenerate
     const uint32_t owner = 1 + r.below(1000);

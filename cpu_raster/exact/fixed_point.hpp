@@ -69,9 +69,10 @@ inline float round_nearest_even(float v) {
 
 // fl(fl(x - offset) * 256), rounded to an integral float.
 inline float snapped_float(float x_window, float pixel_offset, SnapRounding rounding) {
-  const float shifted = x_window - pixel_offset;  // a float subtraction first (§2.2)
+  const float shifted = x_window - pixel_offset;    // a float subtraction first (§2.2)
   const float scaled = shifted * float(kFixedOne);  // exact: a power of two
-  return rounding == SnapRounding::NearestEven ? round_nearest_even(scaled) : std::round(scaled);  // or half away from zero
+  return rounding == SnapRounding::NearestEven ? round_nearest_even(scaled)
+                                               : std::round(scaled);  // or half away from zero
 }
 
 // Triangle vertex snapping, lp_setup_tri.c calc_fixed_position (rules §2.2, step 9):

@@ -39,8 +39,7 @@ bool measure_rows(FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end) {
       const uint32_t* span = indices + 24 * size_t(begin);
       if (!span_tile_rows_avx2(span, n, tile_rows, positions, region, block_rows + begin))
         for (uint32_t b = 0; b < n; ++b)
-          block_rows[begin + b] =
-              list_block_tile_rows_avx2(span + 24 * size_t(b), tile_rows, positions, region, bad);
+          block_rows[begin + b] = list_block_tile_rows_avx2(span + 24 * size_t(b), tile_rows, positions, region, bad);
       begin += n;
     }
   }

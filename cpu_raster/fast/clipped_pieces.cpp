@@ -4,7 +4,6 @@
 
 #include "cpu_raster/exact/binned_triangle.hpp"
 #include "cpu_raster/exact/depth_plane.hpp"
-
 #include "cpu_raster/fast/small_block_input.hpp"
 
 namespace rastercmp::cpu::fast {
@@ -89,7 +88,8 @@ void clip_blocks(const FastFrame& frame, uint32_t d, uint32_t begin, uint32_t en
     for (uint32_t l = 0; l < in.count; ++l) {
       const size_t at = size_t(l) * in.stride;
       const uint32_t a = in.corners[0][at], bb = in.corners[1][at], c = in.corners[2][at];
-      if (!needs_clipping(row_clip_bits(fd.tile_rows[a]), row_clip_bits(fd.tile_rows[bb]), row_clip_bits(fd.tile_rows[c])))
+      if (!needs_clipping(row_clip_bits(fd.tile_rows[a]), row_clip_bits(fd.tile_rows[bb]),
+                          row_clip_bits(fd.tile_rows[c])))
         continue;  // the clip bits from the compact rows (fast_vertices.hpp): 2 bytes a corner
       ClippedPrimitive entry;
       entry.primitive = block.first + l;

@@ -64,7 +64,9 @@ inline constexpr int16_t kRowUnknown = INT16_MIN;
 inline constexpr int16_t unknown_row(uint32_t flags) { return int16_t(kRowUnknown | int32_t(flags & 0x7Fu)); }
 inline constexpr bool is_unknown_row(int32_t row) { return row < kRowUnknown + 0x80; }
 // The clip bits an entry of tile_rows holds (none for a known row).
-inline constexpr uint32_t row_clip_bits(int32_t row) { return is_unknown_row(row) ? uint32_t(row) & kVertexClipBits : 0; }
+inline constexpr uint32_t row_clip_bits(int32_t row) {
+  return is_unknown_row(row) ? uint32_t(row) & kVertexClipBits : 0;
+}
 static_assert(kVertexSnapFailed <= 0x7Fu && -2048 > kRowUnknown + 0x80, "flags fit below every known row");
 
 // Fills out[begin, end) and rows[begin, end) from job.pos_clip[begin, end); returns the OR of
