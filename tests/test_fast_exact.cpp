@@ -303,6 +303,21 @@ TEST(FastClippedPieces, TableOfPiecesMatchesExactPath) {
   expect_fast_matches(scene, true, {2u, 3u, 4u});
 }
 
+// The depth bounds' audit (band_worker.hpp): a camera terrain drawn back to front, on which the
+// bounds seldom help, has each worker turn them off part way through its draw (before the near
+// rows, drawn last, reach their tiles); the next draw, one near-full-screen layer at z = 0.9,
+// starts with them on again and must find those tiles with their bounds unknown, not the clear
+// value's: against those the layer would pass every test and cover the nearer terrain (found by
+// leaving update_bounds to draws with bounds on). At 1-3 workers.
+TEST(FastBoundsAudit, BoundsTurnedOffPartWayKeepTheBytes) {
+  Scene scene = bench::perspective_scene(200, 512);
+  Draw layer = bench::fill_layers_scene(true, 512, 4).draws.front();  // back to front: the farthest first
+  layer.positions_clip.resize(4);
+  layer.indices.resize(6);
+  scene.draws.push_back(std::move(layer));
+  expect_fast_matches(scene, true, {1u, 2u, 3u});
+}
+
 // render_cpu_fast as the bench and render_cpu call it (its own choice of workers) on a scene big
 // enough for two.
 TEST(FastBenchScenes, ProductionEntryPointMatchesExactPath) {

@@ -247,11 +247,32 @@ void BandWorker::submit(const FastTriangle& t, const DrawRaster& raster) {
   if (batch_.size() == kBatchSize) flush(raster);
 }
 
+// The draw's raster, or its copy without depth bounds once the audit turned them off.
+const DrawRaster& BandWorker::audited(const DrawRaster& raster) {
+  if (audit_.draw != &raster) {
+    audit_ = BoundsAudit{};
+    audit_.draw = &raster;
+  }
+  return audit_.off ? audit_.without : raster;
+}
+
+void BandWorker::count_bounds(BoundsUse use) {
+  if (use == BoundsUse::None) return;
+  ++audit_.consulted;
+  if (use == BoundsUse::Helped) ++audit_.helped;
+  if (!audit_.off && audit_.consulted >= kAuditCalls && audit_.helped * kAuditRatio < audit_.consulted) {
+    audit_.off = true;
+    audit_.without = *audit_.draw;
+    audit_.without.bounds = false;
+  }
+}
+
 // Tile by tile over the batch's union, each tile's triangles in submission order, from the first
 // whose writes are not all replaced by a later one (first_visible). A tile visits only the
 // triangles whose rectangle reaches it (bin_batch): the others would draw nothing there.
-void BandWorker::flush(const DrawRaster& raster) {
+void BandWorker::flush(const DrawRaster& draw_raster) {
   if (batch_.empty()) return;
+  const DrawRaster& raster = audited(draw_raster);
   PixelRect all = batch_.front().rect;
   for (const FastTriangle& t : batch_)
     all = PixelRect{std::min(all.x0, t.rect.x0), std::min(all.y0, t.rect.y0), std::max(all.x1, t.rect.x1),
@@ -267,13 +288,15 @@ void BandWorker::flush(const DrawRaster& raster) {
       if (count == 0) continue;  // also every tile of a row this worker does not draw
       const PixelRect tile = tile_rect(tx, ty, frame_.raster.target);
       if (may_hide(tile, list, count, raster)) {  // prepared once, drawn from the first visible
-        for (size_t i = first_visible(tile, list, count, raster); i < count; ++i)
-          raster_prepared(batch_[list[i]], prepared_[i], tx, ty, raster, frame_.raster);
+        const size_t first = first_visible(tile, list, count, raster);
+        count_bounds(first > 0 ? BoundsUse::Helped : BoundsUse::PerPixel);
+        for (size_t i = first; i < count; ++i)
+          count_bounds(raster_prepared(batch_[list[i]], prepared_[i], tx, ty, raster, frame_.raster));
         continue;
       }
       for (size_t i = 0; i < count; ++i) {
         const FastTriangle& t = batch_[list[i]];
-        raster_in_tile(t, rect_in_tile(t.rect, tile), tx, ty, raster, frame_.raster);
+        count_bounds(raster_in_tile(t, rect_in_tile(t.rect, tile), tx, ty, raster, frame_.raster));
       }
     }
   }

@@ -61,15 +61,15 @@ TileTriangle prepare_in_tile(const FastTriangle& t, const PixelRect& r, const Dr
   return p;
 }
 
-void raster_in_tile(const FastTriangle& t, const PixelRect& r, int32_t tile_x, int32_t tile_y, const DrawRaster& draw,
-                    const FrameRaster& frame) {
-  raster_prepared(t, prepare_in_tile(t, r, draw, false), tile_x, tile_y, draw, frame);
+BoundsUse raster_in_tile(const FastTriangle& t, const PixelRect& r, int32_t tile_x, int32_t tile_y,
+                         const DrawRaster& draw, const FrameRaster& frame) {
+  return raster_prepared(t, prepare_in_tile(t, r, draw, false), tile_x, tile_y, draw, frame);
 }
 
-void raster_prepared(const FastTriangle& t, const TileTriangle& prepared, int32_t tile_x, int32_t tile_y,
-                     const DrawRaster& draw, const FrameRaster& frame) {
+BoundsUse raster_prepared(const FastTriangle& t, const TileTriangle& prepared, int32_t tile_x, int32_t tile_y,
+                          const DrawRaster& draw, const FrameRaster& frame) {
   const EdgeSetup& edges = prepared.edges;
-  if (edges.fit == EdgeFit::None) return;
+  if (edges.fit == EdgeFit::None) return BoundsUse::None;
   KernelJob job = prepared.job;
   const PixelRect& r = job.rect;
   job.a0 = t.a0;
@@ -83,9 +83,10 @@ void raster_prepared(const FastTriangle& t, const TileTriangle& prepared, int32_
   TileBounds& tile = state.bounds;
   const PixelRect whole_tile = tile_rect(tile_x, tile_y, frame.target);
   const FragmentRange& fragment = prepared.fragment;
-  bool ranged = false;
+  bool ranged = false, consulted = false;
   DepthVerdict verdict = DepthVerdict::PerPixel;
   if (draw.bounds && area(r) >= kBoundsMinArea && prepared.ranged) {
+    consulted = true;
     const bool whole = r == whole_tile, measurable = area(r) >= kMeasureMinArea && state.cleared;
     if (tile.state != BoundsState::Exact && whole && measurable)
       measure_bounds(frame.target.depth, frame.target.width, whole_tile, frame.avx2, tile);
@@ -99,7 +100,7 @@ void raster_prepared(const FastTriangle& t, const TileTriangle& prepared, int32_
       const DepthVerdict local = classify_depth(draw.depth.op, fragment, under);
       if (local != DepthVerdict::PerPixel) verdict = local;
     }
-    if (verdict == DepthVerdict::AllFail) return;
+    if (verdict == DepthVerdict::AllFail) return BoundsUse::Helped;
 
     if (verdict == DepthVerdict::AllPass) job.op = CompareOp::Always;
   }
@@ -121,7 +122,11 @@ void raster_prepared(const FastTriangle& t, const TileTriangle& prepared, int32_
     depth.op = job.op;  // Always when the bounds proved every sample passes (and the tile may hold no clear values yet)
     wrote = raster_scalar(t, r, depth, frame.target);
   }
+  // frame.bounds, not draw.bounds: a draw whose audit turned the bounds off still leaves the
+  // tiles it writes with unknown bounds (BandWorker::BoundsAudit)
   if (wrote && draw.depth.write && frame.bounds) update_bounds(tile, ranged, fragment, verdict, covers_tile);
+  if (!consulted) return BoundsUse::None;
+  return verdict == DepthVerdict::PerPixel ? BoundsUse::PerPixel : BoundsUse::Helped;
 }
 
 void clear_tile(int32_t tile_x, int32_t tile_y, const FrameRaster& frame) {

@@ -63,11 +63,15 @@ struct TileTriangle {
 // range_small: the range also for rectangles below the area the bounds are used at.
 TileTriangle prepare_in_tile(const FastTriangle& t, const PixelRect& r, const DrawRaster& draw, bool range_small);
 
+// What the depth bounds did for one call: not consulted, or the verdict they gave (PerPixel: no
+// help; AllPass and AllFail: the test, or the whole job, left out). BandWorker's audit counts them.
+enum class BoundsUse { None, PerPixel, Helped };
+
 // Rectangle r lies inside tile (tile_x, tile_y) and inside the triangle's rect.
-void raster_in_tile(const FastTriangle& t, const PixelRect& r, int32_t tile_x, int32_t tile_y, const DrawRaster& draw,
-                    const FrameRaster& frame);
-void raster_prepared(const FastTriangle& t, const TileTriangle& prepared, int32_t tile_x, int32_t tile_y,
-                     const DrawRaster& draw, const FrameRaster& frame);
+BoundsUse raster_in_tile(const FastTriangle& t, const PixelRect& r, int32_t tile_x, int32_t tile_y,
+                         const DrawRaster& draw, const FrameRaster& frame);
+BoundsUse raster_prepared(const FastTriangle& t, const TileTriangle& prepared, int32_t tile_x, int32_t tile_y,
+                          const DrawRaster& draw, const FrameRaster& frame);
 
 // Writes the clear values (kOwnerBackground, the packed depth clear) into a tile's pixels.
 void clear_tile(int32_t tile_x, int32_t tile_y, const FrameRaster& frame);
