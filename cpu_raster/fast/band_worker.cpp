@@ -387,7 +387,7 @@ void BandWorker::raster_exact_in_band(const RasterPrimitive& primitive, const De
     band.visit.y1 = std::min(visit.y1, ty * kTileSize + kTileSize - 1);
     prepare_tiles(band.visit, depth.write);
     if (band.binned)  // llvmpipe's wrapping set-up: coverage from its bins, not a plane test
-      rasterize_binned_rows(band, depth, frame_.targets);
+      rasterize_binned_rows(band, depth, frame_.targets, frame_.raster.avx2);
     else
       rasterize_primitive_rows(band, depth, frame_.targets, frame_.raster.avx2);
   }

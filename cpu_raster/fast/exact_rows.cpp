@@ -116,10 +116,13 @@ void rasterize_primitive_rows(const RasterPrimitive& p, const DepthTestState& de
 
 // rasterize_primitive for a binned primitive (llvmpipe's wrapping set-up, binned_triangle.hpp), the
 // same loops swapped, with coverage a 64x64 tile at a time (binned_tile_coverage: what binned_covers
-// answers for each of its pixels).
-void rasterize_binned_rows(const RasterPrimitive& p, const DepthTestState& depth, RenderTargets& targets) {
+// answers for each of its pixels); with avx2, each run of covered columns goes to
+// write_covered_row_avx2 (the same writes as write_covered_sample's depth branch, column by column).
+void rasterize_binned_rows(const RasterPrimitive& p, const DepthTestState& depth, RenderTargets& targets, bool avx2) {
   const BinnedTriangle& t = *p.binned;
   const uint32_t tested_samples = p.per_sample ? targets.samples : 1;
+  const bool rows_avx2 = avx2 && depth.active && !depth.compute_when_inactive && depth.format != DepthFormat::None &&
+                         !targets.depth_raw.empty();
   const PixelRect visit = intersect(p.visit, PixelRect{0, 0, t.tiles_x * kBinTile - 1, t.tiles_y * kBinTile - 1});
   if (visit.empty()) return;  // binned_covers is false outside the tiles
   std::array<uint64_t, kBinTile> rows;
@@ -132,7 +135,17 @@ void rasterize_binned_rows(const RasterPrimitive& p, const DepthTestState& depth
       for (uint32_t s = 0; s < tested_samples; ++s) {
         binned_tile_coverage(t, tx, ty, p.per_sample ? s : 0, rows);
         for (int32_t py = y0; py <= y1; ++py) {
-          for (uint64_t bits = rows[size_t(py - ty * kBinTile)] & columns; bits != 0; bits &= bits - 1)
+          uint64_t bits = rows[size_t(py - ty * kBinTile)] & columns;
+          if (rows_avx2 && bits != 0) {  // a run of covered columns at a time (a triangle's row: one)
+            const SamplePoint origin = sample_point(0, py, s, p.per_sample);
+            for (; bits != 0; bits &= bits + (bits & (~bits + 1))) {  // the lowest run cleared
+              const int32_t first = std::countr_zero(bits), length = std::countr_one(bits >> first);
+              write_covered_row_avx2(p, depth, targets, py, s, origin, tx * kBinTile + first,
+                                     tx * kBinTile + first + length - 1);
+            }
+            continue;
+          }
+          for (; bits != 0; bits &= bits - 1)
             write_covered_sample(p, depth, targets, tx * kBinTile + std::countr_zero(bits), py, s, nullptr);
         }
       }

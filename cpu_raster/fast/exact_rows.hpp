@@ -21,7 +21,9 @@ void rasterize_primitive_rows(const RasterPrimitive& p, const DepthTestState& de
                               bool avx2);
 
 // Same writes as rasterize_primitive(p, depth, targets) for a binned primitive (p.binned): coverage
-// a 64x64 tile at a time from its bins, binned_covers only in partial tiles.
-void rasterize_binned_rows(const RasterPrimitive& p, const DepthTestState& depth, RenderTargets& targets);
+// a 64x64 tile at a time from its bins, binned_covers only in partial tiles. avx2: as for
+// rasterize_primitive_rows, each run of covered columns of a sample row with its raw depths eight
+// columns at a time.
+void rasterize_binned_rows(const RasterPrimitive& p, const DepthTestState& depth, RenderTargets& targets, bool avx2);
 
 }  // namespace rastercmp::cpu::fast
