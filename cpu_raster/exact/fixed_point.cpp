@@ -3,15 +3,6 @@
 #include <cmath>
 
 namespace rastercmp::cpu {
-namespace {
-
-// Only integers that int32 holds and the set-up bound accepts come back.
-std::optional<int32_t> to_int32(float integral_value) {
-  if (!(std::fabs(integral_value) <= float(Fixed24_8::kMaxMagnitude))) return std::nullopt;
-  return static_cast<int32_t>(integral_value);
-}
-
-}  // namespace
 
 int32_t snap_vertex_saturating(float x_window, float pixel_offset, SnapRounding rounding) {
   const float rounded = snapped_float(x_window, pixel_offset, rounding);
@@ -22,7 +13,7 @@ int32_t snap_vertex_saturating(float x_window, float pixel_offset, SnapRounding 
 
 std::optional<int32_t> util_iround(float value) {
   const float biased = value >= 0.0f ? value + 0.5f : value - 0.5f;  // rounded float add
-  return to_int32(std::trunc(biased));
+  return bounded_int32(std::trunc(biased));
 }
 
 std::optional<int32_t> line_snap(float value_pixels) { return util_iround(float(kFixedOne) * value_pixels); }

@@ -67,6 +67,13 @@ inline float round_nearest_even(float v) {
   return std::copysign((magnitude + kTwo23) - kTwo23, v);
 }
 
+// An integral float as int32 when the set-up bound accepts it (|v| <= kMaxMagnitude), else nullopt
+// (NaN too).
+inline std::optional<int32_t> bounded_int32(float integral_value) {
+  if (!(std::fabs(integral_value) <= float(Fixed24_8::kMaxMagnitude))) return std::nullopt;
+  return static_cast<int32_t>(integral_value);
+}
+
 // fl(fl(x - offset) * 256), rounded to an integral float.
 inline float snapped_float(float x_window, float pixel_offset, SnapRounding rounding) {
   const float shifted = x_window - pixel_offset;    // a float subtraction first (§2.2)
@@ -80,8 +87,9 @@ inline float snapped_float(float x_window, float pixel_offset, SnapRounding roun
 // set-up snaps six times, and an optional returned through memory cost a stalled reload.
 inline std::optional<Fixed24_8> snap_vertex(float x_window, float pixel_offset, SnapRounding rounding) {
   const float rounded = snapped_float(x_window, pixel_offset, rounding);
-  if (!(std::fabs(rounded) <= float(Fixed24_8::kMaxMagnitude))) return std::nullopt;  // only what the bound accepts
-  return Fixed24_8{static_cast<int32_t>(rounded)};
+  const std::optional<int32_t> raw = bounded_int32(rounded);
+  if (!raw) return std::nullopt;
+  return Fixed24_8{*raw};
 }
 
 // The same rounding as cvtps2dq returns it: NaN and values outside int32 become INT32_MIN

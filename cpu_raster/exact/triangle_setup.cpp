@@ -9,32 +9,6 @@
 namespace rastercmp::cpu {
 namespace {
 
-std::optional<std::array<FixedPoint, 3>> snap_triangle(const std::array<WindowVertex, 3>& window, float pixel_offset,
-                                                       SnapRounding rounding) {
-  std::array<FixedPoint, 3> fixed;
-  for (size_t i = 0; i < 3; ++i) {
-    const auto x = snap_vertex(window[i].x, pixel_offset, rounding);
-    const auto y = snap_vertex(window[i].y, pixel_offset, rounding);
-    if (!x || !y) return std::nullopt;
-    fixed[i] = FixedPoint{*x, *y};
-  }
-  return fixed;
-}
-
-// area = dx01*dy20 - dx20*dy01 (§2.3): > 0 is llvmpipe's "ccw".
-int64_t doubled_area(const std::array<FixedPoint, 3>& v) {
-  const int64_t dx01 = v[0].x.wide() - v[1].x.wide(), dy01 = v[0].y.wide() - v[1].y.wide();
-  const int64_t dx20 = v[2].x.wide() - v[0].x.wide(), dy20 = v[2].y.wide() - v[0].y.wide();
-  return dx01 * dy20 - dx20 * dy01;
-}
-
-// do_triangle_ccw: x0 = min >> 8, x1 = (max - 1) >> 8 (bottom_edge_rule = 0).
-PixelRect triangle_bbox(const std::array<FixedPoint, 3>& v) {
-  const auto [min_x, max_x] = std::minmax({v[0].x.raw, v[1].x.raw, v[2].x.raw});
-  const auto [min_y, max_y] = std::minmax({v[0].y.raw, v[1].y.raw, v[2].y.raw});
-  return PixelRect{min_x >> kFixedOrder, min_y >> kFixedOrder, (max_x - 1) >> kFixedOrder, (max_y - 1) >> kFixedOrder};
-}
-
 // calc_fixed_position as llvmpipe runs it past the bound: cvtps2dq saturating (rules §7.5).
 // nullopt for NaN, which this project drops (rules §7.6).
 std::optional<std::array<FixedPoint, 3>> snap_triangle_saturating(const std::array<WindowVertex, 3>& window,
@@ -61,6 +35,32 @@ std::shared_ptr<const BinnedTriangle> bin_placed(const RasterPrimitive& raster, 
 }
 
 }  // namespace
+
+std::optional<std::array<FixedPoint, 3>> snap_triangle(const std::array<WindowVertex, 3>& window, float pixel_offset,
+                                                       SnapRounding rounding) {
+  std::array<FixedPoint, 3> fixed;
+  for (size_t i = 0; i < 3; ++i) {
+    const auto x = snap_vertex(window[i].x, pixel_offset, rounding);
+    const auto y = snap_vertex(window[i].y, pixel_offset, rounding);
+    if (!x || !y) return std::nullopt;
+    fixed[i] = FixedPoint{*x, *y};
+  }
+  return fixed;
+}
+
+// area = dx01*dy20 - dx20*dy01 (§2.3): > 0 is llvmpipe's "ccw".
+int64_t doubled_area(const std::array<FixedPoint, 3>& v) {
+  const int64_t dx01 = v[0].x.wide() - v[1].x.wide(), dy01 = v[0].y.wide() - v[1].y.wide();
+  const int64_t dx20 = v[2].x.wide() - v[0].x.wide(), dy20 = v[2].y.wide() - v[0].y.wide();
+  return dx01 * dy20 - dx20 * dy01;
+}
+
+// do_triangle_ccw: x0 = min >> 8, x1 = (max - 1) >> 8 (bottom_edge_rule = 0).
+PixelRect triangle_bbox(const std::array<FixedPoint, 3>& v) {
+  const auto [min_x, max_x] = std::minmax({v[0].x.raw, v[1].x.raw, v[2].x.raw});
+  const auto [min_y, max_y] = std::minmax({v[0].y.raw, v[1].y.raw, v[2].y.raw});
+  return PixelRect{min_x >> kFixedOrder, min_y >> kFixedOrder, (max_x - 1) >> kFixedOrder, (max_y - 1) >> kFixedOrder};
+}
 
 bool face_culled(bool front_facing, CullMode cull) {
   switch (cull) {

@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 
 #include "cpu_raster/exact/raster_primitive.hpp"
 #include "cpu_raster/exact/setup_context.hpp"
@@ -32,6 +33,15 @@ struct TriangleSetup {
 
 // Whether the cull mode drops a triangle of this facing (§2.3).
 bool face_culled(bool front_facing, CullMode cull);
+
+// setup_triangle's steps, for the fast path's lean set-up of clipped pieces (setup_piece):
+// the three corners snapped (§2.2; nullopt when one does not snap), the doubled area
+// dx01*dy20 - dx20*dy01 (§2.3, > 0 is llvmpipe's "ccw"), and do_triangle_ccw's box
+// x0 = min >> 8, x1 = (max - 1) >> 8 (§2.5), inside the direct range.
+std::optional<std::array<FixedPoint, 3>> snap_triangle(const std::array<WindowVertex, 3>& window, float pixel_offset,
+                                                       SnapRounding rounding);
+int64_t doubled_area(const std::array<FixedPoint, 3>& v);
+PixelRect triangle_bbox(const std::array<FixedPoint, 3>& v);
 
 TriangleSetup setup_triangle(const std::array<WindowVertex, 3>& window, uint32_t owner, const SetupContext& context);
 

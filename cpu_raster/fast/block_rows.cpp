@@ -124,7 +124,7 @@ RASTERCMP_AVX2 uint32_t list_block_tile_rows_avx2(const uint32_t* indices, const
   if (!is_unknown_row(low)) return pack_rows(low, high, region);
   // A corner needs clipping (or failed to snap): the clip bits the three corners of each lane
   // share (row_clip_bits: an unknown row's low bits, none for a known row).
-  const __m256i last_unknown = _mm256_set1_epi32(kRowUnknown + 0x7F);
+  const __m256i last_unknown = _mm256_set1_epi32(kLastUnknownRow);
   __m256i shared = _mm256_set1_epi32(int32_t(kVertexClipBits));
   for (int j = 0; j < 3; ++j)
     shared = _mm256_and_si256(shared, _mm256_andnot_si256(_mm256_cmpgt_epi32(r[j], last_unknown), r[j]));

@@ -1,6 +1,7 @@
 #include "cpu_raster/fast/clipped_pieces.hpp"
 
-#include <algorithm>
+#include <optional>
+#include <utility>
 
 #include "cpu_raster/exact/binned_triangle.hpp"
 #include "cpu_raster/exact/depth_plane.hpp"
@@ -28,17 +29,10 @@ FastTriangle fast_triangle_of(const RasterPrimitive& p, const PixelRect& region)
 PieceSetup setup_piece(const std::array<WindowVertex, 3>& window_in, uint32_t owner, const SetupContext& ctx,
                        const PixelRect& region, FastTriangle& out) {
   const float pixel_offset = ctx.multisample ? 0.0f : 0.5f;  // calc_fixed_position
-  std::array<FixedPoint, 3> fixed;
-  for (size_t i = 0; i < 3; ++i) {  // §2.2
-    const auto x = snap_vertex(window_in[i].x, pixel_offset, ctx.methods.snap);
-    const auto y = snap_vertex(window_in[i].y, pixel_offset, ctx.methods.snap);
-    if (!x || !y) return PieceSetup::Full;
-    fixed[i] = FixedPoint{*x, *y};
-  }
-  if (!in_direct_range(fixed)) return PieceSetup::Full;
-  // area = dx01*dy20 - dx20*dy01 (§2.3)
-  const int64_t area = (fixed[0].x.wide() - fixed[1].x.wide()) * (fixed[2].y.wide() - fixed[0].y.wide()) -
-                       (fixed[2].x.wide() - fixed[0].x.wide()) * (fixed[0].y.wide() - fixed[1].y.wide());
+  const std::optional<std::array<FixedPoint, 3>> snapped = snap_triangle(window_in, pixel_offset, ctx.methods.snap);
+  if (!snapped || !in_direct_range(*snapped)) return PieceSetup::Full;
+  std::array<FixedPoint, 3> fixed = *snapped;
+  const int64_t area = doubled_area(fixed);
   if (area == 0) return PieceSetup::Dropped;  // always dropped
   const RasterState& state = *ctx.state;
   if (face_culled((area > 0) == (state.front_face == FrontFace::CounterClockwise), state.cull_mode))
@@ -48,12 +42,9 @@ PieceSetup setup_piece(const std::array<WindowVertex, 3>& window_in, uint32_t ow
     std::swap(fixed[1], fixed[2]);
     std::swap(window[1], window[2]);
   }
-  // do_triangle_ccw's box: x0 = min >> 8, x1 = (max - 1) >> 8 (§2.5); place_in_region drops a
-  // piece whose box misses the region (its cut of x0, y0 at 0 changes nothing inside the region)
-  const auto [min_x, max_x] = std::minmax({fixed[0].x.raw, fixed[1].x.raw, fixed[2].x.raw});
-  const auto [min_y, max_y] = std::minmax({fixed[0].y.raw, fixed[1].y.raw, fixed[2].y.raw});
-  const PixelRect bbox{min_x >> kFixedOrder, min_y >> kFixedOrder, (max_x - 1) >> kFixedOrder,
-                       (max_y - 1) >> kFixedOrder};
+  // place_in_region drops a piece whose box misses the region (its cut of x0, y0 at 0 changes
+  // nothing inside the region)
+  const PixelRect bbox = triangle_bbox(fixed);
   if (!rects_touch(ctx.region, bbox)) return PieceSetup::Dropped;
   out = FastTriangle{};
   for (int k = 0; k < 3; ++k) {

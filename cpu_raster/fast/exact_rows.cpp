@@ -61,6 +61,13 @@ void write_covered_sample(const RasterPrimitive& p, const DepthTestState& depth,
   write_owner(p, targets, px, py, i);
 }
 
+// Whether the covered samples of a row may go to write_covered_row_avx2 (on an AVX2 host): the
+// branch of write_covered_sample that computes only the depth, with an attachment.
+bool depth_rows_avx2(const DepthTestState& depth, const RenderTargets& targets) {
+  return depth.active && !depth.compute_when_inactive && depth.format != DepthFormat::None &&
+         !targets.depth_raw.empty();
+}
+
 // Columns [x0, x1] of one sample row, all covered, with an active depth test (the branch of
 // write_covered_sample that computes only the depth): the raw depths eight columns at a time
 // (sample_depths_avx2, the same operations as sample_point and sample_depth), then the test and
@@ -95,8 +102,7 @@ void rasterize_primitive_rows(const RasterPrimitive& p, const DepthTestState& de
   const std::optional<EdgeFrame32> frame32 = make_edge_frame32(p.planes, p.visit);  // as WorkSkips{} does
   const EdgeFrame32* edges32 = frame32 ? &*frame32 : nullptr;
   const uint32_t tested_samples = p.per_sample ? targets.samples : 1;
-  const bool rows_avx2 = avx2 && depth.active && !depth.compute_when_inactive && depth.format != DepthFormat::None &&
-                         !targets.depth_raw.empty();
+  const bool rows_avx2 = avx2 && depth_rows_avx2(depth, targets);
   for (int32_t py = p.visit.y0; py <= p.visit.y1; ++py) {
     for (uint32_t s = 0; s < tested_samples; ++s) {
       const SamplePoint origin = sample_point(0, py, s, p.per_sample);
@@ -121,8 +127,7 @@ void rasterize_primitive_rows(const RasterPrimitive& p, const DepthTestState& de
 void rasterize_binned_rows(const RasterPrimitive& p, const DepthTestState& depth, RenderTargets& targets, bool avx2) {
   const BinnedTriangle& t = *p.binned;
   const uint32_t tested_samples = p.per_sample ? targets.samples : 1;
-  const bool rows_avx2 = avx2 && depth.active && !depth.compute_when_inactive && depth.format != DepthFormat::None &&
-                         !targets.depth_raw.empty();
+  const bool rows_avx2 = avx2 && depth_rows_avx2(depth, targets);
   const PixelRect visit = intersect(p.visit, PixelRect{0, 0, t.tiles_x * kBinTile - 1, t.tiles_y * kBinTile - 1});
   if (visit.empty()) return;  // binned_covers is false outside the tiles
   std::array<uint64_t, kBinTile> rows;

@@ -62,12 +62,13 @@ struct VertexJob {
 // bits from it (2 bytes a position instead of the FastVertex's 16).
 inline constexpr int16_t kRowUnknown = INT16_MIN;
 inline constexpr int16_t unknown_row(uint32_t flags) { return int16_t(kRowUnknown | int32_t(flags & 0x7Fu)); }
-inline constexpr bool is_unknown_row(int32_t row) { return row < kRowUnknown + 0x80; }
+inline constexpr int32_t kLastUnknownRow = kRowUnknown + 0x7F;  // unknown_row of every flag
+inline constexpr bool is_unknown_row(int32_t row) { return row <= kLastUnknownRow; }
 // The clip bits an entry of tile_rows holds (none for a known row).
 inline constexpr uint32_t row_clip_bits(int32_t row) {
   return is_unknown_row(row) ? uint32_t(row) & kVertexClipBits : 0;
 }
-static_assert(kVertexSnapFailed <= 0x7Fu && -2048 > kRowUnknown + 0x80, "flags fit below every known row");
+static_assert(kVertexSnapFailed <= 0x7Fu && -2048 > kLastUnknownRow, "flags fit below every known row");
 
 // Fills out[begin, end) and rows[begin, end) from job.pos_clip[begin, end); returns the OR of
 // the vertices' flags.
