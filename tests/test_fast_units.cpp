@@ -33,8 +33,7 @@ namespace rastercmp::cpu::fast {
 namespace {
 
 // The clears' fill writes exactly [p, p + count): every length class (tail words, 8-word and
-// 32-word steps, the streaming stores from 64 Ki words with their alignment prologue) at every
-// word alignment, and nothing before or after.
+// 32-word steps, runs as long as a row of tiles) at every word alignment, and nothing before or after.
 TEST(FastClear, FillWritesExactlyTheRun) {
   if (!host_has_avx2_fma()) GTEST_SKIP() << "host without AVX2/FMA: clears use std::fill_n";
   constexpr uint32_t kSentinel = 0xA5A5A5A5u, kValue = 0x3F800000u;

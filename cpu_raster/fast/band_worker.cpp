@@ -56,22 +56,7 @@ void BandWorker::run() {
     flush(frame_.draws[d].raster);
   }
   for (int32_t ty = 0; ty < frame_.raster.tiles_y; ++ty)
-    if (owns_tile_row(ty)) clear_untouched(ty);
-}
-
-// The tiles of a tile row no primitive reached, cleared a run of neighbours at a time: one fill per
-// pixel row of the run instead of one per tile (a big framebuffer's mostly empty rows are filled
-// as long contiguous rows).
-void BandWorker::clear_untouched(int32_t ty) {
-  const FrameRaster& raster = frame_.raster;
-  for (int32_t tx = 0; tx < raster.tiles_x; ++tx) {
-    if (raster.tile(tx, ty).cleared) continue;
-    int32_t last = tx;
-    while (last + 1 < raster.tiles_x && !raster.tile(last + 1, ty).cleared) ++last;
-    const PixelRect first_tile = tile_rect(tx, ty, raster.target), last_tile = tile_rect(last, ty, raster.target);
-    clear_rect(PixelRect{first_tile.x0, first_tile.y0, last_tile.x1, last_tile.y1}, raster);
-    tx = last;
-  }
+    if (owns_tile_row(ty)) clear_tile_row(ty, frame_.raster);
 }
 
 bool BandWorker::owns_rows(int32_t y0, int32_t y1) const { return owns_tile_rows(y0 >> kTileOrder, y1 >> kTileOrder); }
@@ -398,8 +383,7 @@ void BandWorker::prepare_tiles(const PixelRect& r, bool depth_write) {
   for (int32_t ty = r.y0 >> kTileOrder; ty <= r.y1 >> kTileOrder; ++ty) {
     for (int32_t tx = r.x0 >> kTileOrder; tx <= r.x1 >> kTileOrder; ++tx) {
       TileState& tile = frame_.raster.tile(tx, ty);
-      if (!tile.cleared) clear_tile(tx, ty, frame_.raster);
-      tile.cleared = true;
+      if (!tile.cleared) clear_tile_row(ty, frame_.raster);
       if (depth_write) tile.bounds.state = BoundsState::Unknown;
     }
   }

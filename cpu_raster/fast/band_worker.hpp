@@ -77,7 +77,6 @@ class BandWorker {
   bool may_hide(const PixelRect& tile, const uint8_t* list, size_t count, const DrawRaster& raster) const;
   size_t first_visible(const PixelRect& tile, const uint8_t* list, size_t count, const DrawRaster& raster);
   void prepare_tiles(const PixelRect& r, bool depth_write);
-  void clear_untouched(int32_t tile_y);
 
   FastFrame& frame_;
   uint32_t index_, workers_;

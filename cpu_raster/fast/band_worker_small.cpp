@@ -130,10 +130,7 @@ void BandWorker::prepare_small_tiles(int32_t x0, int32_t x1, int32_t row_lo, int
   for (int32_t ty = row_lo >> kTileOrder; ty <= row_hi >> kTileOrder; ++ty) {
     for (int32_t tx = x0 >> kTileOrder; tx <= x1 >> kTileOrder; ++tx) {
       TileState& tile = frame_.raster.tile(tx, ty);
-      if (!tile.cleared) {
-        clear_tile(tx, ty, frame_.raster);
-        tile.cleared = true;
-      }
+      if (!tile.cleared) clear_tile_row(ty, frame_.raster);
       if (raster.depth.write) tile.bounds.state = BoundsState::Unknown;  // before any write lands
     }
   }

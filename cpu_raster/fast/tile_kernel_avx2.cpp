@@ -425,26 +425,13 @@ RASTERCMP_AVX2 void measure_bounds_avx2(const uint32_t* depth, int32_t width, co
   hi = shi;
 }
 
-// Runs of at least kStreamingFillWords words (256 KiB: whole untouched rows of a large frame, far
-// more than the worker's L2 share) are written with streaming stores, which skip reading each cache
-// line before it is overwritten: the 2048x1536 suite scene's 25 MB of clears went from 0.78 to 0.68
-// ms (docs/performance.md, session 12). Shorter runs (tiles that primitives then draw into) stay in
-// the cache.
-constexpr size_t kStreamingFillWords = size_t(64) << 10;
-
+// Plain stores, also for long runs: the streaming stores session 12 used for runs of 256 KiB and
+// more were slower once tile rows were cleared whole (clear_tile_row: the rows a draw goes on to
+// write were sent to memory; docs/performance.md, session 15), and for the untouched rows too
+// (8 MiB: 0.20 ms streaming, 0.09-0.10 plain, warm or cold).
 RASTERCMP_AVX2 void fill_words_avx2(uint32_t* p, size_t count, uint32_t value) {
   const __m256i v = _mm256_set1_epi32(int(value));
   size_t i = 0;
-  if (count >= kStreamingFillWords) {
-    for (; (reinterpret_cast<uintptr_t>(p + i) & 31) != 0; ++i) p[i] = value;
-    for (; i + 32 <= count; i += 32) {
-      _mm256_stream_si256(reinterpret_cast<__m256i*>(p + i), v);
-      _mm256_stream_si256(reinterpret_cast<__m256i*>(p + i + 8), v);
-      _mm256_stream_si256(reinterpret_cast<__m256i*>(p + i + 16), v);
-      _mm256_stream_si256(reinterpret_cast<__m256i*>(p + i + 24), v);
-    }
-    _mm_sfence();
-  }
   for (; i + 32 <= count; i += 32) {
     _mm256_storeu_si256(reinterpret_cast<__m256i*>(p + i), v);
     _mm256_storeu_si256(reinterpret_cast<__m256i*>(p + i + 8), v);

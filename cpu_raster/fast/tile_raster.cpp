@@ -109,7 +109,7 @@ BoundsUse raster_prepared(const FastTriangle& t, const TileTriangle& prepared, i
     // Fast clear: skipped when this triangle replaces every owner and depth value of the tile.
     const bool overwrites =
         covers_tile && (frame.target.depth == nullptr || (draw.depth.write && verdict == DepthVerdict::AllPass));
-    if (!overwrites) clear_tile(tile_x, tile_y, frame);
+    if (!overwrites) clear_tile_row(tile_y, frame);
     state.cleared = true;
   }
   bool wrote;
@@ -129,8 +129,20 @@ BoundsUse raster_prepared(const FastTriangle& t, const TileTriangle& prepared, i
   return verdict == DepthVerdict::PerPixel ? BoundsUse::PerPixel : BoundsUse::Helped;
 }
 
-void clear_tile(int32_t tile_x, int32_t tile_y, const FrameRaster& frame) {
-  clear_rect(tile_rect(tile_x, tile_y, frame.target), frame);
+// A run of neighbouring tiles is filled one pixel row at a time (the whole run at once where it
+// spans the width): long runs of stores, which the hardware prefetcher keeps ahead of. Tile by
+// tile, in the order a draw reaches them, the same 8 MiB took 0.23-0.27 ms instead of 0.09-0.10
+// (docs/performance.md, session 15).
+void clear_tile_row(int32_t tile_y, const FrameRaster& frame) {
+  for (int32_t tx = 0; tx < frame.tiles_x; ++tx) {
+    if (frame.tile(tx, tile_y).cleared) continue;
+    int32_t last = tx;
+    while (last + 1 < frame.tiles_x && !frame.tile(last + 1, tile_y).cleared) ++last;
+    const PixelRect first_tile = tile_rect(tx, tile_y, frame.target), last_tile = tile_rect(last, tile_y, frame.target);
+    clear_rect(PixelRect{first_tile.x0, first_tile.y0, last_tile.x1, last_tile.y1}, frame);
+    for (int32_t k = tx; k <= last; ++k) frame.tile(k, tile_y).cleared = true;
+    tx = last;
+  }
 }
 
 namespace {

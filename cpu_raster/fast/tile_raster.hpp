@@ -73,13 +73,16 @@ BoundsUse raster_in_tile(const FastTriangle& t, const PixelRect& r, int32_t tile
 BoundsUse raster_prepared(const FastTriangle& t, const TileTriangle& prepared, int32_t tile_x, int32_t tile_y,
                           const DrawRaster& draw, const FrameRaster& frame);
 
-// Writes the clear values (kOwnerBackground, the packed depth clear) into a tile's pixels.
-void clear_tile(int32_t tile_x, int32_t tile_y, const FrameRaster& frame);
+// Before the first write into a tile of row tile_y, and for the rows no primitive reached: the
+// clear values (kOwnerBackground, the packed depth clear) written into every tile of the row not
+// cleared yet, which are then marked cleared. A tile that a later triangle would have covered
+// whole is cleared all the same (its clear is no longer skipped, raster_prepared).
+void clear_tile_row(int32_t tile_y, const FrameRaster& frame);
 // The same for every pixel of r (whole tiles): one fill per attachment and pixel row, or one for
 // all of r when its rows span the whole width.
 void clear_rect(const PixelRect& r, const FrameRaster& frame);
 
-// p[0, count) = value, with 32-byte stores, streaming ones for long runs (tile_kernel_avx2.cpp).
+// p[0, count) = value, with 32-byte stores (tile_kernel_avx2.cpp).
 // Call only when host_has_avx2_fma().
 void fill_words_avx2(uint32_t* p, size_t count, uint32_t value);
 
