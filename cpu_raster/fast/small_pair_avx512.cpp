@@ -355,9 +355,8 @@ RASTERCMP_AVX512 void setup_small_pair_avx512(const SmallBlockInput& in0, const 
   store_halves(out0.a0, out1.a0, plane.a0);
   store_halves(out0.dzdx, out1.dzdx, plane.dzdx);
   store_halves(out0.dzdy, out1.dzdy, plane.dzdy);
-  if (job) {  // one or two spans per row from origin_x, kept inside the tile (small_setup_simd.inl)
-    const __m512i room =
-        _mm512_mask_blend_epi32(_mm512_cmpgt_epi32_mask(w, splat(7)), splat(kTileSize - 8), splat(kTileSize - 16));
+  if (job) {  // w / 8 + 1 spans per row from origin_x, kept inside the tile (small_setup_simd.inl)
+    const __m512i room = _mm512_sub_epi32(splat(kTileSize - 8), _mm512_and_si512(w, splat(~7)));
     const __m512i origin_x =
         _mm512_min_epi32(x0, _mm512_add_epi32(_mm512_and_si512(x0, splat(~(kTileSize - 1))), room));
     store_halves(out0.origin_x, out1.origin_x, origin_x);

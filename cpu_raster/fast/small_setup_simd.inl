@@ -359,10 +359,10 @@ RASTERCMP_SMALL_TARGET void RASTERCMP_SMALL_SETUP(const SmallBlockInput& in, Sma
     });
   }
   if (out.job_mask) {
-    // One or two 8-lane spans per row from origin_x (two when the rectangle is wider than 8 px),
-    // kept inside the tile (rect.x1 <= origin_x + 8 * spans - 1).
-    const __m256i room = _mm256_blendv_epi8(_mm256_set1_epi32(kTileSize - 8), _mm256_set1_epi32(kTileSize - 16),
-                                            _mm256_cmpgt_epi32(w, _mm256_set1_epi32(7)));
+    // spans = w / 8 + 1 8-lane spans per row from origin_x (at most four), kept inside the tile:
+    // origin_x <= tile start + room with room = kTileSize - 8 * spans, so rect.x1 <= origin_x + 8 * spans - 1.
+    const __m256i room =
+        _mm256_sub_epi32(_mm256_set1_epi32(kTileSize - 8), _mm256_and_si256(w, _mm256_set1_epi32(~7)));
     const __m256i origin_x =
         _mm256_min_epi32(x0, _mm256_add_epi32(_mm256_and_si256(x0, _mm256_set1_epi32(~(kTileSize - 1))), room));
     _mm256_store_si256(reinterpret_cast<__m256i*>(out.origin_x), origin_x);

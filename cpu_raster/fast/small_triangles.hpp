@@ -8,13 +8,14 @@
 //    in order, by scatter_grid_lane;
 //  - other small lanes (at most kSmallWidth x kSmallHeight, inside one tile): one kernel call with
 //    edge values relative to the triangle's own corner (the 256-scaled E of edge_plane.hpp), one
-//    or two 8-pixel spans per row;
+//    to four 8-pixel spans per row;
 //  - the rest (larger, clipped, non-finite) goes back to the scalar set-up.
 //
 // 32-bit bound: a small lane's unclipped bounding box spans at most kSmallWidth x kSmallHeight
-// pixels, so |X_i - X_j| <= 256*(kSmallWidth + 1) < 2^13 and |Y_i - Y_j| <= 256*(kSmallHeight + 1)
-// < 2^13; the doubled area is below 2^26 and every edge value formed within 24 columns and
-// kSmallHeight rows of the corner below 2^27.
+// pixels, so |X_i - X_j| <= 256*(kSmallWidth + 1) < 2^14 and |Y_i - Y_j| <= 256*(kSmallHeight + 1)
+// < 2^13; the doubled area is below 2^27, and an edge value formed within the lane's tile (the
+// kernel's spans stay in it) and kSmallHeight + 3 rows of the corner below 2^13 * 2^14 + 2^14 * 2^13
+// = 2^28.
 #pragma once
 
 #include <cstdint>
@@ -27,7 +28,7 @@
 
 namespace rastercmp::cpu::fast {
 
-inline constexpr int32_t kSmallWidth = 16;     // pixels: at most two 8-lane spans per row
+inline constexpr int32_t kSmallWidth = 32;     // pixels: at most four 8-lane spans per row
 inline constexpr int32_t kSmallHeight = 16;    // rows
 inline constexpr int32_t kGridSide = 8;        // candidate pixels per side of a grid lane
 inline constexpr int32_t kSmallGridShift = 2;  // blocks whose grid lanes all fit in 4x4 pixels
