@@ -159,7 +159,7 @@ std::vector<int64_t> lane_meaning(const SmallBlockOutput& o, int l, DepthFormat 
     m.push_back(o.grid_shift != kSmallGridShift ||
                 ((o.grid_words[l / 4] >> (16 * (l % 4))) & 0xFFFFu) == o.grid_bits[l]);
   } else {
-    const KernelJob j = o.job(l, 1, CompareOp::Less);
+    const KernelJob j = o.job(l, 1, CompareOp::Less, o.y0[l], o.y1[l]);
     m.insert(m.end(), {j.origin_x, bits(j.a0), bits(j.dzdx), bits(j.dzdy)});
     for (int k = 0; k < 3; ++k) m.insert(m.end(), {j.g_minus_1[k], j.gx[k], j.gy[k]});
   }

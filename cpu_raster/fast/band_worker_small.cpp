@@ -137,7 +137,7 @@ void BandWorker::prepare_small_tiles(int32_t x0, int32_t x1, int32_t row_lo, int
 }
 
 // A small triangle: a grid lane (which may reach into a neighbouring tile row or column: only
-// this worker's rows are written) or a kernel job inside one tile. Its tiles are cleared first;
+// this worker's rows are written) or a kernel job (the same). Its tiles are cleared first;
 // their depth bounds become unknown when depth is written.
 void BandWorker::draw_small(const SmallBlockOutput& block, int lane, uint32_t owner, const DrawRaster& raster) {
   int32_t row_lo = block.y0[lane], row_hi = block.y1[lane];  // a lane spans at most two tile rows
@@ -146,7 +146,7 @@ void BandWorker::draw_small(const SmallBlockOutput& block, int lane, uint32_t ow
   if ((block.grid_mask >> lane) & 1u) {
     raster.grid_fn(block, lane, owner, row_lo, row_hi, raster.kernel.write, frame_.raster.target);
   } else {
-    raster.small_fn(block, lane, owner, raster.kernel, frame_.raster.target);
+    raster.small_fn(block, lane, owner, row_lo, row_hi, raster.kernel, frame_.raster.target);
   }
 }
 

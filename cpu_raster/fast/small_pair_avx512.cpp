@@ -273,8 +273,6 @@ RASTERCMP_AVX512 void setup_small_pair_avx512(const SmallBlockInput& in0, const 
   const __m512i y0 = _mm512_max_epi32(ty0, splat(region.y0)), y1 = _mm512_min_epi32(by1, splat(region.y1));
   const Lanes small = _mm512_cmplt_epi32_mask(_mm512_sub_epi32(bx1, bx0), splat(kSmallWidth)) &
                       _mm512_cmplt_epi32_mask(_mm512_sub_epi32(by1, by0), splat(kSmallHeight));
-  const Lanes one_tile = _mm512_cmpeq_epi32_mask(_mm512_srai_epi32(x0, kTileOrder), _mm512_srai_epi32(x1, kTileOrder)) &
-                         _mm512_cmpeq_epi32_mask(_mm512_srai_epi32(y0, kTileOrder), _mm512_srai_epi32(y1, kTileOrder));
   const Lanes simple = Lanes(~special & small);
   const Lanes empty = _mm512_cmpgt_epi32_mask(x0, x1) | _mm512_cmpgt_epi32_mask(y0, y1);
   // area = dx01*dy20 - dx20*dy01 (§2.3), exact in 32 bits for small lanes
@@ -289,7 +287,7 @@ RASTERCMP_AVX512 void setup_small_pair_avx512(const SmallBlockInput& in0, const 
   const __m512i w = _mm512_sub_epi32(x1, x0), h = _mm512_sub_epi32(y1, y0);
   const Lanes grid =
       live & _mm512_cmplt_epi32_mask(w, splat(kGridSide)) & _mm512_cmplt_epi32_mask(h, splat(kGridSide)) & used;
-  const Lanes job = Lanes(live & ~grid & one_tile & used);  // grid lanes may span tiles
+  const Lanes job = Lanes(live & ~grid & used);
   // The scalar set-up's first verdicts for the lanes it would drop at once (small_setup_simd.inl).
   const Lanes outside = _mm512_test_epi32_mask(_mm512_ternarylogic_epi32(p0.flags, p1.flags, p2.flags, 0x80),
                                                splat(int32_t(kVertexClipBits)));
@@ -355,10 +353,10 @@ RASTERCMP_AVX512 void setup_small_pair_avx512(const SmallBlockInput& in0, const 
   store_halves(out0.a0, out1.a0, plane.a0);
   store_halves(out0.dzdx, out1.dzdx, plane.dzdx);
   store_halves(out0.dzdy, out1.dzdy, plane.dzdy);
-  if (job) {  // w / 8 + 1 spans per row from origin_x, kept inside the tile (small_setup_simd.inl)
-    const __m512i room = _mm512_sub_epi32(splat(kTileSize - 8), _mm512_and_si512(w, splat(~7)));
-    const __m512i origin_x =
-        _mm512_min_epi32(x0, _mm512_add_epi32(_mm512_and_si512(x0, splat(~(kTileSize - 1))), room));
+  if (job) {  // w / 8 + 1 spans per row from origin_x, ending in x1's tile (small_setup_simd.inl)
+    const __m512i last_start =
+        _mm512_sub_epi32(_mm512_or_si512(x1, splat(kTileSize - 1)), _mm512_add_epi32(_mm512_and_si512(w, splat(~7)), splat(7)));
+    const __m512i origin_x = _mm512_min_epi32(x0, last_start);
     store_halves(out0.origin_x, out1.origin_x, origin_x);
     for (int i = 0; i < 3; ++i) store_halves(out0.g_minus_1[i], out1.g_minus_1[i], edge_at(edges[i], origin_x, y0));
   }

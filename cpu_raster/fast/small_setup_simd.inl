@@ -287,9 +287,6 @@ RASTERCMP_SMALL_TARGET void RASTERCMP_SMALL_SETUP(const SmallBlockInput& in, Sma
   const __m256i small =
       _mm256_and_si256(_mm256_cmpgt_epi32(_mm256_set1_epi32(kSmallWidth), _mm256_sub_epi32(bx1, bx0)),
                        _mm256_cmpgt_epi32(_mm256_set1_epi32(kSmallHeight), _mm256_sub_epi32(by1, by0)));
-  const __m256i one_tile =
-      _mm256_and_si256(_mm256_cmpeq_epi32(_mm256_srai_epi32(x0, kTileOrder), _mm256_srai_epi32(x1, kTileOrder)),
-                       _mm256_cmpeq_epi32(_mm256_srai_epi32(y0, kTileOrder), _mm256_srai_epi32(y1, kTileOrder)));
   const __m256i simple = _mm256_and_si256(_mm256_cmpeq_epi32(special, zero), small);
   const __m256i empty = _mm256_or_si256(_mm256_cmpgt_epi32(x0, x1), _mm256_cmpgt_epi32(y0, y1));
   // area = dx01*dy20 - dx20*dy01 (§2.3), exact in 32 bits for small lanes
@@ -306,7 +303,7 @@ RASTERCMP_SMALL_TARGET void RASTERCMP_SMALL_SETUP(const SmallBlockInput& in, Sma
   const __m256i grid_side = _mm256_set1_epi32(kGridSide);
   const __m256i grid =
       _mm256_and_si256(live, _mm256_and_si256(_mm256_cmpgt_epi32(grid_side, w), _mm256_cmpgt_epi32(grid_side, h)));
-  const __m256i job = _mm256_and_si256(_mm256_andnot_si256(grid, live), one_tile);  // grid lanes may span tiles
+  const __m256i job = _mm256_andnot_si256(grid, live);
   out.grid_mask = lanes(grid) & used;
   out.job_mask = lanes(job) & used;
   out.scalar_mask = lanes(live) & ~out.grid_mask & ~out.job_mask & used;
@@ -359,12 +356,13 @@ RASTERCMP_SMALL_TARGET void RASTERCMP_SMALL_SETUP(const SmallBlockInput& in, Sma
     });
   }
   if (out.job_mask) {
-    // spans = w / 8 + 1 8-lane spans per row from origin_x (at most four), kept inside the tile:
-    // origin_x <= tile start + room with room = kTileSize - 8 * spans, so rect.x1 <= origin_x + 8 * spans - 1.
-    const __m256i room =
-        _mm256_sub_epi32(_mm256_set1_epi32(kTileSize - 8), _mm256_and_si256(w, _mm256_set1_epi32(~7)));
-    const __m256i origin_x =
-        _mm256_min_epi32(x0, _mm256_add_epi32(_mm256_and_si256(x0, _mm256_set1_epi32(~(kTileSize - 1))), room));
+    // spans = w / 8 + 1 8-lane spans per row from origin_x (at most four), ending in x1's tile:
+    // origin_x = min(x0, end of x1's tile + 1 - 8 * spans), so x1 <= origin_x + 8 * spans - 1 <= that
+    // end. A lane across a tile border starts at x0.
+    const __m256i last_start = _mm256_sub_epi32(_mm256_or_si256(x1, _mm256_set1_epi32(kTileSize - 1)),
+                                                _mm256_add_epi32(_mm256_and_si256(w, _mm256_set1_epi32(~7)),
+                                                                 _mm256_set1_epi32(7)));
+    const __m256i origin_x = _mm256_min_epi32(x0, last_start);
     _mm256_store_si256(reinterpret_cast<__m256i*>(out.origin_x), origin_x);
     _mm256_store_ps(out.a0, plane.a0);
     _mm256_store_ps(out.dzdx, plane.dzdx);

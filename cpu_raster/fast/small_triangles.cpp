@@ -130,12 +130,12 @@ constexpr auto kScatters = kernel_table<Scatters>();
 
 }  // namespace
 
-KernelJob SmallBlockOutput::job(int lane, uint32_t owner, CompareOp op) const {
+KernelJob SmallBlockOutput::job(int lane, uint32_t owner, CompareOp op, int32_t row_lo, int32_t row_hi) const {
   KernelJob j;
-  j.rect = PixelRect{x0[lane], y0[lane], x1[lane], y1[lane]};
+  j.rect = PixelRect{x0[lane], row_lo, x1[lane], row_hi};
   j.origin_x = origin_x[lane];
   for (int i = 0; i < 3; ++i) {
-    j.g_minus_1[i] = g_minus_1[i][lane];
+    j.g_minus_1[i] = g_minus_1[i][lane] + (row_lo - y0[lane]) * gy[i][lane];  // within the 32-bit bound
     j.gx[i] = gx[i][lane];
     j.gy[i] = gy[i][lane];
   }

@@ -6,16 +6,16 @@
 //    every candidate pixel are computed for the eight triangles at once (triangles in lanes, one
 //    pixel position per step); the depth test and the writes are then done triangle by triangle,
 //    in order, by scatter_grid_lane;
-//  - other small lanes (at most kSmallWidth x kSmallHeight, inside one tile): one kernel call with
-//    edge values relative to the triangle's own corner (the 256-scaled E of edge_plane.hpp), one
-//    to four 8-pixel spans per row;
+//  - other small lanes (at most kSmallWidth x kSmallHeight, possibly across tile borders: the
+//    rows are cut to the worker's): one kernel call with edge values relative to the triangle's
+//    own corner (the 256-scaled E of edge_plane.hpp), one to four 8-pixel spans per row;
 //  - the rest (larger, clipped, non-finite) goes back to the scalar set-up.
 //
 // 32-bit bound: a small lane's unclipped bounding box spans at most kSmallWidth x kSmallHeight
 // pixels, so |X_i - X_j| <= 256*(kSmallWidth + 1) < 2^14 and |Y_i - Y_j| <= 256*(kSmallHeight + 1)
-// < 2^13; the doubled area is below 2^27, and an edge value formed within the lane's tile (the
-// kernel's spans stay in it) and kSmallHeight + 3 rows of the corner below 2^13 * 2^14 + 2^14 * 2^13
-// = 2^28.
+// < 2^13; the doubled area is below 2^27, and an edge value formed within 63 columns (the
+// kernel's spans start at x0 or in x1's tile and end in x1's tile) and kSmallHeight + 3 rows of the
+// corner below 2^13 * 2^14 + 2^14 * 2^13 = 2^28.
 #pragma once
 
 #include <cstdint>
@@ -75,8 +75,9 @@ struct SmallBlockOutput {
   bool window = false;
   alignas(32) int32_t e_window[3][8];
 
-  // The lane's job (offset 0: draws with depth bias take the scalar set-up).
-  KernelJob job(int lane, uint32_t owner, CompareOp op) const;
+  // The lane's job in rows [row_lo, row_hi] of its rectangle (offset 0: draws with depth bias take
+  // the scalar set-up).
+  KernelJob job(int lane, uint32_t owner, CompareOp op, int32_t row_lo, int32_t row_hi) const;
 };
 
 // A block in the 4x4 layout goes to the window when its union holds at least this many pixels

@@ -33,7 +33,7 @@ struct KernelDepth {
 // Coverage of one edge in a tile, in "G" form (tile_edges.hpp): a pixel is covered iff G > 0, and
 // G(x, y) = g + gx*(x - origin_x) + gy*(y - origin_y). Stored as G - 1 so the test is a sign bit.
 struct KernelJob {
-  PixelRect rect;        // pixels to visit, inside one tile and the framebuffer
+  PixelRect rect;        // pixels to visit, inside one tile (or one small lane, small_triangles.hpp) and the framebuffer
   int32_t origin_x = 0;  // rect.x0 rounded down to a multiple of 8; origin_y = rect.y0
   int32_t g_minus_1[3] = {0, 0, 0};
   int32_t gx[3] = {0, 0, 0}, gy[3] = {0, 0, 0};
@@ -47,9 +47,10 @@ struct KernelJob {
 using KernelFn = bool (*)(const KernelJob&, const KernelDepth&, const TileTarget&);
 
 struct SmallBlockOutput;
-// The kernel for one lane of a block of small triangles (small_triangles.hpp).
-using SmallKernelFn = bool (*)(const SmallBlockOutput&, int lane, uint32_t owner, const KernelDepth&,
-                               const TileTarget&);
+// The kernel for one lane of a block of small triangles (small_triangles.hpp), in rows
+// [row_lo, row_hi] of its rectangle (the worker's).
+using SmallKernelFn = bool (*)(const SmallBlockOutput&, int lane, uint32_t owner, int32_t row_lo, int32_t row_hi,
+                               const KernelDepth&, const TileTarget&);
 SmallKernelFn select_small_kernel_avx2(DepthFormat format, CompareOp op);
 
 // The covered columns [x0[k], x1[k]] of row rect.y0 + k of a job as the AVX2 kernel finds them for

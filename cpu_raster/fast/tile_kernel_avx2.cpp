@@ -306,18 +306,19 @@ RASTERCMP_AVX2 inline void store_4x2(uint32_t* row0, uint32_t* row1, bool two_ro
   if (two_rows) _mm_storeu_si128(reinterpret_cast<__m128i*>(row1), _mm256_extracti128_si256(value, 1));
 }
 
-// A triangle whose rectangle is at most 4 pixels wide, 4x2 pixels per step; the 4 columns from
-// ox lie inside the tile and the framebuffer (small_kernel checks the latter).
+// A triangle whose rectangle is at most 4 pixels wide, 4x2 pixels per step, in rows [row_lo, y1];
+// the 4 columns from ox lie inside x1's tile and the framebuffer (small_kernel checks the latter).
 template <DepthFormat F, CompareOp Op>
-RASTERCMP_AVX2 bool small_4x2(const SmallBlockOutput& b, int l, int32_t ox, uint32_t owner_id, const KernelDepth& d,
-                              const TileTarget& t) {
-  const int32_t x0 = b.x0[l], x1 = b.x1[l], y1 = b.y1[l];
-  const int32_t shift = ox - b.origin_x[l];  // the block's edge values are given at origin_x
+RASTERCMP_AVX2 bool small_4x2(const SmallBlockOutput& b, int l, int32_t ox, int32_t row_lo, int32_t y1,
+                              uint32_t owner_id, const KernelDepth& d, const TileTarget& t) {
+  const int32_t x0 = b.x0[l], x1 = b.x1[l];
+  // the block's edge values are given at (origin_x, y0)
+  const int32_t shift = ox - b.origin_x[l], rows = row_lo - b.y0[l];
   const __m256i lx = _mm256_setr_epi32(0, 1, 2, 3, 0, 1, 2, 3), ly = _mm256_setr_epi32(0, 0, 0, 0, 1, 1, 1, 1);
   __m256i e[3], step[3];
   for (int i = 0; i < 3; ++i) {
     const __m256i gx = _mm256_set1_epi32(b.gx[i][l]), gy = _mm256_set1_epi32(b.gy[i][l]);
-    e[i] = _mm256_add_epi32(_mm256_set1_epi32(b.g_minus_1[i][l] + shift * b.gx[i][l]),
+    e[i] = _mm256_add_epi32(_mm256_set1_epi32(b.g_minus_1[i][l] + shift * b.gx[i][l] + rows * b.gy[i][l]),
                             _mm256_add_epi32(_mm256_mullo_epi32(lx, gx), _mm256_mullo_epi32(ly, gy)));
     step[i] = _mm256_slli_epi32(gy, 1);
   }
@@ -331,7 +332,7 @@ RASTERCMP_AVX2 bool small_4x2(const SmallBlockOutput& b, int l, int32_t ox, uint
   const __m256i owner = _mm256_set1_epi32(int32_t(owner_id));
   const __m256i low_row = _mm256_setr_epi32(-1, -1, -1, -1, 0, 0, 0, 0);
   bool any = false;
-  for (int32_t y = b.y0[l]; y <= y1; y += 2) {
+  for (int32_t y = row_lo; y <= y1; y += 2) {
     const bool two_rows = y < y1;
     __m256i covered =
         _mm256_andnot_si256(_mm256_srai_epi32(_mm256_or_si256(_mm256_or_si256(e[0], e[1]), e[2]), 31), in_x);
@@ -355,14 +356,14 @@ RASTERCMP_AVX2 bool small_4x2(const SmallBlockOutput& b, int l, int32_t ox, uint
 }
 
 template <DepthFormat F, CompareOp Op>
-RASTERCMP_AVX2 bool small_kernel(const SmallBlockOutput& b, int l, uint32_t owner, const KernelDepth& d,
-                                 const TileTarget& t) {
+RASTERCMP_AVX2 bool small_kernel(const SmallBlockOutput& b, int l, uint32_t owner, int32_t row_lo, int32_t row_hi,
+                                 const KernelDepth& d, const TileTarget& t) {
   if constexpr (Op == CompareOp::Never && F != DepthFormat::None) return false;
   if (b.x1[l] - b.x0[l] < 4) {
-    const int32_t ox = std::min(b.x0[l], (b.x0[l] & ~(kTileSize - 1)) + kTileSize - 4);
-    if (ox + 4 <= t.width) return small_4x2<F, Op>(b, l, ox, owner, d, t);
+    const int32_t ox = std::min(b.x0[l], (b.x1[l] | (kTileSize - 1)) - 3);
+    if (ox + 4 <= t.width) return small_4x2<F, Op>(b, l, ox, row_lo, row_hi, owner, d, t);
   }
-  return kernel<F, Op>(b.job(l, owner, Op), d, t);
+  return kernel<F, Op>(b.job(l, owner, Op, row_lo, row_hi), d, t);
 }
 
 struct SmallKernels {

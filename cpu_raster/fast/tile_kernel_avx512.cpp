@@ -3,7 +3,7 @@
 // values (narrow16, one or two steps per row); for wider ones, each row's covered columns from the
 // edges (row_columns_avx2.hpp, the same code as the AVX2 kernel's). A step has no branch on its
 // data: the masked loads and stores touch only covered pixels (so never a pixel outside the
-// rectangle, which lies inside one tile and the framebuffer), and the depth test is a mask. The
+// rectangle, which lies inside the framebuffer), and the depth test is a mask. The
 // depth arithmetic is avx512_depth.hpp's: avx2_depth.hpp's operations, one intrinsic each, on
 // sixteen lanes.
 #include <immintrin.h>
@@ -130,9 +130,9 @@ RASTERCMP_AVX512 bool kernel16(const KernelJob& j, const KernelDepth& d, const T
 
 // A kernel job of a small-triangle block (small_triangles.hpp): the same kernel on the lane's job.
 template <DepthFormat F, CompareOp Op>
-RASTERCMP_AVX512 bool small_kernel16(const SmallBlockOutput& b, int lane, uint32_t owner, const KernelDepth& d,
-                                     const TileTarget& t) {
-  return kernel16<F, Op>(b.job(lane, owner, Op), d, t);
+RASTERCMP_AVX512 bool small_kernel16(const SmallBlockOutput& b, int lane, uint32_t owner, int32_t row_lo,
+                                     int32_t row_hi, const KernelDepth& d, const TileTarget& t) {
+  return kernel16<F, Op>(b.job(lane, owner, Op, row_lo, row_hi), d, t);
 }
 
 struct SmallKernels {
