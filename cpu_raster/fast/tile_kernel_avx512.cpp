@@ -32,21 +32,24 @@ RASTERCMP_AVX512 inline Plane16 plane16(const KernelJob& j, const KernelDepth& d
 }
 
 // fragment_depth (tile_kernel_avx2.cpp) in the same order: fl(FMA?(dzdy, py, FMA?(dzdx, px, a0)) + o),
-// then finish_depth16 (min(z, 1), max(z, 0), the depth clamp).
-RASTERCMP_AVX512 inline __m512 fragment_depth16(const Plane16& p, __m512 px, __m512 py) {
-  const bool fma = p.depth.fma;
-  return finish_depth16(_mm512_add_ps(mul_add16(p.dzdy, py, mul_add16(p.dzdx, px, p.a0, fma), fma), p.offset),
-                        p.depth);
+// then finish_depth16 (min(z, 1), max(z, 0), the depth clamp). The inner FMA depends on the
+// columns only: `inner` (column_depth16) is formed once per step's columns where they repeat.
+RASTERCMP_AVX512 inline __m512 column_depth16(const Plane16& p, __m512i lane, int32_t x) {
+  const __m512 px = _mm512_cvtepi32_ps(_mm512_add_epi32(_mm512_set1_epi32(x), lane));  // exact below 2^24
+  return mul_add16(p.dzdx, px, p.a0, p.depth.fma);
+}
+RASTERCMP_AVX512 inline __m512 fragment_depth16(const Plane16& p, __m512 inner, __m512 py) {
+  return finish_depth16(_mm512_add_ps(mul_add16(p.dzdy, py, inner, p.depth.fma), p.offset), p.depth);
 }
 
-// One step: the depth test and writes of the `covered` pixels of sixteen columns from x in row y.
+// One step: the depth test and writes of the `covered` pixels of sixteen columns from x in row y
+// (inner: column_depth16 of those columns).
 template <DepthFormat F, CompareOp Op>
-RASTERCMP_AVX512 inline __mmask16 step16(const Plane16& plane, __m512i lane, __m512i owner, uint32_t* owner_row,
+RASTERCMP_AVX512 inline __mmask16 step16(const Plane16& plane, __m512 inner, __m512i owner, uint32_t* owner_row,
                                          uint32_t* depth_row, int32_t x, __m512 py, __mmask16 covered) {
   __mmask16 pass = covered;
   if constexpr (F != DepthFormat::None) {
-    const __m512 px = _mm512_cvtepi32_ps(_mm512_add_epi32(_mm512_set1_epi32(x), lane));  // exact below 2^24
-    const __m512i raw = to_raw16<F>(fragment_depth16(plane, px, py));
+    const __m512i raw = to_raw16<F>(fragment_depth16(plane, inner, py));
     if constexpr (Op != CompareOp::Always)
       pass = passing<F, Op>(covered, raw, _mm512_maskz_loadu_epi32(covered, depth_row + x));
     if (plane.depth.write) _mm512_mask_storeu_epi32(depth_row + x, pass, raw);
@@ -81,6 +84,8 @@ RASTERCMP_AVX512 bool narrow16(const KernelJob& j, const KernelDepth& d, const T
   // the job's and target's fields in locals: the stores below may alias them (no reload per row)
   const size_t width = size_t(t.width);
   const int32_t x = j.origin_x, y1 = j.rect.y1;
+  __m512 inner[2] = {_mm512_setzero_ps(), _mm512_setzero_ps()};
+  if constexpr (F != DepthFormat::None) inner[0] = column_depth16(plane, lane, x), inner[1] = column_depth16(plane, lane, x + 16);
   uint32_t* owner_row = t.owner + size_t(j.rect.y0) * width;
   uint32_t* depth_row = F != DepthFormat::None ? t.depth + size_t(j.rect.y0) * width : nullptr;
   __mmask16 any = 0;
@@ -88,14 +93,14 @@ RASTERCMP_AVX512 bool narrow16(const KernelJob& j, const KernelDepth& d, const T
     const __m512 py = _mm512_set1_ps(float(y));
     const __mmask16 covered =
         in_rect[0] & _mm512_cmpge_epi32_mask(_mm512_ternarylogic_epi32(e[0], e[1], e[2], 0xFE), _mm512_setzero_si512());
-    if (covered) any |= step16<F, Op>(plane, lane, owner, owner_row, depth_row, x, py, covered);
+    if (covered) any |= step16<F, Op>(plane, inner[0], owner, owner_row, depth_row, x, py, covered);
     if (two) {
       const __mmask16 right =
           in_rect[1] & _mm512_cmpge_epi32_mask(_mm512_ternarylogic_epi32(_mm512_add_epi32(e[0], half[0]),
                                                                           _mm512_add_epi32(e[1], half[1]),
                                                                           _mm512_add_epi32(e[2], half[2]), 0xFE),
                                                _mm512_setzero_si512());
-      if (right) any |= step16<F, Op>(plane, lane, owner, owner_row, depth_row, x + 16, py, right);
+      if (right) any |= step16<F, Op>(plane, inner[1], owner, owner_row, depth_row, x + 16, py, right);
     }
     if constexpr (F != DepthFormat::None) depth_row += width;
     for (int i = 0; i < 3; ++i) e[i] = _mm512_add_epi32(e[i], gy[i]);
@@ -122,7 +127,8 @@ RASTERCMP_AVX512 bool kernel16(const KernelJob& j, const KernelDepth& d, const T
     for (; x <= x_end; x += 16) {
       const uint32_t left = uint32_t(x_end - x + 1);
       const __mmask16 columns = __mmask16(left >= 16 ? 0xFFFFu : (1u << left) - 1u);
-      any |= step16<F, Op>(plane, lane, owner, owner_row, depth_row, x, py, columns);
+      const __m512 inner = F != DepthFormat::None ? column_depth16(plane, lane, x) : _mm512_setzero_ps();
+      any |= step16<F, Op>(plane, inner, owner, owner_row, depth_row, x, py, columns);
     }
   }
   return any != 0;
