@@ -137,13 +137,22 @@ TEST(FastVertices, Avx2PassEqualsScalarPass) {
 TEST(FastBlockRows, SpanAnswersAsBlockByBlock) {
   if (!host_has_avx2_fma()) GTEST_SKIP() << "host without AVX2/FMA: the block-row phase does not run";
   fast_test::Random r(11);
-  int answered = 0, declined = 0, several_rows = 0;
+  int answered = 0, declined = 0, several_rows = 0, outside = 0;
   for (int trial = 0; trial < 4000; ++trial) {
     const uint32_t positions = 64 + r.below(6000);
     const uint32_t per_row = 16 + r.below(2000);  // positions per tile row of the mesh
     std::vector<int16_t> tile_rows(positions + 8, 0);
     for (uint32_t i = 0; i < positions; ++i)
       tile_rows[i] = r.chance(0.0005) ? unknown_row(1u << r.below(7)) : int16_t(int32_t(i / per_row) - 1);
+    if (trial % 4 == 3) {  // every position to clip (a camera's mesh behind it), mostly outside one plane
+      const uint32_t plane = 1u << r.below(6);
+      for (uint32_t i = 0; i < positions; ++i) {
+        const uint32_t flags = r.chance(0.002)   ? 1u << r.below(7)  // another plane, or a failed snap alone
+                               : r.chance(0.001) ? 0u                // a known row among them
+                                                 : plane | (r.chance(0.3) ? 1u << r.below(7) : 0u);
+        tile_rows[i] = flags != 0 ? unknown_row(flags) : int16_t(r.below(16));
+      }
+    }
     const uint32_t n = 1 + r.below(kSpanBlocks);
     const uint32_t base = r.below(positions), spread = r.chance(0.2) ? positions : 1 + r.below(600);
     std::vector<uint32_t> indices(24 * n);
@@ -159,6 +168,7 @@ TEST(FastBlockRows, SpanAnswersAsBlockByBlock) {
       continue;
     }
     ++answered;
+    outside += is_unknown_row(tile_rows[indices[0]]) ? 1 : 0;
     std::vector<uint32_t> alone(n);
     for (uint32_t b = 0; b < n; ++b) {
       bool bad = false;
@@ -171,6 +181,7 @@ TEST(FastBlockRows, SpanAnswersAsBlockByBlock) {
   }
   EXPECT_GT(answered, 1000);
   EXPECT_GT(declined, 1000);
+  EXPECT_GT(outside, 200);  // answered kNoRow for ranges outside one plane
   EXPECT_EQ(several_rows, 0);
 }
 

@@ -35,15 +35,19 @@ RASTERCMP_AVX2 void index_span_avx2(const uint32_t* indices, size_t count, uint3
   largest = max_epu32_of(hi);
 }
 
-// The lowest and highest of tile_rows[first..last] (unknown rows are the lowest).
+// The lowest and highest of tile_rows[first..last] (unknown rows are the lowest), and the clip bits
+// every one of them holds (row_clip_bits; none as soon as one row is known).
 RASTERCMP_AVX2 void row_span_avx2(const int16_t* tile_rows, uint32_t first, uint32_t last, int32_t& lowest,
-                                  int32_t& highest) {
+                                  int32_t& highest, uint32_t& shared_clip_bits) {
   __m256i lo = _mm256_set1_epi16(INT16_MAX), hi = _mm256_set1_epi16(INT16_MIN);
+  __m256i shared = _mm256_set1_epi16(int16_t(kVertexClipBits));
+  const __m256i last_unknown = _mm256_set1_epi16(int16_t(kLastUnknownRow));
   uint32_t i = first;
   for (; i + 16 <= last + 1; i += 16) {
     const __m256i v = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(tile_rows + i));
     lo = _mm256_min_epi16(lo, v);
     hi = _mm256_max_epi16(hi, v);
+    shared = _mm256_and_si256(shared, _mm256_andnot_si256(_mm256_cmpgt_epi16(v, last_unknown), v));
   }
   // sixteen signed 16-bit lanes to eight 32-bit ones (sign-extended halves), then as above with
   // a bias that makes signed order unsigned
@@ -52,9 +56,14 @@ RASTERCMP_AVX2 void row_span_avx2(const int16_t* tile_rows, uint32_t first, uint
   const __m256i hi32 = _mm256_max_epi32(_mm256_srai_epi32(_mm256_slli_epi32(hi, 16), 16), _mm256_srai_epi32(hi, 16));
   lowest = int32_t(min_epu32_of(_mm256_xor_si256(lo32, bias)) ^ uint32_t(INT32_MIN));
   highest = int32_t(max_epu32_of(_mm256_xor_si256(hi32, bias)) ^ uint32_t(INT32_MIN));
+  alignas(32) uint16_t lanes[16];
+  _mm256_store_si256(reinterpret_cast<__m256i*>(lanes), shared);
+  shared_clip_bits = kVertexClipBits;
+  for (const uint16_t bits : lanes) shared_clip_bits &= bits;
   for (; i <= last; ++i) {
     lowest = std::min(lowest, int32_t(tile_rows[i]));
     highest = std::max(highest, int32_t(tile_rows[i]));
+    shared_clip_bits &= row_clip_bits(tile_rows[i]);
   }
 }
 
@@ -133,19 +142,27 @@ RASTERCMP_AVX2 uint32_t list_block_tile_rows_avx2(const uint32_t* indices, const
   return every_lane_outside ? kNoRow : kBlockAnyRow;
 }
 
-// Taken when the indices lie in a short range of positions (a mesh's neighbourhood), every
-// position in it has a known row, and those rows are one tile row, or none of them is in the
-// region. Why that is each block's own answer: a block's corners are among the range's positions,
-// so its rows (known, not empty) lie within the range's: the same one row, or none in the region
-// either. (A range that only its cut makes one row is declined: a block of it may lie outside the
-// region.) Out-of-range indices are left to the block-by-block measurement, which reports them.
+// Taken when the indices lie in a short range of positions (a mesh's neighbourhood) and either
+// every position in it has a known row, and those rows are one tile row, or none of them is in the
+// region; or every position in it is outside one clip plane (a camera's mesh behind it or past the
+// far plane). Why that is each block's own answer: a block's corners are among the range's
+// positions, so its rows (known, not empty) lie within the range's: the same one row, or none in
+// the region either; or every lane has its three corners outside that plane (kNoRow, as
+// list_block_tile_rows_avx2 finds). (A range that only its cut makes one row is declined: a block
+// of it may lie outside the region.) Out-of-range indices are left to the block-by-block
+// measurement, which reports them.
 RASTERCMP_AVX2 bool span_tile_rows_avx2(const uint32_t* indices, uint32_t n, const int16_t* tile_rows,
                                         uint32_t positions, const PixelRect& region, uint32_t* block_rows) {
   uint32_t smallest = 0, largest = 0;
   index_span_avx2(indices, 24 * size_t(n), smallest, largest);
   if (largest >= positions || largest - smallest >= kSpanPositions) return false;
   int32_t lowest = 0, highest = 0;
-  row_span_avx2(tile_rows, smallest, largest, lowest, highest);
+  uint32_t outside = 0;
+  row_span_avx2(tile_rows, smallest, largest, lowest, highest, outside);
+  if (outside != 0) {
+    std::fill_n(block_rows, n, kNoRow);
+    return true;
+  }
   if (is_unknown_row(lowest)) return false;
   const uint32_t rows = pack_rows(lowest, highest, region);
   if (lowest != highest && rows != kNoRow) return false;  // several tile rows: the blocks may differ
