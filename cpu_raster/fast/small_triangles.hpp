@@ -8,14 +8,14 @@
 //    in order, by scatter_grid_lane;
 //  - other small lanes (at most kSmallWidth x kSmallHeight, possibly across tile borders: the
 //    rows are cut to the worker's): one kernel call with edge values relative to the triangle's
-//    own corner (the 256-scaled E of edge_plane.hpp), one to four 8-pixel spans per row;
+//    own corner (the 256-scaled E of edge_plane.hpp), one to eight 8-pixel spans per row;
 //  - the rest (larger, clipped, non-finite) goes back to the scalar set-up.
 //
 // 32-bit bound: a small lane's unclipped bounding box spans at most kSmallWidth x kSmallHeight
-// pixels, so |X_i - X_j| <= 256*(kSmallWidth + 1) < 2^14 and |Y_i - Y_j| <= 256*(kSmallHeight + 1)
-// < 2^13; the doubled area is below 2^27, and an edge value formed within 63 columns (the
-// kernel's spans start at x0 or in x1's tile and end in x1's tile) and kSmallHeight + 3 rows of the
-// corner below 2^13 * 2^14 + 2^14 * 2^13 = 2^28.
+// pixels, so |X_i - X_j| <= 256*(kSmallWidth + 1) < 2^15 and |Y_i - Y_j| <= 256*(kSmallHeight + 1)
+// < 2^14; the doubled area is below 2^29, and an edge value formed within 72 columns (the
+// kernel's spans start at x0 or in x1's tile and end in x1's tile, at most 7 columns past x1) and
+// kSmallHeight + 4 rows of the corner below 2^14 * 2^15 + 2^15 * 2^14 = 2^30.
 #pragma once
 
 #include <cstdint>
@@ -28,8 +28,8 @@
 
 namespace rastercmp::cpu::fast {
 
-inline constexpr int32_t kSmallWidth = 32;     // pixels: at most four 8-lane spans per row
-inline constexpr int32_t kSmallHeight = 16;    // rows
+inline constexpr int32_t kSmallWidth = 64;     // pixels: at most eight 8-lane spans per row
+inline constexpr int32_t kSmallHeight = 32;    // rows
 inline constexpr int32_t kGridSide = 8;        // candidate pixels per side of a grid lane
 inline constexpr int32_t kSmallGridShift = 2;  // blocks whose grid lanes all fit in 4x4 pixels
 inline constexpr int32_t kSmallGridSide = 1 << kSmallGridShift;
