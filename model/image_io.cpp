@@ -50,14 +50,14 @@ void write_image_atomic(const std::string& path, const ImageView& image) {
   commit_temp(tmp, path);
 }
 
-std::vector<uint32_t> read_uint_image(const std::string& path, uint32_t& width, uint32_t& height, uint32_t& channels) {
+PixelBuffer read_uint_image(const std::string& path, uint32_t& width, uint32_t& height, uint32_t& channels) {
   ImageU32 image;
   const std::string why = image_codec().read_u32(path, image);
   if (!why.empty()) throw InputError(path, "", "expected a readable image: " + why);
   width = image.width;
   height = image.height;
   channels = image.channels;
-  return std::move(image.pixels);
+  return PixelBuffer(image.pixels.begin(), image.pixels.end());
 }
 
 // render.json "limits"; every field is optional and keeps its DeviceLimits default when absent.

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "model/pixel_buffer.hpp"
 #include "model/scene.hpp"
 
 namespace rastercmp {
@@ -68,8 +69,8 @@ struct RenderResult {
   bool fma = false;  // whether the depth/viewport arithmetic was fused
   uint32_t width = 0, height = 0, samples = 1;
   DepthFormat depth_format = DepthFormat::None;
-  std::vector<uint32_t> owner;      // width*height*samples
-  std::vector<uint32_t> depth_raw;  // same size, or empty when depth was not produced
+  PixelBuffer owner;      // width*height*samples
+  PixelBuffer depth_raw;  // same size, or empty when depth was not produced
   // Spec profile only: per-sample must / may / must-not coverage of the union of all draws.
   std::vector<CoverageClass> coverage_class;
   // Spec profile only: per-sample interval of allowed stored depth (empty without depth).

@@ -286,7 +286,7 @@ inline RenderResult render_fast(const Scene& scene, bool fma, uint32_t threads, 
 inline ::testing::AssertionResult same_bytes(const RenderResult& expected, const RenderResult& actual) {
   if (expected.width != actual.width || expected.height != actual.height || expected.samples != actual.samples)
     return ::testing::AssertionFailure() << "size differs";
-  const auto first_difference = [&](const std::vector<uint32_t>& a, const std::vector<uint32_t>& b,
+  const auto first_difference = [&](const PixelBuffer& a, const PixelBuffer& b,
                                     const char* what) -> ::testing::AssertionResult {
     if (a.size() != b.size()) return ::testing::AssertionFailure() << what << " sizes differ";
     size_t count = 0, first = a.size();

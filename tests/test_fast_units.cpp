@@ -12,6 +12,7 @@
 #include <numeric>
 #include <vector>
 
+#include "bench/bench_scenes.hpp"
 #include "bench/bench_stats.hpp"
 #include "cpu_raster/exact/clip_vertex.hpp"
 #include "cpu_raster/exact/depth_sample.hpp"
@@ -23,6 +24,7 @@
 #include "cpu_raster/fast/exact_rows.hpp"
 #include "cpu_raster/fast/fast_frame.hpp"
 #include "cpu_raster/fast/fast_vertices.hpp"
+#include "cpu_raster/fast/frame_memory.hpp"
 #include "cpu_raster/fast/row_balance.hpp"
 #include "cpu_raster/fast/tile_depth_bounds.hpp"
 #include "cpu_raster/fast/tile_raster.hpp"
@@ -74,6 +76,42 @@ void expect_same_vertex(const FastVertex& a, const FastVertex& b, size_t k) {
 // docs/lavapipe-rules.md §7.10: every pool job runs with FTZ/DAZ, whatever mode the pool's threads
 // were started in (this pool is new and started outside any render, so its threads inherit the
 // caller's default mode), and the calling thread gets its own mode back.
+// The attachments' colours (model/pixel_buffer.hpp): a fast render's owner buffer starts at a page
+// boundary and its depth buffer half a page in, whatever buffers the result held before; the
+// memory is reused while it is large enough and of the colour; copies and moves keep the values.
+uintptr_t page_offset(const PixelBuffer& b) { return reinterpret_cast<uintptr_t>(b.data()) % 4096; }
+
+TEST(FastMemory, DepthBufferTakesTheOtherHalfOfThePage) {
+  PixelBuffer owner, depth;
+  size_buffer(owner, 1024 * 1024, 0);
+  size_buffer(depth, 1024 * 1024, 1);
+  EXPECT_EQ(page_offset(owner), 0u);
+  EXPECT_EQ(page_offset(depth), 2048u);
+  std::iota(depth.begin(), depth.end(), 0u);
+  const uint32_t* kept = depth.data();
+  size_buffer(depth, 1000, 1);
+  EXPECT_EQ(depth.data(), kept);
+  EXPECT_EQ(depth.size(), 1000u);
+  EXPECT_EQ(depth[999], 999u);
+  size_buffer(owner, 1000, 1);  // the other colour: new memory
+  EXPECT_EQ(page_offset(owner), 2048u);
+  const PixelBuffer copy = depth;  // a copy keeps the values (and the source's colour)
+  EXPECT_TRUE(std::equal(copy.begin(), copy.end(), depth.begin(), depth.end()));
+  PixelBuffer plain(300, 7u);
+  plain = std::move(depth);  // a move takes the storage, colour and all
+  EXPECT_EQ(page_offset(plain), 2048u);
+  EXPECT_EQ(plain[123], 123u);
+
+  RenderResult result;
+  result.owner.assign(50, 1u);  // buffers of an earlier render, of the default colour
+  result.depth_raw.assign(50, 1u);
+  CpuOptions options;
+  options.threads = 2;
+  render_cpu_fast_into(bench::perspective_scene(20, 128), options, result);
+  EXPECT_EQ(page_offset(result.owner), 0u);
+  EXPECT_EQ(page_offset(result.depth_raw), 2048u);
+}
+
 TEST(FastWorkerPool, EveryJobFlushesDenormals) {
   ASSERT_FALSE(cpu::denormals_flushed());
   std::vector<int> flushed(7, -1);

@@ -14,8 +14,8 @@ namespace rastercmp::cpu {
 struct RenderTargets {
   uint32_t width = 0, height = 0, samples = 1;
   DepthFormat depth_format = DepthFormat::None;
-  std::vector<uint32_t> owner;      // (y * width + x) * samples + sample
-  std::vector<uint32_t> depth_raw;  // same layout; empty without a depth attachment
+  PixelBuffer owner;      // (y * width + x) * samples + sample
+  PixelBuffer depth_raw;  // same layout; empty without a depth attachment
 
   size_t index(int32_t x, int32_t y, uint32_t sample) const {
     return (size_t(y) * width + size_t(x)) * samples + sample;

@@ -11,12 +11,14 @@
 #include <vector>
 
 #include "cpu_raster/fast/fast_vertices.hpp"
+#include "model/pixel_buffer.hpp"
 
 namespace rastercmp::cpu::fast {
 
 // Gives `buffer` exactly `count` elements, reusing its memory when it is large enough; the
-// contents are unspecified (the caller writes every element).
-void size_buffer(std::vector<uint32_t>& buffer, size_t count);
+// contents are unspecified (the caller writes every element). New memory gets `colour`
+// (model/pixel_buffer.hpp): the owner buffer 0, the depth buffer 1.
+void size_buffer(PixelBuffer& buffer, size_t count, uint32_t colour);
 
 // madvise(MADV_HUGEPAGE) over the 2 MiB-aligned part of [data, data + bytes), where supported.
 void advise_huge_pages(void* data, size_t bytes);

@@ -53,10 +53,10 @@ void init_targets(FastFrame& frame, const Scene& scene, RenderResult& result) {
   t.depth_format = scene.depth_format;
   const size_t count = size_t(scene.width) * scene.height * scene.samples;
   t.owner = std::move(result.owner);
-  size_buffer(t.owner, count);
+  size_buffer(t.owner, count, 0);
   t.depth_raw = std::move(result.depth_raw);
   if (scene.has_depth())
-    size_buffer(t.depth_raw, count);
+    size_buffer(t.depth_raw, count, 1);
   else
     t.depth_raw.clear();
   frame.raster.depth_clear_raw = scene.has_depth() ? clear_depth_raw(scene.depth_format, scene.depth_clear) : 0;

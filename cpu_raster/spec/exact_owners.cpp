@@ -213,7 +213,7 @@ std::string describe_exact_device(const Scene& scene, const ExactDevice& device)
 
 std::vector<OwnerAlternative> exact_owner_alternatives(const Scene& scene, const std::vector<SpecTriangle>& triangles,
                                                        uint32_t sub_pixel_bits, const std::vector<uint32_t>& contested,
-                                                       const std::vector<uint32_t>& estimate_owner) {
+                                                       const PixelBuffer& estimate_owner) {
   std::vector<OwnerAlternative> out;
   if (contested.empty() || triangles.empty()) return out;
   const bool multisample = scene.samples > 1;

@@ -69,7 +69,7 @@ inline constexpr uint64_t kExactOwnerWorkLimit = uint64_t(1) << 26;
 // `triangles` in draw order (build_spec_primitives).
 std::vector<OwnerAlternative> exact_owner_alternatives(const Scene& scene, const std::vector<SpecTriangle>& triangles,
                                                        uint32_t sub_pixel_bits, const std::vector<uint32_t>& contested,
-                                                       const std::vector<uint32_t>& estimate_owner);
+                                                       const PixelBuffer& estimate_owner);
 
 // One device's owner of one sample (tests): the last of `triangles` whose fragment covers the
 // sample and passes the depth test, or kOwnerBackground. No scissor.
