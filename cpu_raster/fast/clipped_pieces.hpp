@@ -47,13 +47,13 @@ void for_each_piece(const FastFrame& frame, uint32_t d, uint32_t primitive, uint
   const Draw& draw = frame.scene->draws[d];
   const FastDraw& fd = frame.draws[d];
   const FrameContext& exact = frame.exact;
-  // make_clip_vertex's clip mask and JIT window position, as the vertex phase formed them
-  std::array<ClipVertex, 3> corners;
-  const uint32_t positions[3] = {a, b, c};
-  for (int k = 0; k < 3; ++k) {
-    const FastVertex& v = fd.vertices[positions[k]];
-    corners[k] = ClipVertex{draw.positions_clip[positions[k]], WindowVertex{v.x, v.y, v.z}, v.flags & kVertexClipBits, false};
-  }
+  // make_clip_vertex's clip mask and JIT window position, as the vertex phase formed them (built
+  // in place: a default-constructed array cleared with rep stos first cost more than the copy)
+  const auto corner = [&](uint32_t position) {
+    const FastVertex& v = fd.vertices[position];
+    return ClipVertex{draw.positions_clip[position], WindowVertex{v.x, v.y, v.z}, v.flags & kVertexClipBits, false};
+  };
+  const std::array<ClipVertex, 3> corners{corner(a), corner(b), corner(c)};
   const ClippedTriangles clipped = clip_triangle(corners, exact.viewport);
   for (const auto& p : clipped.triangles) {
     const std::array<WindowVertex, 3> window{p[0].window, p[1].window, p[2].window};
