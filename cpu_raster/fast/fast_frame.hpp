@@ -34,7 +34,8 @@ struct FastDraw {
   FastVertex* vertices = nullptr;  // fast draws: one per position (VertexScratch)
   int16_t* tile_rows = nullptr;    // fast draws: per position, its tile row or kRowUnknown
   // docs/lavapipe-rules.md §1.5: per driver chunk (draw_chunks.hpp), whether it takes the pipeline path;
-  // empty when no position of the draw is outside the clip volume.
+  // empty when no position of the draw is outside the clip volume, or when culling is off (the
+  // pipeline path's float cull is then all that would differ, and it drops nothing).
   std::vector<bool> pipelined_chunks;
   uint32_t chunk_size = 1;  // primitives per chunk
   bool pipelined(uint32_t primitive) const {

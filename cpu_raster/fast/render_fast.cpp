@@ -168,7 +168,8 @@ void transform_all_vertices(FastFrame& frame, bool check_pending) {
     const Draw& draw = frame.scene->draws[d];
     fd.chunk_size = primitives_per_chunk(draw);
     fd.pipelined_chunks.clear();
-    if (draw_flags[d] & kVertexClipBits)  // the §1.5 chunk flags, from the vertices' clip bits
+    // the §1.5 chunk flags, from the vertices' clip bits; read only for the pipeline path's cull
+    if ((draw_flags[d] & kVertexClipBits) && draw.state.cull_mode != CullMode::None)
       fd.pipelined_chunks = pipelined_chunks_by(
           draw, [&fd](uint32_t position) { return (fd.vertices[position].flags & kVertexClipBits) != 0; });
     // The eight-wide set-up leaves out what it does not model: depth bias, the pipeline float cull.
