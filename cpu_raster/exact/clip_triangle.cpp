@@ -1,7 +1,8 @@
 #include "cpu_raster/exact/clip_triangle.hpp"
 
 #include <bit>
-#include <optional>
+#include <new>
+#include <type_traits>
 
 #include "cpu_raster/exact/clip_test.hpp"
 #include "cpu_raster/exact/float_ops.hpp"
@@ -12,7 +13,22 @@ namespace {
 // draw_pipe_clip.c MAX_CLIPPED_VERTICES with 8 user planes: a longer polygon is dropped.
 constexpr size_t kMaxClippedVertices = 2 * (6 + 8) + 1;
 
-using Polygon = std::vector<ClipVertex>;
+// A polygon of at most kMaxClippedVertices vertices, held in place: a clipped triangle took
+// several allocations per plane with a std::vector (docs/performance.md, session 15). The
+// vertices past `count` are left unformed (a default-constructed array cost as much as the
+// allocations).
+struct Polygon {
+  union {
+    ClipVertex vertices[kMaxClippedVertices];
+  };
+  size_t count = 0;
+
+  Polygon() {}
+  size_t size() const { return count; }
+  const ClipVertex& operator[](size_t i) const { return vertices[i]; }
+  void push_back(const ClipVertex& v) { new (&vertices[count++]) ClipVertex(v); }  // callers check the count
+};
+static_assert(std::is_trivially_destructible_v<ClipVertex>);
 
 // The intersection of edge (prev -> vert) with the plane, from the vertex nearer the plane (§1.6).
 ClipVertex intersect(const ClipVertex& prev, float dp_prev, const ClipVertex& vert, float dp,
@@ -26,48 +42,52 @@ ClipVertex intersect(const ClipVertex& prev, float dp_prev, const ClipVertex& ve
   return interpolate_clip_vertex(dp / denom, vert, prev, viewport);
 }
 
-// One Sutherland–Hodgman pass; nullopt when the primitive must be discarded.
-std::optional<Polygon> clip_against(const Polygon& in, uint32_t plane, const ViewportTransform& viewport) {
-  Polygon out;
+// One Sutherland–Hodgman pass from `in` into `out`; false when the primitive must be discarded.
+bool clip_against(const Polygon& in, uint32_t plane, const ViewportTransform& viewport, Polygon& out) {
+  out.count = 0;
   const ClipVertex* prev = &in[0];
   float dp_prev = plane_distance(prev->pos_clip, plane);
-  if (is_inf_or_nan(dp_prev)) return std::nullopt;
+  if (is_inf_or_nan(dp_prev)) return false;
   for (size_t i = 1; i <= in.size(); ++i) {
     const ClipVertex& vert = in[i % in.size()];  // inlist[n] = inlist[0]
     const float dp = plane_distance(vert.pos_clip, plane);
-    if (is_inf_or_nan(dp)) return std::nullopt;
+    if (is_inf_or_nan(dp)) return false;
     bool different_sign;
     if (dp_prev >= 0.0f) {
-      if (out.size() >= kMaxClippedVertices) return std::nullopt;
+      if (out.size() >= kMaxClippedVertices) return false;
       out.push_back(*prev);
       different_sign = dp < 0.0f;
     } else {
       different_sign = !(dp < 0.0f);
     }
     if (different_sign) {
-      if (out.size() >= kMaxClippedVertices) return std::nullopt;
+      if (out.size() >= kMaxClippedVertices) return false;
       out.push_back(intersect(*prev, dp_prev, vert, dp, viewport));
     }
     prev = &vert;
     dp_prev = dp;
   }
-  return out;
+  return true;
 }
 
-// The passes over the planes of `mask`, in increasing bit order; nullopt when the primitive must be
-// discarded.
-std::optional<Polygon> clip_polygon(Polygon polygon, uint32_t mask, const ViewportTransform& viewport) {
-  for (; mask != 0 && polygon.size() >= 3; mask &= mask - 1) {
-    if (polygon.size() >= kMaxClippedVertices) return std::nullopt;
-    std::optional<Polygon> next = clip_against(polygon, uint32_t(std::countr_zero(mask)), viewport);
-    if (!next) return std::nullopt;
-    polygon = std::move(*next);
+// The passes over the planes of `mask`, in increasing bit order, starting from the triangle;
+// nullptr when the primitive must be discarded, else the polygon (one of the two buffers).
+const Polygon* clip_polygon(const std::array<ClipVertex, 3>& triangle, uint32_t mask,
+                            const ViewportTransform& viewport, Polygon (&buffers)[2]) {
+  Polygon* polygon = &buffers[0];
+  for (const ClipVertex& v : triangle) polygon->push_back(v);
+  for (; mask != 0 && polygon->size() >= 3; mask &= mask - 1) {
+    if (polygon->size() >= kMaxClippedVertices) return nullptr;
+    Polygon* next = polygon == &buffers[0] ? &buffers[1] : &buffers[0];
+    if (!clip_against(*polygon, uint32_t(std::countr_zero(mask)), viewport, *next)) return nullptr;
+    polygon = next;
   }
   return polygon;
 }
 
 // emit_poly with flatshade_first: (p0, p[k-1], p[k]).
 void emit_fan(const Polygon& polygon, ClippedTriangles& result) {
+  if (polygon.size() >= 3) result.triangles.reserve(polygon.size() - 2);
   for (size_t k = 2; k < polygon.size(); ++k) result.triangles.push_back({polygon[0], polygon[k - 1], polygon[k]});
 }
 
@@ -79,8 +99,8 @@ ClippedTriangles clip_triangle(const std::array<ClipVertex, 3>& triangle, const 
   const uint32_t union_mask = triangle[0].clip_mask | triangle[1].clip_mask | triangle[2].clip_mask;
   if (union_mask == 0) {       // passed unchanged (§1.5)
     if (inside_planes != 0) {  // WorkSkips::clip_only_when_needed off: the clipper returns it unchanged
-      const std::optional<Polygon> same =
-          clip_polygon(Polygon(triangle.begin(), triangle.end()), inside_planes, viewport);
+      Polygon buffers[2];
+      const Polygon* same = clip_polygon(triangle, inside_planes, viewport, buffers);
       if (same) {
         emit_fan(*same, result);
         return result;
@@ -93,7 +113,8 @@ ClippedTriangles clip_triangle(const std::array<ClipVertex, 3>& triangle, const 
     result.fate = ClipFate::Outside;
     return result;
   }
-  const std::optional<Polygon> polygon = clip_polygon(Polygon(triangle.begin(), triangle.end()), union_mask, viewport);
+  Polygon buffers[2];
+  const Polygon* polygon = clip_polygon(triangle, union_mask, viewport, buffers);
   if (!polygon) {
     result.fate = ClipFate::Discarded;
     return result;
