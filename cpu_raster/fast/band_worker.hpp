@@ -46,6 +46,7 @@ class BandWorker {
   void walk_small_blocks(uint32_t draw_index);
   void draw_block(uint32_t draw_index, const SmallBlock& block);
   bool draw_grid_block(const SmallBlock& block, uint32_t owner_of_lane_0, const DrawRaster& raster);
+  bool draw_lanes_in_one_row(const SmallBlock& block, uint32_t owner_of_lane_0, const DrawRaster& raster);
   void draw_window_block(const SmallBlockOutput& out, uint32_t owner_of_lane_0, const DrawRaster& raster);
   void draw_small(const SmallBlockOutput& block, int lane, uint32_t owner, const DrawRaster& raster);
   bool owned_row_range(int32_t& row_lo, int32_t& row_hi) const;

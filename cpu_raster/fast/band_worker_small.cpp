@@ -1,6 +1,8 @@
 // BandWorker's small-triangle blocks: drawing a set-up block into the worker's rows, and the
 // phase before the walks that measures which tile rows each block may reach.
 #include <algorithm>
+#include <bit>
+#include <climits>
 
 #include "cpu_raster/fast/band_worker.hpp"
 #include "cpu_raster/fast/block_rows.hpp"
@@ -71,6 +73,7 @@ void BandWorker::draw_block(uint32_t d, const SmallBlock& block) {
   const SmallBlockOutput& out = block.out;
   const DrawRaster& raster = frame_.draws[d].raster;
   if (out.scalar_mask == 0 && out.job_mask == 0 && draw_grid_block(block, encode_owner(d, block.first), raster)) return;
+  if (out.scalar_mask == 0 && draw_lanes_in_one_row(block, encode_owner(d, block.first), raster)) return;
   for (uint32_t l = 0; l < block.in.count; ++l) {
     const uint32_t bit = 1u << l;
     if (out.scalar_mask & bit) {
@@ -79,6 +82,35 @@ void BandWorker::draw_block(uint32_t d, const SmallBlock& block) {
     } else if ((out.grid_mask | out.job_mask) & bit)
       draw_small(out, int(l), encode_owner(d, block.first + l), raster);
   }
+}
+
+// A block without scalar lanes whose lanes all lie in one tile row of this worker: the tiles of
+// their union prepared once, then each lane drawn in order (its own rows are all this worker's);
+// false when the block needs the lane-by-lane path.
+bool BandWorker::draw_lanes_in_one_row(const SmallBlock& block, uint32_t owner_of_lane_0, const DrawRaster& raster) {
+  const SmallBlockOutput& out = block.out;
+  const uint32_t lanes = (out.grid_mask | out.job_mask) & ((1u << block.in.count) - 1u);
+  if (lanes == 0) return true;
+  int32_t x0 = INT32_MAX, y0 = INT32_MAX, x1 = INT32_MIN, y1 = INT32_MIN;
+  for (uint32_t bits = lanes; bits != 0; bits &= bits - 1) {
+    const int l = std::countr_zero(bits);
+    x0 = std::min(x0, out.x0[l]), y0 = std::min(y0, out.y0[l]);
+    x1 = std::max(x1, out.x1[l]), y1 = std::max(y1, out.y1[l]);
+  }
+  const int32_t ty = y0 >> kTileOrder;
+  if (ty != (y1 >> kTileOrder)) return false;
+  if (!owns_tile_row(ty)) return true;
+  prepare_small_tiles(x0, x1, y0, y1, raster);
+  const TileTarget& target = frame_.raster.target;
+  for (uint32_t bits = lanes; bits != 0; bits &= bits - 1) {
+    const int l = std::countr_zero(bits);
+    const uint32_t owner = owner_of_lane_0 + uint32_t(l);
+    if ((out.grid_mask >> l) & 1u)
+      raster.grid_fn(out, l, owner, out.y0[l], out.y1[l], raster.kernel.write, target);
+    else
+      raster.small_fn(out, l, owner, out.y0[l], out.y1[l], raster.kernel, target);
+  }
+  return true;
 }
 
 // The common case of a mesh: only grid lanes, all in one tile row. The row and tile checks are
