@@ -95,8 +95,9 @@ TEST(FastMemory, DepthBufferTakesTheOtherHalfOfThePage) {
   EXPECT_EQ(depth[999], 999u);
   size_buffer(owner, 1000, 1);  // the other colour: new memory
   EXPECT_EQ(page_offset(owner), 2048u);
-  const PixelBuffer copy = depth;  // a copy keeps the values (and the source's colour)
+  const PixelBuffer copy = depth;  // a copy keeps the values and the source's colour
   EXPECT_TRUE(std::equal(copy.begin(), copy.end(), depth.begin(), depth.end()));
+  EXPECT_EQ(page_offset(copy), 2048u);
   PixelBuffer plain(300, 7u);
   plain = std::move(depth);  // a move takes the storage, colour and all
   EXPECT_EQ(page_offset(plain), 2048u);
