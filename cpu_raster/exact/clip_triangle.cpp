@@ -72,8 +72,8 @@ bool clip_against(const Polygon& in, uint32_t plane, const ViewportTransform& vi
 
 // The passes over the planes of `mask`, in increasing bit order, starting from the triangle;
 // nullptr when the primitive must be discarded, else the polygon (one of the two buffers).
-const Polygon* clip_polygon(const std::array<ClipVertex, 3>& triangle, uint32_t mask,
-                            const ViewportTransform& viewport, Polygon (&buffers)[2]) {
+const Polygon* clip_polygon(const std::array<ClipVertex, 3>& triangle, uint32_t mask, const ViewportTransform& viewport,
+                            Polygon (&buffers)[2]) {
   Polygon* polygon = &buffers[0];
   for (const ClipVertex& v : triangle) polygon->push_back(v);
   for (; mask != 0 && polygon->size() >= 3; mask &= mask - 1) {

@@ -354,8 +354,8 @@ RASTERCMP_AVX512 void setup_small_pair_avx512(const SmallBlockInput& in0, const 
   store_halves(out0.dzdx, out1.dzdx, plane.dzdx);
   store_halves(out0.dzdy, out1.dzdy, plane.dzdy);
   if (job) {  // w / 8 + 1 spans per row from origin_x, ending in x1's tile (small_setup_simd.inl)
-    const __m512i last_start =
-        _mm512_sub_epi32(_mm512_or_si512(x1, splat(kTileSize - 1)), _mm512_add_epi32(_mm512_and_si512(w, splat(~7)), splat(7)));
+    const __m512i last_start = _mm512_sub_epi32(_mm512_or_si512(x1, splat(kTileSize - 1)),
+                                                _mm512_add_epi32(_mm512_and_si512(w, splat(~7)), splat(7)));
     const __m512i origin_x = _mm512_min_epi32(x0, last_start);
     store_halves(out0.origin_x, out1.origin_x, origin_x);
     for (int i = 0; i < 3; ++i) store_halves(out0.g_minus_1[i], out1.g_minus_1[i], edge_at(edges[i], origin_x, y0));

@@ -356,12 +356,12 @@ RASTERCMP_SMALL_TARGET void RASTERCMP_SMALL_SETUP(const SmallBlockInput& in, Sma
     });
   }
   if (out.job_mask) {
-    // spans = w / 8 + 1 8-lane spans per row from origin_x (at most four), ending in x1's tile:
+    // spans = w / 8 + 1 8-lane spans per row from origin_x (at most eight), ending in x1's tile:
     // origin_x = min(x0, end of x1's tile + 1 - 8 * spans), so x1 <= origin_x + 8 * spans - 1 <= that
     // end. A lane across a tile border starts at x0.
-    const __m256i last_start = _mm256_sub_epi32(_mm256_or_si256(x1, _mm256_set1_epi32(kTileSize - 1)),
-                                                _mm256_add_epi32(_mm256_and_si256(w, _mm256_set1_epi32(~7)),
-                                                                 _mm256_set1_epi32(7)));
+    const __m256i last_start =
+        _mm256_sub_epi32(_mm256_or_si256(x1, _mm256_set1_epi32(kTileSize - 1)),
+                         _mm256_add_epi32(_mm256_and_si256(w, _mm256_set1_epi32(~7)), _mm256_set1_epi32(7)));
     const __m256i origin_x = _mm256_min_epi32(x0, last_start);
     _mm256_store_si256(reinterpret_cast<__m256i*>(out.origin_x), origin_x);
     _mm256_store_ps(out.a0, plane.a0);

@@ -33,7 +33,7 @@ struct KernelDepth {
 // Coverage of one edge in a tile, in "G" form (tile_edges.hpp): a pixel is covered iff G > 0, and
 // G(x, y) = g + gx*(x - origin_x) + gy*(y - origin_y). Stored as G - 1 so the test is a sign bit.
 struct KernelJob {
-  PixelRect rect;        // pixels to visit, inside one tile (or one small lane, small_triangles.hpp) and the framebuffer
+  PixelRect rect;        // pixels to visit: in one tile (or a small lane) and the framebuffer
   int32_t origin_x = 0;  // rect.x0 rounded down to a multiple of 8; origin_y = rect.y0
   int32_t g_minus_1[3] = {0, 0, 0};
   int32_t gx[3] = {0, 0, 0}, gy[3] = {0, 0, 0};
