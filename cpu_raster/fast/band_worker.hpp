@@ -49,6 +49,8 @@ class BandWorker {
   bool draw_lanes_in_one_row(const SmallBlock& block, uint32_t owner_of_lane_0, const DrawRaster& raster);
   void draw_window_block(const SmallBlockOutput& out, uint32_t owner_of_lane_0, const DrawRaster& raster);
   void draw_small(const SmallBlockOutput& block, int lane, uint32_t owner, const DrawRaster& raster);
+  void draw_lane(const SmallBlockOutput& block, int lane, uint32_t owner, int32_t row_lo, int32_t row_hi,
+                 const DrawRaster& raster);
   bool owned_row_range(int32_t& row_lo, int32_t& row_hi) const;
   void prepare_small_tiles(int32_t x0, int32_t x1, int32_t row_lo, int32_t row_hi, const DrawRaster& raster);
   void triangle(uint32_t draw_index, uint32_t primitive, uint32_t a, uint32_t b, uint32_t c);

@@ -101,14 +101,9 @@ bool BandWorker::draw_lanes_in_one_row(const SmallBlock& block, uint32_t owner_o
   if (ty != (y1 >> kTileOrder)) return false;
   if (!owns_tile_row(ty)) return true;
   prepare_small_tiles(x0, x1, y0, y1, raster);
-  const TileTarget& target = frame_.raster.target;
   for (uint32_t bits = lanes; bits != 0; bits &= bits - 1) {
     const int l = std::countr_zero(bits);
-    const uint32_t owner = owner_of_lane_0 + uint32_t(l);
-    if ((out.grid_mask >> l) & 1u)
-      raster.grid_fn(out, l, owner, out.y0[l], out.y1[l], raster.kernel.write, target);
-    else
-      raster.small_fn(out, l, owner, out.y0[l], out.y1[l], raster.kernel, target);
+    draw_lane(out, l, owner_of_lane_0 + uint32_t(l), out.y0[l], out.y1[l], raster);
   }
   return true;
 }
@@ -175,11 +170,16 @@ void BandWorker::draw_small(const SmallBlockOutput& block, int lane, uint32_t ow
   int32_t row_lo = block.y0[lane], row_hi = block.y1[lane];  // a lane spans at most two tile rows
   if (!owned_row_range(row_lo, row_hi)) return;
   prepare_small_tiles(block.x0[lane], block.x1[lane], row_lo, row_hi, raster);
-  if ((block.grid_mask >> lane) & 1u) {
+  draw_lane(block, lane, owner, row_lo, row_hi, raster);
+}
+
+// A grid lane or a kernel job in rows [row_lo, row_hi], its tiles prepared.
+void BandWorker::draw_lane(const SmallBlockOutput& block, int lane, uint32_t owner, int32_t row_lo, int32_t row_hi,
+                           const DrawRaster& raster) {
+  if ((block.grid_mask >> lane) & 1u)
     raster.grid_fn(block, lane, owner, row_lo, row_hi, raster.kernel.write, frame_.raster.target);
-  } else {
+  else
     raster.small_fn(block, lane, owner, row_lo, row_hi, raster.kernel, frame_.raster.target);
-  }
 }
 
 bool measure_block_rows(FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end) {

@@ -29,8 +29,9 @@ FastTriangle fast_triangle_of(const RasterPrimitive& p, const PixelRect& region)
 
 // setup_triangle then fast_triangle_of for a piece, without the parts of the RasterPrimitive the
 // fast kernels never read (edge and scissor planes, visit rectangle; perspective's 614 clipped
-// triangles took 194 ns of set-up each for their 1.5 pieces, session 14): the same snap (§2.2), area, cull and swap (§2.3), bounding box and region
-// test (§2.5), depth plane and offset (§3.2, §4.3), in the same operations. Full: the piece needs
+// triangles took 194 ns of set-up each for their 1.5 pieces, session 14): the same snap (§2.2),
+// area, cull and swap (§2.3), bounding box and region test (§2.5), depth plane and offset (§3.2,
+// §4.3), in the same operations. Full: the piece needs
 // what only setup_triangle does (a corner that fails to snap, or an edge past llvmpipe's direct
 // range: its wrapping set-up, §7.5), so call that. Dropped: setup_triangle would not rasterize it.
 enum class PieceSetup { Drawn, Dropped, Full };

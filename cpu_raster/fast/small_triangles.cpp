@@ -135,7 +135,7 @@ KernelJob SmallBlockOutput::job(int lane, uint32_t owner, CompareOp op, int32_t 
   j.rect = PixelRect{x0[lane], row_lo, x1[lane], row_hi};
   j.origin_x = origin_x[lane];
   for (int i = 0; i < 3; ++i) {
-    j.g_minus_1[i] = g_minus_1[i][lane] + (row_lo - y0[lane]) * gy[i][lane];  // within the 32-bit bound
+    j.g_minus_1[i] = edge_minus_1(lane, i, j.origin_x, row_lo);
     j.gx[i] = gx[i][lane];
     j.gy[i] = gy[i][lane];
   }

@@ -78,6 +78,12 @@ struct SmallBlockOutput {
   // The lane's job in rows [row_lo, row_hi] of its rectangle (offset 0: draws with depth bias take
   // the scalar set-up).
   KernelJob job(int lane, uint32_t owner, CompareOp op, int32_t row_lo, int32_t row_hi) const;
+
+  // A job lane's edge i, E - 1, at pixel (x, y) of its rectangle's columns and rows (the 32-bit
+  // bound above holds there): moved from (origin_x, y0) by whole columns and rows.
+  int32_t edge_minus_1(int lane, int i, int32_t x, int32_t y) const {
+    return g_minus_1[i][lane] + (x - origin_x[lane]) * gx[i][lane] + (y - y0[lane]) * gy[i][lane];
+  }
 };
 
 // A block in the 4x4 layout goes to the window when its union holds at least this many pixels

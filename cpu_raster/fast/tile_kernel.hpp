@@ -34,7 +34,7 @@ struct KernelDepth {
 // G(x, y) = g + gx*(x - origin_x) + gy*(y - origin_y). Stored as G - 1 so the test is a sign bit.
 struct KernelJob {
   PixelRect rect;        // pixels to visit: in one tile (or a small lane) and the framebuffer
-  int32_t origin_x = 0;  // rect.x0 rounded down to a multiple of 8; origin_y = rect.y0
+  int32_t origin_x = 0;  // a tile job's rect.x0 rounded down to 8 (a small lane's: its set-up); origin_y = rect.y0
   int32_t g_minus_1[3] = {0, 0, 0};
   int32_t gx[3] = {0, 0, 0}, gy[3] = {0, 0, 0};
   float a0 = 0, dzdx = 0, dzdy = 0, offset = 0;

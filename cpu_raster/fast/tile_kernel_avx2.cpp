@@ -312,13 +312,11 @@ template <DepthFormat F, CompareOp Op>
 RASTERCMP_AVX2 bool small_4x2(const SmallBlockOutput& b, int l, int32_t ox, int32_t row_lo, int32_t y1,
                               uint32_t owner_id, const KernelDepth& d, const TileTarget& t) {
   const int32_t x0 = b.x0[l], x1 = b.x1[l];
-  // the block's edge values are given at (origin_x, y0)
-  const int32_t shift = ox - b.origin_x[l], rows = row_lo - b.y0[l];
   const __m256i lx = _mm256_setr_epi32(0, 1, 2, 3, 0, 1, 2, 3), ly = _mm256_setr_epi32(0, 0, 0, 0, 1, 1, 1, 1);
   __m256i e[3], step[3];
   for (int i = 0; i < 3; ++i) {
     const __m256i gx = _mm256_set1_epi32(b.gx[i][l]), gy = _mm256_set1_epi32(b.gy[i][l]);
-    e[i] = _mm256_add_epi32(_mm256_set1_epi32(b.g_minus_1[i][l] + shift * b.gx[i][l] + rows * b.gy[i][l]),
+    e[i] = _mm256_add_epi32(_mm256_set1_epi32(b.edge_minus_1(l, i, ox, row_lo)),
                             _mm256_add_epi32(_mm256_mullo_epi32(lx, gx), _mm256_mullo_epi32(ly, gy)));
     step[i] = _mm256_slli_epi32(gy, 1);
   }

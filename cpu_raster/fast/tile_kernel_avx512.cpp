@@ -85,7 +85,10 @@ RASTERCMP_AVX512 bool narrow16(const KernelJob& j, const KernelDepth& d, const T
   const size_t width = size_t(t.width);
   const int32_t x = j.origin_x, y1 = j.rect.y1;
   __m512 inner[2] = {_mm512_setzero_ps(), _mm512_setzero_ps()};
-  if constexpr (F != DepthFormat::None) inner[0] = column_depth16(plane, lane, x), inner[1] = column_depth16(plane, lane, x + 16);
+  if constexpr (F != DepthFormat::None) {
+    inner[0] = column_depth16(plane, lane, x);
+    inner[1] = column_depth16(plane, lane, x + 16);
+  }
   uint32_t* owner_row = t.owner + size_t(j.rect.y0) * width;
   uint32_t* depth_row = F != DepthFormat::None ? t.depth + size_t(j.rect.y0) * width : nullptr;
   __mmask16 any = 0;
