@@ -63,7 +63,9 @@ RASTERCMP_AVX512 inline __mmask16 step16(const Plane16& plane, __m512 inner, __m
 // within tile_edges.hpp's bound: a pixel at most 8 columns past the tile has |G| < 71 * 2^24 < 2^31),
 // covered where all three are >= 0 and the column lies in the rectangle. Cheaper than the covered
 // columns for a narrow triangle: a few operations per row instead of a division per edge and
-// four rows.
+// four rows. Each row takes its steps whether or not a pixel is covered (an empty mask loads and
+// stores nothing): a branch on the mask cost more in mispredictions than the steps it saved
+// (perspective -4%, docs/performance.md, session 16).
 template <DepthFormat F, CompareOp Op>
 RASTERCMP_AVX512 bool narrow16(const KernelJob& j, const KernelDepth& d, const TileTarget& t) {
   const Plane16 plane = plane16(j, d);
@@ -96,14 +98,14 @@ RASTERCMP_AVX512 bool narrow16(const KernelJob& j, const KernelDepth& d, const T
     const __m512 py = _mm512_set1_ps(float(y));
     const __mmask16 covered =
         in_rect[0] & _mm512_cmpge_epi32_mask(_mm512_ternarylogic_epi32(e[0], e[1], e[2], 0xFE), _mm512_setzero_si512());
-    if (covered) any |= step16<F, Op>(plane, inner[0], owner, owner_row, depth_row, x, py, covered);
+    any |= step16<F, Op>(plane, inner[0], owner, owner_row, depth_row, x, py, covered);
     if (two) {
       const __mmask16 right =
           in_rect[1] & _mm512_cmpge_epi32_mask(_mm512_ternarylogic_epi32(_mm512_add_epi32(e[0], half[0]),
                                                                           _mm512_add_epi32(e[1], half[1]),
                                                                           _mm512_add_epi32(e[2], half[2]), 0xFE),
                                                _mm512_setzero_si512());
-      if (right) any |= step16<F, Op>(plane, inner[1], owner, owner_row, depth_row, x + 16, py, right);
+      any |= step16<F, Op>(plane, inner[1], owner, owner_row, depth_row, x + 16, py, right);
     }
     if constexpr (F != DepthFormat::None) depth_row += width;
     for (int i = 0; i < 3; ++i) e[i] = _mm512_add_epi32(e[i], gy[i]);
