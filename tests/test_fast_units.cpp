@@ -35,11 +35,12 @@ namespace rastercmp::cpu::fast {
 namespace {
 
 // The clears' fill writes exactly [p, p + count): every length class (tail words, 8-word and
-// 32-word steps, runs as long as a row of tiles) at every word alignment, and nothing before or after.
+// 32-word steps, `rep stosl` from 4096 words, runs as long as a row of tiles) at every word
+// alignment, and nothing before or after.
 TEST(FastClear, FillWritesExactlyTheRun) {
   if (!host_has_avx2_fma()) GTEST_SKIP() << "host without AVX2/FMA: clears use std::fill_n";
   constexpr uint32_t kSentinel = 0xA5A5A5A5u, kValue = 0x3F800000u;
-  const size_t counts[] = {0, 1, 7, 8, 9, 31, 32, 33, 65535, 65536, 65537, 65536 + 37};
+  const size_t counts[] = {0, 1, 7, 8, 9, 31, 32, 33, 4095, 4096, 4097, 65535, 65536, 65537, 65536 + 37};
   std::vector<uint32_t> buffer(65536 + 64 + 16);
   for (size_t count : counts) {
     for (size_t offset = 0; offset < 8; ++offset) {
