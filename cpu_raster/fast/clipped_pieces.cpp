@@ -1,10 +1,13 @@
 #include "cpu_raster/fast/clipped_pieces.hpp"
 
+#include <algorithm>
+#include <climits>
 #include <optional>
 #include <utility>
 
 #include "cpu_raster/exact/binned_triangle.hpp"
 #include "cpu_raster/exact/depth_plane.hpp"
+#include "cpu_raster/fast/block_rows.hpp"
 #include "cpu_raster/fast/small_block_input.hpp"
 
 namespace rastercmp::cpu::fast {
@@ -66,6 +69,23 @@ PieceSetup setup_piece(const std::array<WindowVertex, 3>& window_in, uint32_t ow
 
 namespace {
 
+// The tile rows the lanes of a kBlockAnyRow block reach, gathered lane by lane: a lane whose
+// corners all have known rows by those rows (as block_tile_rows), a clipped one by its pieces'
+// rectangles. The other lanes draw nothing (BandWorker::triangle): all three corners outside one
+// plane (ClipFate::Outside), or a corner that failed to snap (SetupFate::NonFinite). A clipped
+// lane whose pieces take llvmpipe's wrapping set-up (drawn where each worker meets them) keeps the
+// block at kBlockAnyRow.
+struct LaneRows {
+  int32_t lo = INT32_MAX, hi = INT32_MIN;
+  bool any_row = false;
+
+  void add(int32_t row_lo, int32_t row_hi) {
+    lo = std::min(lo, row_lo);
+    hi = std::max(hi, row_hi);
+  }
+  uint32_t packed(const PixelRect& region) const { return any_row ? kBlockAnyRow : pack_rows(lo, hi, region); }
+};
+
 template <Topology T, bool Indexed>
 void clip_blocks(const FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end, ClippedTable& table) {
   const Draw& draw = frame.scene->draws[d];
@@ -76,21 +96,32 @@ void clip_blocks(const FastFrame& frame, uint32_t d, uint32_t begin, uint32_t en
     if (fd.block_rows[b] != kBlockAnyRow) continue;  // known rows: no corner needs clipping
     fill_block_corners<T, Indexed>(draw.indices.data(), count, b, block);
     const SmallBlockInput& in = block.in;
+    LaneRows rows;
     for (uint32_t l = 0; l < in.count; ++l) {
       const size_t at = size_t(l) * in.stride;
       const uint32_t a = in.corners[0][at], bb = in.corners[1][at], c = in.corners[2][at];
-      if (!needs_clipping(row_clip_bits(fd.tile_rows[a]), row_clip_bits(fd.tile_rows[bb]),
-                          row_clip_bits(fd.tile_rows[c])))
-        continue;  // the clip bits from the compact rows (fast_vertices.hpp): 2 bytes a corner
+      const int32_t ra = fd.tile_rows[a], rb = fd.tile_rows[bb], rc = fd.tile_rows[c];
+      if (!is_unknown_row(ra) && !is_unknown_row(rb) && !is_unknown_row(rc)) {
+        rows.add(std::min({ra, rb, rc}), std::max({ra, rb, rc}));
+        continue;
+      }
+      // the clip bits from the compact rows (fast_vertices.hpp): 2 bytes a corner
+      if (!needs_clipping(row_clip_bits(ra), row_clip_bits(rb), row_clip_bits(rc))) continue;
       ClippedPrimitive entry;
       entry.primitive = block.first + l;
       entry.first = uint32_t(table.pieces.size());
       for_each_piece(
-          frame, d, entry.primitive, a, bb, c, [&](const FastTriangle& t) { table.pieces.push_back(t); },
+          frame, d, entry.primitive, a, bb, c,
+          [&](const FastTriangle& t) {
+            table.pieces.push_back(t);
+            if (!t.rect.empty()) rows.add(t.rect.y0 >> kTileOrder, t.rect.y1 >> kTileOrder);
+          },
           [&](const RasterPrimitive&) { entry.in_place = true; });
+      rows.any_row |= entry.in_place;
       entry.count = uint32_t(table.pieces.size()) - entry.first;
       table.primitives.push_back(entry);
     }
+    fd.block_rows[b] = rows.packed(frame.exact.region);
   }
 }
 

@@ -4,8 +4,9 @@
 // (perspective's 614 clipped triangles at the screen's sides and far plane: about 10% of each
 // worker's profile, session 13). With several workers the block-row phase, which already visits
 // those blocks, now clips each once (the task that measures its block) into a ClippedTable per
-// draw; the walk then draws the stored pieces in its rows. The pieces are the exact path's (clip_triangle,
-// pipeline cull, setup_triangle, or setup_piece, its lean twin for the pieces the kernels draw),
+// draw, and from the pieces' rectangles gives the block the rows it reaches (set up only by their
+// workers since session 16); the walk then draws the stored pieces in its rows. The pieces are the exact path's
+// (clip_triangle, pipeline cull, setup_triangle, or setup_piece, its lean twin for the pieces the kernels draw),
 // computed by the same function either way (for_each_piece).
 #pragma once
 
@@ -75,7 +76,10 @@ void for_each_piece(const FastFrame& frame, uint32_t d, uint32_t primitive, uint
 }
 
 // Adds the clipped triangles of blocks [begin, end) of draw d whose rows are kBlockAnyRow (and
-// that some lane of which needs clipping) to `table`, in primitive order.
+// that some lane of which needs clipping) to `table`, in primitive order, and gives each such block
+// the tile rows its lanes reach: its other lanes' corners' rows and its pieces' rectangles' rows
+// (kBlockAnyRow only where a piece takes llvmpipe's wrapping set-up). Before, every worker set up
+// perspective's 201 such blocks, and a worker whose rows none reached walked 11 us longer.
 void clip_block_triangles(const FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end, ClippedTable& table);
 
 // Appends `part` (the next primitives of the same draw) to `table`.

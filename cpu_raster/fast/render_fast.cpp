@@ -268,9 +268,9 @@ void measure_all_block_rows(FastFrame& frame) {
         bad_index = true;
         continue;
       }
+      clip_block_triangles(frame, task.draw, task.begin, task.end, clipped[i]);  // narrows kBlockAnyRow
       count_block_rows(frame.draws[task.draw].block_rows + task.begin, task.end - task.begin, tiles_y,
                        reach.data() + i * (tiles_y + 1));
-      clip_block_triangles(frame, task.draw, task.begin, task.end, clipped[i]);
     }
   });
   if (bad_index) check_lavapipe_profile_support(*frame.scene);
