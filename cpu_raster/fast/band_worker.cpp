@@ -9,6 +9,7 @@
 #include "cpu_raster/exact/depth_plane.hpp"
 #include "cpu_raster/exact/pipeline_cull.hpp"
 #include "cpu_raster/exact/triangle_setup.hpp"
+#include "cpu_raster/fast/block_rows.hpp"
 #include "cpu_raster/fast/clipped_pieces.hpp"
 #include "cpu_raster/fast/exact_rows.hpp"
 #include "cpu_raster/fast/small_block_input.hpp"
@@ -111,8 +112,9 @@ void BandWorker::walk_small_blocks(uint32_t d) {
   const uint32_t count = primitive_count(draw);
   const uint32_t blocks = (count + 7) / 8;
   const SmallPairSetupFn pair_setup = frame_.raster.small_pair_setup;
+  const uint32_t* const block_rows = fd.block_rows;  // null: one worker owns every row
   const auto wanted = [&](uint32_t b) {
-    const uint32_t rows = fd.block_rows ? fd.block_rows[b] : kBlockAnyRow;  // null: one worker owns every row
+    const uint32_t rows = block_rows ? block_rows[b] : kBlockAnyRow;
     if (rows == kBlockAnyRow) return true;
     const int32_t lo = int32_t(rows & 0xFFFFu), hi = int32_t(rows >> 16);
     return lo <= hi && owns_tile_rows(lo, hi);
@@ -120,6 +122,8 @@ void BandWorker::walk_small_blocks(uint32_t d) {
   fill_block_draw(frame_, d, block_);
   fill_block_draw(frame_, d, next_block_);
   for (uint32_t b = 0; b < blocks; ++b) {
+    if (block_rows) b = next_reaching_block_avx2(block_rows, b, blocks);  // small blocks: AVX2 hosts only
+    if (b == blocks) break;
     if (!wanted(b)) continue;
     fill_block_corners<T, Indexed>(draw.indices.data(), count, b, block_);
     if (pair_setup != nullptr && b + 1 < blocks && wanted(b + 1)) {

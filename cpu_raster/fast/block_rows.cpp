@@ -3,6 +3,7 @@
 #include <immintrin.h>
 
 #include <algorithm>
+#include <bit>
 #include <climits>
 
 #include "cpu_raster/fast/cpu_features.hpp"
@@ -168,6 +169,19 @@ RASTERCMP_AVX2 bool span_tile_rows_avx2(const uint32_t* indices, uint32_t n, con
   if (lowest != highest && rows != kNoRow) return false;  // several tile rows: the blocks may differ
   std::fill_n(block_rows, n, rows);
   return true;
+}
+
+RASTERCMP_AVX2 uint32_t next_reaching_block_avx2(const uint32_t* block_rows, uint32_t begin, uint32_t end) {
+  const __m256i none = _mm256_set1_epi32(int32_t(kNoRow));
+  uint32_t b = begin;
+  for (; b + 8 <= end; b += 8) {
+    const __m256i rows = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(block_rows + b));
+    const uint32_t reaching =
+        ~uint32_t(_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(rows, none)))) & 0xFFu;
+    if (reaching != 0) return b + uint32_t(std::countr_zero(reaching));
+  }
+  while (b < end && block_rows[b] == kNoRow) ++b;
+  return b;
 }
 
 }  // namespace rastercmp::cpu::fast

@@ -34,4 +34,9 @@ inline constexpr uint32_t kSpanPositions = 4096;
 bool span_tile_rows_avx2(const uint32_t* indices, uint32_t n, const int16_t* tile_rows, uint32_t positions,
                          const PixelRect& region, uint32_t* block_rows);
 
+// AVX2 hosts only: the first b in [begin, end) whose block_rows[b] is not kNoRow (a block some
+// worker sets up), or end. The walks skip a camera's blocks behind or beside it eight at a time
+// (perspective: 8,911 of its 10,000 blocks).
+uint32_t next_reaching_block_avx2(const uint32_t* block_rows, uint32_t begin, uint32_t end);
+
 }  // namespace rastercmp::cpu::fast
