@@ -16,9 +16,13 @@ namespace rastercmp::cpu::fast {
 // triangles each and cost about 1M instructions to fill). The weights move with the paths'
 // costs: session 15 tried 4 and 6 as its changes shifted work between blocks and filled tiles, and
 // at its end perspective's two workers split 426/430 us with 8 (7 and 9 alike), 438/394 with 6.
+// Session 16 (blocks with clipped lanes now counted in their rows) measured each of perspective's
+// rows alone: its near rows (a few big triangles' blocks each) cost 46-54 us, its horizon row (818
+// blocks of tiny triangles) 184 us. A filled tile now weighs 100: after a lavapipe render the two
+// workers split 532/498 us, against 467/587 with 40 (and 0.75-0.76 ms against 0.79-0.80 a render).
 inline constexpr uint64_t kRowWeightPerBlock = 8;
 inline constexpr uint64_t kRowWeightPerClearedTile = 4;
-inline constexpr uint64_t kRowWeightPerFilledTile = 40;
+inline constexpr uint64_t kRowWeightPerFilledTile = 100;
 uint64_t tile_row_weight(uint64_t blocks, uint32_t tiles_x);
 
 // worker[r] for every row: rows by weight, heaviest first (ties: lower row first), each to the

@@ -16,10 +16,10 @@
 namespace rastercmp::cpu::fast {
 namespace {
 
-// Spins (with pause) until done() or kSpinMicros have passed; true when done() held.
+// Spins (with pause) until done() or `micros` have passed; true when done() held.
 template <class Done>
-bool spin_until(Done done) {
-  const auto limit = std::chrono::steady_clock::now() + std::chrono::microseconds(WorkerPool::kSpinMicros);
+bool spin_until(Done done, int micros) {
+  const auto limit = std::chrono::steady_clock::now() + std::chrono::microseconds(micros);
   for (uint32_t i = 1;; ++i) {
     if (done()) return true;
     _mm_pause();
@@ -90,7 +90,7 @@ void WorkerPool::run(const std::function<void(uint32_t)>& job) {
   }
   start_.notify_all();
   call(job, 0);
-  spin_until([this] { return pending_.load(std::memory_order_acquire) == 0; });
+  spin_until([this] { return pending_.load(std::memory_order_acquire) == 0; }, kCallerSpinMicros);
   std::unique_lock<std::mutex> lock(mutex_);
   done_.wait(lock, [this] { return pending_ == 0; });
   job_ = nullptr;
@@ -101,7 +101,7 @@ void WorkerPool::thread_loop(uint32_t index) {
   uint64_t seen = 0;
   for (;;) {
     const std::function<void(uint32_t)>* job = nullptr;
-    if (seen != 0) spin_until([&] { return generation_.load(std::memory_order_acquire) != seen; });
+    if (seen != 0) spin_until([&] { return generation_.load(std::memory_order_acquire) != seen; }, kSpinMicros);
     {
       std::unique_lock<std::mutex> lock(mutex_);
       start_.wait(lock, [&] { return stop_ || generation_ != seen; });
