@@ -74,5 +74,7 @@ static_assert(kVertexSnapFailed <= 0x7Fu && -2048 > kLastUnknownRow, "flags fit 
 // the vertices' flags.
 uint32_t transform_vertices_scalar(const VertexJob& job, size_t begin, size_t end, FastVertex* out, int16_t* rows);
 uint32_t transform_vertices_avx2(const VertexJob& job, size_t begin, size_t end, FastVertex* out, int16_t* rows);
+// The same sixteen at a time (fast_vertices_avx512.cpp); call only when host_has_avx512().
+uint32_t transform_vertices_avx512(const VertexJob& job, size_t begin, size_t end, FastVertex* out, int16_t* rows);
 
 }  // namespace rastercmp::cpu::fast

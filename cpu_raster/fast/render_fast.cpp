@@ -147,8 +147,10 @@ void transform_all_vertices(FastFrame& frame, bool check_pending) {
     const VertexJob job{draw.positions_clip.data(), frame.exact.viewport, frame.exact.fma,
                         draw.state.depth_clip_enabled()};
     FastDraw& fd = frame.draws[task.draw];
-    task.flags = frame.raster.avx2 ? transform_vertices_avx2(job, task.begin, task.end, fd.vertices, fd.tile_rows)
-                                   : transform_vertices_scalar(job, task.begin, task.end, fd.vertices, fd.tile_rows);
+    const auto pass = frame.raster.avx512 ? transform_vertices_avx512
+                      : frame.raster.avx2   ? transform_vertices_avx2
+                                            : transform_vertices_scalar;
+    task.flags = pass(job, task.begin, task.end, fd.vertices, fd.tile_rows);
   };
   if (frame.workers == 1 || tasks.size() <= 1) {
     if (check_pending) check_lavapipe_profile_support_but_indices(*frame.scene);
