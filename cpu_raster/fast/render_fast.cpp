@@ -148,8 +148,8 @@ void transform_all_vertices(FastFrame& frame, bool check_pending) {
                         draw.state.depth_clip_enabled()};
     FastDraw& fd = frame.draws[task.draw];
     const auto pass = frame.raster.avx512 ? transform_vertices_avx512
-                      : frame.raster.avx2   ? transform_vertices_avx2
-                                            : transform_vertices_scalar;
+                      : frame.raster.avx2 ? transform_vertices_avx2
+                                          : transform_vertices_scalar;
     task.flags = pass(job, task.begin, task.end, fd.vertices, fd.tile_rows);
   };
   if (frame.workers == 1 || tasks.size() <= 1) {
