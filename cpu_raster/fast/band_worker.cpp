@@ -122,8 +122,9 @@ void BandWorker::walk_small_blocks(uint32_t d) {
   fill_block_draw(frame_, d, block_);
   fill_block_draw(frame_, d, next_block_);
   for (uint32_t b = 0; b < blocks; ++b) {
-    if (block_rows && block_rows[b] == kNoRow) {  // a run of them: skipped eight at a time
-      b = next_reaching_block_avx2(block_rows, b, blocks);  // small blocks: AVX2 hosts only
+    // a run of blocks nobody sets up: skipped eight at a time (small blocks: AVX2 hosts only)
+    if (block_rows && block_rows[b] == kNoRow) {
+      b = next_reaching_block_avx2(block_rows, b, blocks);
       if (b == blocks) break;
     }
     if (!wanted(b)) continue;
