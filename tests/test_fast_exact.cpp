@@ -303,6 +303,32 @@ TEST(FastClippedPieces, TableOfPiecesMatchesExactPath) {
   expect_fast_matches(scene, true, {2u, 3u, 4u});
 }
 
+// Rows nothing draws into go to no worker and are cleared by whichever finishes first
+// (FastFrame::unowned_rows): only where every block's rows are known. The huge triangle of
+// scenes/triangle/huge/wraps_covers_all, its viewport moved to rows 32-95 of a 64x128 frame, is
+// clipped into a piece that takes llvmpipe's wrapping set-up and covers rows 32-95: every worker
+// draws it into its own rows wherever it meets it (its block keeps kBlockAnyRow). A second draw's
+// small triangle (rows 73-86) is the only block with known rows: tile row 0, which no known block
+// reaches, must still belong to a worker (left unowned, it would miss the piece). Without the
+// huge triangle, row 0 is unowned and cleared.
+TEST(FastUnownedRows, OnlyWhereEveryBlocksRowsAreKnown) {
+  Scene scene;
+  scene.name = "test.fast.unowned_rows";
+  scene.width = 64;
+  scene.height = 128;
+  scene.viewport = Viewport{0, 32, 64, 64, 0, 1};
+  Draw huge;
+  huge.positions_clip = {
+      {1.1e12f, 1.4e12f, 0.5f, 1.0f}, {-4e13f, 2.29e13f, 0.5f, 1.0f}, {9.2e16f, -3.18e17f, 0.5f, 1.0f}};
+  scene.draws.push_back(huge);
+  Draw small;
+  small.positions_clip = {{-0.5f, 0.3f, 0.2f, 1.0f}, {0.5f, 0.3f, 0.2f, 1.0f}, {0.0f, 0.7f, 0.2f, 1.0f}};
+  scene.draws.push_back(small);
+  expect_fast_matches(scene, true, {2u, 3u});
+  scene.draws.erase(scene.draws.begin());
+  expect_fast_matches(scene, true, {2u, 3u});
+}
+
 // The depth bounds' audit (band_worker.hpp): a camera terrain drawn back to front, on which the
 // bounds seldom help, has each worker turn them off part way through its draw (before the near
 // rows, drawn last, reach their tiles); the next draw, one near-full-screen layer at z = 0.9,

@@ -58,6 +58,9 @@ void BandWorker::run() {
   }
   for (int32_t ty = 0; ty < frame_.raster.tiles_y; ++ty)
     if (owns_tile_row(ty)) clear_tile_row(ty, frame_.raster);
+  // the rows nobody owns: each taken by one worker, the first to get here taking more
+  for (size_t i = frame_.next_unowned++; i < frame_.unowned_rows.size(); i = frame_.next_unowned++)
+    clear_tile_row(frame_.unowned_rows[i], frame_.raster);
 }
 
 bool BandWorker::owns_rows(int32_t y0, int32_t y1) const { return owns_tile_rows(y0 >> kTileOrder, y1 >> kTileOrder); }

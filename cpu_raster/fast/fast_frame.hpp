@@ -4,6 +4,7 @@
 #pragma once
 
 #include <algorithm>
+#include <atomic>
 #include <cstdint>
 #include <vector>
 
@@ -54,6 +55,9 @@ struct FastDraw {
 // block_rows value of a block that must be set up by every worker.
 inline constexpr uint32_t kBlockAnyRow = 0xFFFFFFFFu;
 
+// FastFrame::row_worker of a row no worker owns (FastFrame::unowned_rows).
+inline constexpr uint32_t kUnownedRow = 0xFFFFFFFFu;
+
 struct FastFrame {
   const Scene* scene = nullptr;
   FrameContext exact;     // cpu::make_frame_context: viewport, region, methods
@@ -62,9 +66,14 @@ struct FastFrame {
   std::vector<TileState> tiles;
   std::vector<FastDraw> draws;
   uint32_t workers = 1;
-  // Per tile row, the worker that draws it (row_balance.hpp); empty: row r belongs to worker
-  // r % workers.
+  // Per tile row, the worker that draws it (row_balance.hpp), or kUnownedRow; empty: row r
+  // belongs to worker r % workers.
   std::vector<uint32_t> row_worker;
+  // The tile rows nothing draws into (render_fast.cpp, balance_tile_rows): no worker owns them;
+  // each worker, its walk done, clears the next one not taken yet, so the first to finish clears
+  // more of them (a camera's sky: six of perspective's sixteen rows).
+  std::vector<int32_t> unowned_rows;
+  std::atomic<size_t> next_unowned{0};
 };
 
 }  // namespace rastercmp::cpu::fast

@@ -205,8 +205,10 @@ void check_index_ranges(const FastFrame& frame) {
 
 // Adds +1 at the first and -1 past the last tile row of each of n blocks to diff[0, tiles_y];
 // kBlockAnyRow (every worker sets such a block up) and kNoRow count nowhere. A mesh's neighbouring
-// blocks mostly reach the same rows: counted a run of equal values at a time.
-void count_block_rows(const uint32_t* block_rows, uint32_t n, size_t tiles_y, int32_t* diff) {
+// blocks mostly reach the same rows: counted a run of equal values at a time. Returns whether some
+// block is kBlockAnyRow.
+bool count_block_rows(const uint32_t* block_rows, uint32_t n, size_t tiles_y, int32_t* diff) {
+  bool any_row = false;
   uint32_t b = 0;
   while (b < n) {
     const uint32_t packed = block_rows[b];
@@ -214,16 +216,23 @@ void count_block_rows(const uint32_t* block_rows, uint32_t n, size_t tiles_y, in
     while (++b < n && block_rows[b] == packed) {
     }
     const uint32_t lo = packed & 0xFFFFu, hi = packed >> 16;
+    any_row |= packed == kBlockAnyRow;
     if (packed == kBlockAnyRow || lo > hi || hi >= tiles_y) continue;
     diff[lo] += int32_t(b - first);
     diff[hi + 1] -= int32_t(b - first);
   }
+  return any_row;
 }
 
 // Which worker draws each tile row (issue #23), from the blocks that reach each row (`reach`:
 // `tasks` arrays of tiles_y + 1 differences) and the row's width (tile_row_weight), whole rows
-// shared out by balance_rows. No block reaching any row: r % workers, as before.
-void balance_tile_rows(FastFrame& frame, const std::vector<int32_t>& reach, size_t tasks) {
+// shared out by balance_rows. No block reaching any row: r % workers, as before. When every draw
+// is one of small blocks and each block's rows are known (`rows_known`), a row no block reaches is
+// one nothing draws into (the blocks' rows hold their triangles' and pieces' rectangles): it goes
+// to FastFrame::unowned_rows, cleared by whichever worker finishes first. Clearing costs more
+// after other work (its lines come from memory) than the weights say, and these clears are what
+// evens out the workers' ends (perspective after a lavapipe render: the sky's six rows).
+void balance_tile_rows(FastFrame& frame, const std::vector<int32_t>& reach, size_t tasks, bool rows_known) {
   const size_t tiles_y = size_t(std::max(frame.raster.tiles_y, 0));
   std::vector<uint64_t> weights(tiles_y, 0);  // first the blocks reaching each row
   for (size_t t = 0; t < tasks; ++t) {
@@ -234,8 +243,17 @@ void balance_tile_rows(FastFrame& frame, const std::vector<int32_t>& reach, size
     }
   }
   if (std::all_of(weights.begin(), weights.end(), [](uint64_t blocks) { return blocks == 0; })) return;
-  for (uint64_t& w : weights) w = tile_row_weight(w, uint32_t(std::max(frame.raster.tiles_x, 0)));
+  const bool unowned = rows_known && std::all_of(frame.draws.begin(), frame.draws.end(),
+                                                 [](const FastDraw& d) { return d.small_blocks; });
+  std::vector<int32_t> empty_rows;
+  for (size_t r = 0; r < tiles_y; ++r) {
+    if (unowned && weights[r] == 0) empty_rows.push_back(int32_t(r));
+    weights[r] =
+        unowned && weights[r] == 0 ? 0 : tile_row_weight(weights[r], uint32_t(std::max(frame.raster.tiles_x, 0)));
+  }
   frame.row_worker = balance_rows(weights, frame.workers);
+  for (const int32_t r : empty_rows) frame.row_worker[size_t(r)] = kUnownedRow;
+  frame.unowned_rows = std::move(empty_rows);
 }
 
 // Phase 3 (several workers): which tile rows each block of small triangles may reach, measured
@@ -262,7 +280,7 @@ void measure_all_block_rows(FastFrame& frame) {
   std::vector<int32_t> reach(tasks.size() * (tiles_y + 1), 0);
   std::vector<ClippedTable> clipped(tasks.size());  // the tasks' clipped triangles (clipped_pieces.hpp)
   std::atomic<size_t> next{0};
-  std::atomic<bool> bad_index{false};
+  std::atomic<bool> bad_index{false}, any_row{false};
   worker_pool(frame.workers).run([&](uint32_t) {
     for (size_t i = next++; i < tasks.size(); i = next++) {
       const RowTask& task = tasks[i];
@@ -271,13 +289,14 @@ void measure_all_block_rows(FastFrame& frame) {
         continue;
       }
       clip_block_triangles(frame, task.draw, task.begin, task.end, clipped[i]);  // narrows kBlockAnyRow
-      count_block_rows(frame.draws[task.draw].block_rows + task.begin, task.end - task.begin, tiles_y,
-                       reach.data() + i * (tiles_y + 1));
+      if (count_block_rows(frame.draws[task.draw].block_rows + task.begin, task.end - task.begin, tiles_y,
+                           reach.data() + i * (tiles_y + 1)))
+        any_row = true;
     }
   });
   if (bad_index) check_lavapipe_profile_support(*frame.scene);
   for (size_t i = 0; i < tasks.size(); ++i) append_clipped(frame.draws[tasks[i].draw].clipped, clipped[i]);
-  balance_tile_rows(frame, reach, tasks.size());
+  balance_tile_rows(frame, reach, tasks.size(), !any_row);
 }
 
 // Phase 4: every worker walks every draw into its own tile rows.
