@@ -1,4 +1,4 @@
-// rastercmp soak --seed S --count N [--family F]... [--out DIR] [--no-reduce]
+// rastercmp soak --seed S --count N [--family F]... [--out DIR] [--no-reduce] [--every-worker]
 // Random scenes from the scene format's corner cases, compared against the Vulkan device until N
 // primitives have run; each failure is reduced and written to DIR (docs/soak.md).
 // Exit: 0 no failure, 1 failures found, 2 bad input, 3 no Vulkan.
@@ -20,6 +20,7 @@ namespace {
 struct SoakArgs {
   soak::SoakOptions soak;
   bool no_reduce = false;
+  bool every_worker = false;
   RenderOptions options;
 };
 
@@ -27,14 +28,21 @@ int run_soak_command(SoakArgs& args) {
   args.soak.reduce = !args.no_reduce;
   const CompareProfile profile = args.options.profile == "spec" ? CompareProfile::Spec : CompareProfile::Lavapipe;
   make_cpu_options(args.options);  // a bad --method is a usage error before any work
+  if (args.every_worker && args.options.threads < 2)
+    throw UsageError(fmt::format("--every-worker: needs --threads 2 or more (the fast path's workers), got {}",
+                                 args.options.threads));
   for (const std::string& f : args.soak.families)
     if (!soak::is_family(f)) {
       std::string all;
       for (const std::string& n : soak::family_names()) all += (all.empty() ? "" : ", ") + n;
       throw UsageError(fmt::format("--family {}: unknown family (families: {})", f, all));
     }
-  CaseRunner runner(
-      profile, [&](const Scene& s) { return make_cpu_options(args.options, &s); }, make_vk_options(args.options));
+  const auto cpu_options = [&](const Scene& s) {
+    CpuOptions cpu = make_cpu_options(args.options, &s);
+    cpu.every_worker = args.every_worker;
+    return cpu;
+  };
+  CaseRunner runner(profile, cpu_options, make_vk_options(args.options));
   fmt::print("soak: seed {}, {} primitives, device {}\n", args.soak.seed, args.soak.primitives, runner.device().name);
   const soak::SoakSummary summary = soak::run_soak(runner, args.soak, [](const soak::SoakFailure& f) {
     fmt::print("FAIL {} ({}): {} primitives", f.name, f.kind, f.primitives);
@@ -59,6 +67,8 @@ void add_soak_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--family", args->soak.families, "only this family (repeatable); default: all");
   cmd->add_option("--out", args->soak.out_dir, "write every failing scene (original and reduced) into this folder");
   cmd->add_flag("--no-reduce", args->no_reduce, "write failing scenes without reducing them");
+  cmd->add_flag("--every-worker", args->every_worker,
+                "fast path: all --threads workers even on the small scenes one worker would take alone");
   add_render_options(*cmd, args->options);
   cmd->callback([args, &exit_code] { exit_code = run_soak_command(*args); });
 }

@@ -362,8 +362,9 @@ TEST(CliErrors, WithoutTheVulkanLoaderCpuWorksAndVulkanCommandsExitThree) {
 }  // namespace
 }  // namespace rastercmp::cli_test
 
-// soak and reduce (docs/soak.md): an unknown family, a zero or missing budget and a missing scene
-// are bad input (exit 2) with a message that names the problem, before any device work.
+// soak and reduce (docs/soak.md): an unknown family, a zero or missing budget, --every-worker
+// without the fast path's workers and a missing scene are bad input (exit 2) with a message that
+// names the problem, before any device work.
 TEST(CliErrors, SoakAndReduceRejectBadInput) {
   using namespace rastercmp::cli_test;
   struct Case {
@@ -375,6 +376,8 @@ TEST(CliErrors, SoakAndReduceRejectBadInput) {
       {{"soak", "--count", "0"}, "--count"},
       {{"soak", "--count", "ten"}, "--count"},
       {{"soak"}, "--count"},
+      {{"soak", "--count", "10", "--every-worker"}, "--every-worker: needs --threads 2 or more"},
+      {{"soak", "--count", "10", "--every-worker", "--threads", "1"}, "--every-worker: needs --threads 2 or more"},
       {{"reduce", "/nonexistent/rastercmp_no_scene.json"}, "rastercmp_no_scene.json"},
   };
   for (const Case& c : cases) {

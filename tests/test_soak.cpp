@@ -184,6 +184,27 @@ TEST_F(SoakLavapipe, FixedSeedSliceMatchesLavapipe) {
   std::printf("%s", format_summary(summary).c_str());
 }
 
+// The same slice's start on the fast path at 2 threads with --every-worker's switch: the small
+// scenes go through the phases that share a frame between workers (block rows, row balance,
+// clipped pieces, unowned rows), which the default soak, one worker a small scene, never reaches.
+TEST_F(SoakLavapipe, FastPathEveryWorkerSliceMatchesLavapipe) {
+  const auto cpu_options = [](const Scene&) {
+    CpuOptions cpu;
+    cpu.threads = 2;
+    cpu.every_worker = true;
+    return cpu;
+  };
+  CaseRunner fast(CompareProfile::Lavapipe, cpu_options, VkOptions{"", true});
+  SoakOptions o;
+  o.seed = 2;
+  o.primitives = kSlicePrimitives / 2;
+  o.reduce = false;
+  const SoakSummary summary = run_soak(fast, o);
+  EXPECT_GE(summary.primitives, o.primitives);
+  for (const SoakFailure& f : summary.failures) ADD_FAILURE() << f.name << ": " << f.kind;
+  std::printf("%s", format_summary(summary).c_str());
+}
+
 // The broken model is found, and every failure is reduced to a handful of primitives that still
 // fail the same way when loaded back from the written file.
 TEST_F(SoakLavapipe, BrokenModelIsFoundAndReduced) {

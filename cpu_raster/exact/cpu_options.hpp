@@ -21,6 +21,10 @@ struct CpuOptions {
   uint32_t sub_pixel_bits = 8;
   // 0: the exact scalar path alone. >= 1: the fast path with this many threads (bit-identical).
   uint32_t threads = 0;
+  // The fast path: every one of `threads` workers even on a scene one worker would take alone
+  // (a few thousand primitives), so that the soak's small scenes go through the phases that share
+  // a frame between workers (rastercmp soak --every-worker). The bytes are the same either way.
+  bool every_worker = false;
   // Method overrides (--method STAGE=NAME); empty: the exact pipeline.
   std::vector<MethodChoice> methods;
   // Measurement knob, exact path only (threads = 0): the work the scene's state makes unnecessary

@@ -344,12 +344,20 @@ RenderResult render_fast(const Scene& scene, const CpuOptions& options, const Fa
 
 }  // namespace cpu::fast
 
+namespace {
+cpu::fast::FastConfig config_of(const CpuOptions& options) {
+  cpu::fast::FastConfig config;
+  config.every_thread = options.every_worker;
+  return config;
+}
+}  // namespace
+
 RenderResult render_cpu_fast(const Scene& scene, const CpuOptions& options) {
-  return cpu::fast::render_fast(scene, options, cpu::fast::FastConfig{});
+  return cpu::fast::render_fast(scene, options, config_of(options));
 }
 
 void render_cpu_fast_into(const Scene& scene, const CpuOptions& options, RenderResult& result) {
-  cpu::fast::render_fast_into(scene, options, cpu::fast::FastConfig{}, result);
+  cpu::fast::render_fast_into(scene, options, config_of(options), result);
 }
 
 }  // namespace rastercmp
