@@ -70,12 +70,16 @@ void run_triangle(const DrawContext& dc, const AssembledPrimitive& prim, std::ve
                                        state.cull_mode, state.front_face))
     return;
   const bool depth_clip = state.depth_clip_enabled();
+  const auto exact_pieces = [&] {
+    const ClippedTriangles clipped = clip_triangle(triangle, dc.frame->viewport);
+    return std::vector<std::array<ClipVertex, 3>>(clipped.triangles.begin(), clipped.triangles.end());
+  };
   const std::vector<std::array<ClipVertex, 3>> pieces =
       dc.methods->clip == ClipMethod::SutherlandHodgman
           ? clip_triangle_sutherland_hodgman(triangle, dc.frame->viewport, depth_clip)
       : dc.methods->clip == ClipMethod::WeilerAtherton
           ? clip_triangle_weiler_atherton(triangle, dc.frame->viewport, depth_clip)
-          : clip_triangle(triangle, dc.frame->viewport).triangles;
+          : exact_pieces();
   const uint32_t owner = encode_owner(dc.setup.draw_index, prim.primitive_index);
   for (size_t k = 0; k < pieces.size(); ++k) {
     const std::array<ClipVertex, 3>& piece = pieces[k];

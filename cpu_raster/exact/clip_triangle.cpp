@@ -10,9 +10,6 @@
 namespace rastercmp::cpu {
 namespace {
 
-// draw_pipe_clip.c MAX_CLIPPED_VERTICES with 8 user planes: a longer polygon is dropped.
-constexpr size_t kMaxClippedVertices = 2 * (6 + 8) + 1;
-
 // A polygon of at most kMaxClippedVertices vertices, held in place: a clipped triangle took
 // several allocations per plane with a std::vector (docs/performance.md, session 15). The
 // vertices past `count` are left unformed (a default-constructed array cost as much as the
@@ -85,10 +82,9 @@ const Polygon* clip_polygon(const std::array<ClipVertex, 3>& triangle, uint32_t 
   return polygon;
 }
 
-// emit_poly with flatshade_first: (p0, p[k-1], p[k]).
+// emit_poly with flatshade_first: (p0, p[k-1], p[k]); at most kMaxClippedVertices - 2 triangles.
 void emit_fan(const Polygon& polygon, ClippedTriangles& result) {
-  if (polygon.size() >= 3) result.triangles.reserve(polygon.size() - 2);
-  for (size_t k = 2; k < polygon.size(); ++k) result.triangles.push_back({polygon[0], polygon[k - 1], polygon[k]});
+  for (size_t k = 2; k < polygon.size(); ++k) result.triangles.push_back(polygon[0], polygon[k - 1], polygon[k]);
 }
 
 }  // namespace

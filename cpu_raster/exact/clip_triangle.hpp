@@ -6,12 +6,55 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
-#include <vector>
+#include <new>
+#include <type_traits>
 
 #include "cpu_raster/exact/clip_vertex.hpp"
 
 namespace rastercmp::cpu {
+
+// draw_pipe_clip.c MAX_CLIPPED_VERTICES with 8 user planes: a longer polygon is dropped.
+inline constexpr size_t kMaxClippedVertices = 2 * (6 + 8) + 1;
+
+// The triangles a clipped polygon is fanned into, held in place: at most kMaxClippedVertices - 2
+// (the polygon's limit). A std::vector cost an allocation per triangle through the clipper: every
+// triangle of the exact path, and each clipped one of the fast path (perspective: 762 allocations
+// a render, 152 without them; docs/performance.md, session 16). The triangles past size() are
+// left unformed (a default-constructed array would be cleared first).
+class ClippedFan {
+ public:
+  using Triangle = std::array<ClipVertex, 3>;
+  static constexpr size_t kCapacity = kMaxClippedVertices - 2;
+
+  ClippedFan() {}
+  ClippedFan(const ClippedFan& other) { *this = other; }
+  ClippedFan& operator=(const ClippedFan& other) {
+    count_ = 0;
+    for (const Triangle& t : other) push_back(t);
+    return *this;
+  }
+
+  size_t size() const { return count_; }
+  bool empty() const { return count_ == 0; }
+  const Triangle& operator[](size_t i) const { return items_[i]; }
+  const Triangle* begin() const { return items_; }
+  const Triangle* end() const { return items_ + count_; }
+  // The clipper keeps to kCapacity. Built in place from its corners (a Triangle formed first and
+  // then copied stalled on the copy's loads).
+  void push_back(const Triangle& t) { new (&items_[count_++]) Triangle(t); }
+  void push_back(const ClipVertex& a, const ClipVertex& b, const ClipVertex& c) {
+    new (&items_[count_++]) Triangle{a, b, c};
+  }
+
+ private:
+  union {
+    Triangle items_[kCapacity];
+  };
+  size_t count_ = 0;
+};
+static_assert(std::is_trivially_copyable_v<ClippedFan::Triangle> && std::is_trivially_destructible_v<ClipVertex>);
 
 enum class ClipFate {
   Inside,     // OR of the masks is 0: passed unchanged
@@ -22,7 +65,7 @@ enum class ClipFate {
 
 struct ClippedTriangles {
   ClipFate fate = ClipFate::Inside;
-  std::vector<std::array<ClipVertex, 3>> triangles;  // what goes on to set-up, in emit order
+  ClippedFan triangles;  // what goes on to set-up, in emit order
 };
 
 // `inside_planes`: planes to clip a triangle wholly inside against anyway (WorkSkips::
