@@ -54,6 +54,24 @@ TEST(CpuClip, TriangleCrossingOnePlaneBecomesAFanOfTwo) {
   EXPECT_EQ(c.triangles[0][2].window.y, 3.0f);
 }
 
+// The fan lives inside ClippedTriangles (ClippedFan): a copy, an assignment over a longer fan and
+// a self-assignment keep exactly the triangles, in order.
+TEST(CpuClip, ClippedTrianglesCopyTheirFan) {
+  const ClippedTriangles two = clip_triangle({vertex(0, 0), vertex(2, 0), vertex(0, 1)}, kViewport);
+  ClippedTriangles copy = two;
+  ASSERT_EQ(copy.triangles.size(), 2u);
+  expect_position(copy.triangles[1][1], 1, 0.5f);
+  ClippedTriangles three = clip_triangle({vertex(0, 0), vertex(2, 0), vertex(0, 2)}, kViewport);
+  ASSERT_EQ(three.triangles.size(), 3u);
+  three = two;
+  ASSERT_EQ(three.triangles.size(), 2u);
+  expect_position(three.triangles[0][2], 1, 0.5f);
+  const ClippedTriangles& same = three;
+  three = same;
+  ASSERT_EQ(three.triangles.size(), 2u);
+  expect_position(three.triangles[1][2], 0, 1);
+}
+
 // (0,0) (2,0) (0,2): x <= w first gives v0, (1,0), (1,1), v2. Then y <= w: (1,1) lies on the
 // plane (dp 0, kept), going out to v2 starts from (1,1) with t = 0 (a second new vertex at the
 // same place), coming back in from v2 to v0 gives (0,1). Five vertices, three triangles, the

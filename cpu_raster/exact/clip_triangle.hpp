@@ -31,6 +31,7 @@ class ClippedFan {
   ClippedFan() {}
   ClippedFan(const ClippedFan& other) { *this = other; }
   ClippedFan& operator=(const ClippedFan& other) {
+    if (&other == this) return *this;
     count_ = 0;
     for (const Triangle& t : other) push_back(t);
     return *this;
