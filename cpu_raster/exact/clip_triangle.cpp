@@ -1,8 +1,6 @@
 #include "cpu_raster/exact/clip_triangle.hpp"
 
 #include <bit>
-#include <new>
-#include <type_traits>
 
 #include "cpu_raster/exact/clip_test.hpp"
 #include "cpu_raster/exact/float_ops.hpp"
@@ -10,22 +8,8 @@
 namespace rastercmp::cpu {
 namespace {
 
-// A polygon of at most kMaxClippedVertices vertices, held in place: a clipped triangle took
-// several allocations per plane with a std::vector (docs/performance.md, session 15). The
-// vertices past `count` are left unformed (a default-constructed array cost as much as the
-// allocations).
-struct Polygon {
-  union {
-    ClipVertex vertices[kMaxClippedVertices];
-  };
-  size_t count = 0;
-
-  Polygon() {}
-  size_t size() const { return count; }
-  const ClipVertex& operator[](size_t i) const { return vertices[i]; }
-  void push_back(const ClipVertex& v) { new (&vertices[count++]) ClipVertex(v); }  // callers check the count
-};
-static_assert(std::is_trivially_destructible_v<ClipVertex>);
+// A polygon of at most kMaxClippedVertices vertices, held in place (session 15).
+using Polygon = InPlaceList<ClipVertex, kMaxClippedVertices>;
 
 // The intersection of edge (prev -> vert) with the plane, from the vertex nearer the plane (§1.6).
 ClipVertex intersect(const ClipVertex& prev, float dp_prev, const ClipVertex& vert, float dp,
@@ -41,7 +25,7 @@ ClipVertex intersect(const ClipVertex& prev, float dp_prev, const ClipVertex& ve
 
 // One Sutherland–Hodgman pass from `in` into `out`; false when the primitive must be discarded.
 bool clip_against(const Polygon& in, uint32_t plane, const ViewportTransform& viewport, Polygon& out) {
-  out.count = 0;
+  out.clear();
   const ClipVertex* prev = &in[0];
   float dp_prev = plane_distance(prev->pos_clip, plane);
   if (is_inf_or_nan(dp_prev)) return false;
@@ -84,7 +68,7 @@ const Polygon* clip_polygon(const std::array<ClipVertex, 3>& triangle, uint32_t 
 
 // emit_poly with flatshade_first: (p0, p[k-1], p[k]); at most kMaxClippedVertices - 2 triangles.
 void emit_fan(const Polygon& polygon, ClippedTriangles& result) {
-  for (size_t k = 2; k < polygon.size(); ++k) result.triangles.push_back(polygon[0], polygon[k - 1], polygon[k]);
+  for (size_t k = 2; k < polygon.size(); ++k) result.triangles.emplace_back(polygon[0], polygon[k - 1], polygon[k]);
 }
 
 }  // namespace

@@ -18,44 +18,49 @@ namespace rastercmp::cpu {
 // draw_pipe_clip.c MAX_CLIPPED_VERTICES with 8 user planes: a longer polygon is dropped.
 inline constexpr size_t kMaxClippedVertices = 2 * (6 + 8) + 1;
 
-// The triangles a clipped polygon is fanned into, held in place: at most kMaxClippedVertices - 2
-// (the polygon's limit). A std::vector cost an allocation per triangle through the clipper: every
-// triangle of the exact path, and each clipped one of the fast path (perspective: 762 allocations
-// a render, 152 without them; docs/performance.md, session 16). The triangles past size() are
-// left unformed (a default-constructed array would be cleared first).
-class ClippedFan {
+// At most N values held in place, for the clipper's polygons and fans: a std::vector cost
+// allocations for every triangle through the clipper (several per plane for the polygon, session
+// 15; one for the fan: every triangle of the exact path, each clipped one of the fast path, whose
+// perspective render made 762 allocations and now 152; docs/performance.md, session 16). The
+// values past size() are left unformed (a default-constructed array would be cleared first); the
+// clipper keeps to N.
+template <class T, size_t N>
+class InPlaceList {
  public:
-  using Triangle = std::array<ClipVertex, 3>;
-  static constexpr size_t kCapacity = kMaxClippedVertices - 2;
+  static_assert(std::is_trivially_copyable_v<T> && std::is_trivially_destructible_v<T>);
 
-  ClippedFan() {}
-  ClippedFan(const ClippedFan& other) { *this = other; }
-  ClippedFan& operator=(const ClippedFan& other) {
+  InPlaceList() {}
+  InPlaceList(const InPlaceList& other) { *this = other; }
+  InPlaceList& operator=(const InPlaceList& other) {
     if (&other == this) return *this;
     count_ = 0;
-    for (const Triangle& t : other) push_back(t);
+    for (const T& v : other) push_back(v);
     return *this;
   }
 
   size_t size() const { return count_; }
   bool empty() const { return count_ == 0; }
-  const Triangle& operator[](size_t i) const { return items_[i]; }
-  const Triangle* begin() const { return items_; }
-  const Triangle* end() const { return items_ + count_; }
-  // The clipper keeps to kCapacity. Built in place from its corners (a Triangle formed first and
-  // then copied stalled on the copy's loads).
-  void push_back(const Triangle& t) { new (&items_[count_++]) Triangle(t); }
-  void push_back(const ClipVertex& a, const ClipVertex& b, const ClipVertex& c) {
-    new (&items_[count_++]) Triangle{a, b, c};
+  const T& operator[](size_t i) const { return items_[i]; }
+  const T* begin() const { return items_; }
+  const T* end() const { return items_ + count_; }
+  void clear() { count_ = 0; }
+  void push_back(const T& v) { new (&items_[count_++]) T(v); }
+  // Built in place from its parts: a T formed first and then copied stalled on the copy's loads
+  // (a fan's triangle from three polygon vertices: 64 ns a clipped triangle against 90).
+  template <class... Parts>
+  void emplace_back(const Parts&... parts) {
+    new (&items_[count_++]) T{parts...};
   }
 
  private:
   union {
-    Triangle items_[kCapacity];
+    T items_[N];
   };
   size_t count_ = 0;
 };
-static_assert(std::is_trivially_copyable_v<ClippedFan::Triangle> && std::is_trivially_destructible_v<ClipVertex>);
+
+// The triangles a clipped polygon is fanned into: at most the polygon's limit less two.
+using ClippedFan = InPlaceList<std::array<ClipVertex, 3>, kMaxClippedVertices - 2>;
 
 enum class ClipFate {
   Inside,     // OR of the masks is 0: passed unchanged

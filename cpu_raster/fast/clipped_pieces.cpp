@@ -87,9 +87,9 @@ struct LaneRows {
 };
 
 template <Topology T, bool Indexed>
-void clip_blocks(const FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end, ClippedTable& table) {
+void clip_blocks(FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end, ClippedTable& table) {
   const Draw& draw = frame.scene->draws[d];
-  const FastDraw& fd = frame.draws[d];
+  FastDraw& fd = frame.draws[d];
   const uint32_t count = primitive_count(draw);
   SmallBlock block;
   for (uint32_t b = begin; b < end; ++b) {
@@ -127,7 +127,7 @@ void clip_blocks(const FastFrame& frame, uint32_t d, uint32_t begin, uint32_t en
 
 }  // namespace
 
-void clip_block_triangles(const FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end, ClippedTable& table) {
+void clip_block_triangles(FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end, ClippedTable& table) {
   const Draw& draw = frame.scene->draws[d];
   const bool indexed = !draw.indices.empty();
   switch (draw.topology) {

@@ -32,9 +32,9 @@ FastTriangle fast_triangle_of(const RasterPrimitive& p, const PixelRect& region)
 // fast kernels never read (edge and scissor planes, visit rectangle; perspective's 614 clipped
 // triangles took 194 ns of set-up each for their 1.5 pieces, session 14): the same snap (§2.2),
 // area, cull and swap (§2.3), bounding box and region test (§2.5), depth plane and offset (§3.2,
-// §4.3), in the same operations. Full: the piece needs
-// what only setup_triangle does (a corner that fails to snap, or an edge past llvmpipe's direct
-// range: its wrapping set-up, §7.5), so call that. Dropped: setup_triangle would not rasterize it.
+// §4.3), in the same operations. Full: the piece needs what only setup_triangle does (a corner
+// that fails to snap, or an edge past llvmpipe's direct range: its wrapping set-up, §7.5), so
+// call that. Dropped: setup_triangle would not rasterize it.
 enum class PieceSetup { Drawn, Dropped, Full };
 PieceSetup setup_piece(const std::array<WindowVertex, 3>& window, uint32_t owner, const SetupContext& context,
                        const PixelRect& region, FastTriangle& out);
@@ -80,7 +80,7 @@ void for_each_piece(const FastFrame& frame, uint32_t d, uint32_t primitive, uint
 // the tile rows its lanes reach: its other lanes' corners' rows and its pieces' rectangles' rows
 // (kBlockAnyRow only where a piece takes llvmpipe's wrapping set-up). Before, every worker set up
 // perspective's 201 such blocks, and a worker whose rows none reached walked 11 us longer.
-void clip_block_triangles(const FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end, ClippedTable& table);
+void clip_block_triangles(FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end, ClippedTable& table);
 
 // Appends `part` (the next primitives of the same draw) to `table`.
 void append_clipped(ClippedTable& table, const ClippedTable& part);

@@ -82,7 +82,8 @@ void clear_tile_row(int32_t tile_y, const FrameRaster& frame);
 // all of r when its rows span the whole width.
 void clear_rect(const PixelRect& r, const FrameRaster& frame);
 
-// p[0, count) = value, with 32-byte stores (tile_kernel_avx2.cpp).
+// p[0, count) = value: `rep stosl` for runs of 4096 words and more, 32-byte stores below
+// (tile_kernel_avx2.cpp).
 // Call only when host_has_avx2_fma().
 void fill_words_avx2(uint32_t* p, size_t count, uint32_t value);
 
