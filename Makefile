@@ -13,7 +13,7 @@ SAN_ENV := ASAN_OPTIONS=detect_leaks=1:halt_on_error=1:abort_on_error=0:exitcode
   UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1:exitcode=$(SAN_EXITCODE) \
   LSAN_OPTIONS=suppressions=$(CURDIR)/tests/sanitizer/lsan.supp:print_suppressions=0:exitcode=$(SAN_EXITCODE)
 
-.PHONY: setup build conformance test test-unit build-san test-sanitize fuzz bench soak properties clean
+.PHONY: setup build build-app conformance test test-unit build-san test-sanitize fuzz bench soak properties clean
 
 setup:
 	@bash scripts/setup.sh
@@ -22,8 +22,13 @@ build: setup
 	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release >/dev/null
 	@cmake --build $(BUILD) -j $(JOBS)
 
+# The command-line tool alone (no tests, no benchmarks): what the main job needs.
+build-app: setup
+	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release >/dev/null
+	@cmake --build $(BUILD) -j $(JOBS) --target rastercmp
+
 # The main job: the built-in suite, CPU against lavapipe, with its report.
-conformance: build
+conformance: build-app
 	@$(BUILD)/app/rastercmp conformance --suite scenes --baseline scenes/methods/expected-failures.txt \
 	  --out $(OUT)/conformance
 
@@ -73,14 +78,14 @@ fuzz-%:
 	  || { tail -n 40 $(BUILD_SAN)/fuzz_$*.log; exit 1; }; \
 	  grep -E "stat::number_of_executed_units" $(BUILD_SAN)/fuzz_$*.log
 
-bench: build
+bench: build-app
 	@$(BUILD)/app/rastercmp bench
 
 # The random differential soak (docs/soak.md): 10^6 primitives of generated scenes against lavapipe,
 # every failure reduced and written to $(OUT)/soak. Exit 1 when anything failed.
 SOAK_SEED  ?= 1
 SOAK_COUNT ?= 1000000
-soak: build
+soak: build-app
 	@$(BUILD)/app/rastercmp soak --seed $(SOAK_SEED) --count $(SOAK_COUNT) --out $(OUT)/soak
 
 # rapidcheck's properties with fresh seeds (ctest fixes one, tests/CMakeLists.txt): PROPERTY_RUNS

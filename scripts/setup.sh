@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages rastercmp needs; does nothing when all are present.
+# Installs the Debian packages rastercmp needs (Debian 12, 13 and unstable: unversioned names only,
+# so each release brings its own default LLVM and clang); does nothing when all are present.
 # Runs as root, or through sudo when not root. Exit 3 when packages are missing and cannot be installed.
 set -euo pipefail
 
 packages=(
-  cmake make g++ clang libclang-rt-14-dev llvm-14 pkg-config
+  cmake make g++ clang libclang-rt-dev llvm pkg-config
   libgtest-dev libgmock-dev libbenchmark-dev librapidcheck-dev
   libvulkan-dev mesa-vulkan-drivers vulkan-tools vulkan-validationlayers
   glslang-dev glslang-tools spirv-tools libglm-dev

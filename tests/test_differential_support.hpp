@@ -18,6 +18,7 @@
 #include "model/errors.hpp"
 #include "model/render_result.hpp"
 #include "model/scene.hpp"
+#include "tests/test_vulkan_support.hpp"
 #include "vk_reference/vk_reference.hpp"
 
 namespace rastercmp::differential {
@@ -39,21 +40,8 @@ class Random {
   std::mt19937 engine_;
 };
 
-// Empty when a Vulkan device exists, else why not.
-inline std::string missing_vulkan_reason() {
-  try {
-    return list_vulkan_devices().empty() ? "no Vulkan device" : "";
-  } catch (const EnvironmentError& e) {
-    return e.what();
-  }
-}
-
-// One renderer with the validation layer for the whole binary.
-inline VulkanRenderer& shared_renderer() {
-  static std::unique_ptr<VulkanRenderer> renderer =
-      std::make_unique<VulkanRenderer>(VkOptions{.device = "", .validate = true});
-  return *renderer;
-}
+using test::missing_vulkan_reason;
+using test::shared_renderer;
 
 struct DiffFigures {
   uint64_t scenes = 0, primitives = 0, covered_samples = 0, coverage_mismatches = 0, depth_mismatches = 0;

@@ -11,25 +11,17 @@
 #include "model/host.hpp"
 #include "model/scene_io.hpp"
 #include "tests/test_fast_support.hpp"
+#include "tests/test_vulkan_support.hpp"
 #include "vk_reference/vk_reference.hpp"
 
 namespace rastercmp {
 namespace {
 
-std::string missing_vulkan_reason() {
-  try {
-    return list_vulkan_devices().empty() ? "no Vulkan device" : "";
-  } catch (const EnvironmentError& e) {
-    return e.what();
-  }
-}
+using test::missing_vulkan_reason;
 
 class FastAgainstLavapipe : public ::testing::Test {
  protected:
-  static VulkanRenderer& renderer() {
-    static std::unique_ptr<VulkanRenderer> shared = std::make_unique<VulkanRenderer>(VkOptions{"", true});
-    return *shared;
-  }
+  static VulkanRenderer& renderer() { return test::shared_renderer(); }
 
   void SetUp() override {
     const std::string reason = missing_vulkan_reason();

@@ -16,6 +16,7 @@
 #include "model/errors.hpp"
 #include "model/scene_io.hpp"
 #include "test_spec_support.hpp"
+#include "tests/test_vulkan_support.hpp"
 #include "vk_reference/vk_reference.hpp"
 
 namespace rastercmp {
@@ -59,13 +60,7 @@ const KnownDeviation* known_deviation(const std::string& scene_name) {
   return nullptr;
 }
 
-std::string missing_vulkan_reason() {
-  try {
-    return list_vulkan_devices().empty() ? "no Vulkan device" : "";
-  } catch (const EnvironmentError& e) {
-    return e.what();
-  }
-}
+using test::missing_vulkan_reason;
 
 std::vector<fs::path> builtin_scene_files() {
   std::vector<fs::path> files;

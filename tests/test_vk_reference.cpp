@@ -16,26 +16,14 @@
 #include "model/host.hpp"
 #include "model/render_result.hpp"
 #include "model/scene.hpp"
+#include "tests/test_vulkan_support.hpp"
 #include "vk_reference/vk_reference.hpp"
 
 namespace rastercmp {
 namespace {
 
-// One renderer (instance + device + pipeline cache) for the whole binary, as the CLI uses it.
-VulkanRenderer& shared_renderer() {
-  static std::unique_ptr<VulkanRenderer> renderer =
-      std::make_unique<VulkanRenderer>(VkOptions{.device = "", .validate = true});
-  return *renderer;
-}
-
-// Empty when a Vulkan device exists, else why not.
-std::string missing_vulkan_reason() {
-  try {
-    return list_vulkan_devices().empty() ? "no Vulkan device" : "";
-  } catch (const EnvironmentError& e) {
-    return e.what();
-  }
-}
+using test::missing_vulkan_reason;
+using test::shared_renderer;
 
 // Window (framebuffer) coordinates → clip position for the default viewport of a w x h scene.
 // Exact for power-of-two sizes: 2*x/w - 1 and the driver's (w/2)*x_c + w/2 round nowhere.
