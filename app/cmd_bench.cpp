@@ -179,6 +179,8 @@ std::vector<std::unique_ptr<VulkanRenderer::Prepared>> warm_up(BenchCase& c, Vul
 CaseReport run_case(BenchCase& c, VulkanRenderer& vulkan, const BenchArgs& args, bool fma) {
   CpuOptions exact_options, fast_options;
   exact_options.fma = fast_options.fma = fma;
+  // The release of the driver timed beside it, so that the renders can be held to its bytes.
+  exact_options.lavapipe = fast_options.lavapipe = lavapipe_release_for_driver(vulkan.device().driver_info).release;
   fast_options.threads = args.threads;
   CaseReport report;
   report.name = c.name;

@@ -56,6 +56,7 @@ void print_case(const CaseRecord& record) {
 std::string compare_json(const RunInfo& info, const std::vector<CaseRecord>& records) {
   nlohmann::ordered_json j;
   j["profile"] = info.profile;
+  if (!info.profile_warning.empty()) j["profile_warning"] = info.profile_warning;
   j["device"] = info.device;
   j["driver"] = info.driver;
   j["fma"] = info.fma;
@@ -101,6 +102,8 @@ int run_compare(const CompareArgs& args) {
   CaseRunner& runner = *runner_ptr;
   RunInfo info = run_info_for(runner);
   info.complete = true;  // the report is written once every scene is compared
+  fmt::print("{} ({}): {} profile\n", info.device, info.driver, info.profile);
+  if (!info.profile_warning.empty()) fmt::print(stderr, "warning: {}\n", info.profile_warning);
   std::vector<CaseRecord> records;
   for (const SuiteCase& c : cases) {
     const CaseResult result = from_capture ? runner.run_capture(c.scene, args.capture_dir) : runner.run(c.scene);

@@ -40,6 +40,7 @@ Renders render_on_device(const Scene& scene, const RenderOptions& options) {
   Renders r{make_cpu_options(options, &scene), {}, {}};
   VulkanRenderer vulkan(make_vk_options(options));
   if (vulkan.device().sub_pixel_precision_bits != 0) r.cpu.sub_pixel_bits = vulkan.device().sub_pixel_precision_bits;
+  pick_lavapipe_release(r.cpu, vulkan.device().driver_info);
   r.expected = render_cpu(scene, r.cpu);
   r.actual = vulkan.render(scene);
   for (const std::string& message : vulkan.validation_messages()) fmt::print(stderr, "validation: {}\n", message);

@@ -24,10 +24,11 @@ struct RenderArgs {
 
 int run_render(const RenderArgs& args) {
   const Scene scene = load_checked_scene(args.scene_path);
-  const CpuOptions cpu_options = make_cpu_options(args.options, &scene);  // a bad --method fails here
+  CpuOptions cpu_options = make_cpu_options(args.options, &scene);  // a bad --method fails here
   OutputFolder out(args.out_dir);  // before any work: an unwritable folder is a usage error
   RenderResult result;
   if (args.backend == "cpu") {
+    pick_installed_lavapipe_release(cpu_options);
     result = render_cpu(scene, cpu_options);
   } else {
     VulkanRenderer renderer(make_vk_options(args.options));

@@ -43,7 +43,11 @@ int run_soak_command(SoakArgs& args) {
     return cpu;
   };
   CaseRunner runner(profile, cpu_options, make_vk_options(args.options));
-  fmt::print("soak: seed {}, {} primitives, device {}\n", args.soak.seed, args.soak.primitives, runner.device().name);
+  fmt::print("soak: seed {}, {} primitives, device {} ({}), {} profile\n", args.soak.seed, args.soak.primitives,
+             runner.device().name, runner.device().driver_info, runner.profile_name());
+  if (const std::string warning = runner.lavapipe_choice().warning;
+      !warning.empty() && profile == CompareProfile::Lavapipe && runner.cpu_options(Scene{}).lavapipe_from_driver)
+    fmt::print(stderr, "warning: {}\n", warning);
   const soak::SoakSummary summary = soak::run_soak(runner, args.soak, [](const soak::SoakFailure& f) {
     fmt::print("FAIL {} ({}): {} primitives", f.name, f.kind, f.primitives);
     if (f.reduce_runs > 0) fmt::print(" reduced to {} in {} runs", f.reduced_primitives, f.reduce_runs);

@@ -1,5 +1,7 @@
 #include "app/options.hpp"
 
+#include <fmt/core.h>
+
 #include <filesystem>
 
 #include "model/errors.hpp"
@@ -21,8 +23,16 @@ std::string method_option_help() {
 }  // namespace
 
 void add_render_options(CLI::App& cmd, RenderOptions& o) {
-  cmd.add_option("--profile", o.profile, "CPU profile: lavapipe (bit-exact) or spec (must/may/must-not)")
-      ->check(CLI::IsMember({"lavapipe", "spec"}));
+  std::vector<std::string> profiles = {"lavapipe", "spec"};
+  std::string releases;
+  for (const LavapipeRelease& r : lavapipe_releases()) {
+    profiles.push_back(r.profile);
+    releases += std::string(releases.empty() ? "" : ", ") + r.profile;
+  }
+  cmd.add_option("--profile", o.profile,
+                 "CPU profile: lavapipe (bit-exact, the modelled release the driver is), " + releases +
+                     " (bit-exact, that release), or spec (must/may/must-not)")
+      ->check(CLI::IsMember(profiles));
   cmd.add_option("--fma", o.fma, "CPU fused multiply-add: auto (as lavapipe on this host), on, off")
       ->check(CLI::IsMember({"auto", "on", "off"}));
   cmd.add_option("--method", o.methods, method_option_help());
@@ -35,6 +45,12 @@ void add_render_options(CLI::App& cmd, RenderOptions& o) {
 CpuOptions make_cpu_options(const RenderOptions& o, const Scene* scene) {
   CpuOptions cpu;
   cpu.profile = o.profile == "spec" ? CpuProfile::Spec : CpuProfile::Lavapipe;
+  if (const LavapipeRelease* forced = find_lavapipe_release(o.profile)) {
+    cpu.lavapipe = forced;
+  } else {
+    cpu.lavapipe = &default_lavapipe_release();  // until the driver compared with says which
+    cpu.lavapipe_from_driver = true;
+  }
   cpu.fma = o.fma == "auto" ? lavapipe_fuses_on_this_host() : o.fma == "on";
   cpu.threads = o.threads;
   if (scene) cpu.methods = scene->methods;
@@ -104,5 +120,24 @@ Scene load_checked_scene(const std::string& path) {
 }
 
 VkOptions make_vk_options(const RenderOptions& o) { return VkOptions{o.device, o.validate}; }
+
+void pick_lavapipe_release(CpuOptions& cpu, const std::string& driver_info) {
+  if (!cpu.lavapipe_from_driver) return;
+  const LavapipeReleaseChoice choice = lavapipe_release_for_driver(driver_info);
+  cpu.lavapipe = choice.release;
+  if (!choice.warning.empty()) fmt::print(stderr, "warning: {}\n", choice.warning);
+}
+
+void pick_installed_lavapipe_release(CpuOptions& cpu) {
+  if (!cpu.lavapipe_from_driver || cpu.profile != CpuProfile::Lavapipe) return;
+  try {
+    for (const DeviceInfo& device : list_vulkan_devices())
+      if (device.is_lavapipe) return pick_lavapipe_release(cpu, device.driver_info);
+  } catch (const EnvironmentError&) {
+  }
+  cpu.lavapipe = &default_lavapipe_release();
+  fmt::print(stderr, "warning: no lavapipe driver found to pick the release from: rendering as {} (--profile {} "
+             "names one)\n", cpu.lavapipe->profile, cpu.lavapipe->profile);
+}
 
 }  // namespace rastercmp::app

@@ -27,6 +27,13 @@ void add_render_options(CLI::App& cmd, RenderOptions& options);
 CpuOptions make_cpu_options(const RenderOptions& options, const Scene* scene = nullptr);
 VkOptions make_vk_options(const RenderOptions& options);
 
+// --profile lavapipe: the modelled release `driver_info` (a lavapipe device's) is, printing to
+// stderr why it is another when that release is not modelled. Nothing for a forced release.
+void pick_lavapipe_release(CpuOptions& cpu, const std::string& driver_info);
+// The same for a command without a device of its own (render --backend cpu): the installed
+// lavapipe's release, or the newest modelled one, with a warning, when none can be found.
+void pick_installed_lavapipe_release(CpuOptions& cpu);
+
 // Throws InputError (the file, $.methods.STAGE, the accepted names) for a scene "methods" entry
 // the CPU renderer does not know.
 void check_scene_methods(const Scene& scene, const std::string& path);

@@ -44,12 +44,24 @@ std::string capture_dir_for(const std::string& root, const std::string& suite_di
 CpuOptions CaseRunner::cpu_options(const Scene& scene) const {
   CpuOptions options = cpu_options_ ? cpu_options_(scene) : CpuOptions{};
   options.profile = profile_ == CompareProfile::Spec ? CpuProfile::Spec : CpuProfile::Lavapipe;
+  if (options.lavapipe_from_driver) options.lavapipe = lavapipe_choice().release;
   // The spec profile judges the device with its own sub-pixel grid (CTS: subPixelPrecisionBits).
   if (from_captures_ && capture_limits_)
     options.sub_pixel_bits = capture_limits_->sub_pixel_precision_bits;
   else if (device_.sub_pixel_precision_bits != 0)
     options.sub_pixel_bits = device_.sub_pixel_precision_bits;
   return options;
+}
+
+LavapipeReleaseChoice CaseRunner::lavapipe_choice() const {
+  // A capture names its driver; a worker judging captures has no device of its own.
+  const std::string& driver = from_captures_ && !capture_driver_.empty() ? capture_driver_ : device_.driver_info;
+  return lavapipe_release_for_driver(driver);
+}
+
+std::string CaseRunner::profile_name() const {
+  if (profile_ == CompareProfile::Spec) return "spec";
+  return cpu_options(Scene{}).lavapipe->profile;
 }
 
 VulkanRenderer& CaseRunner::renderer() {
@@ -155,6 +167,7 @@ CaseResult CaseRunner::run_capture(const Scene& scene, const std::string& captur
     }
   }
   capture_limits_ = capture ? capture->limits.value_or(DeviceLimits{}) : DeviceLimits{};
+  capture_driver_ = capture ? capture->driver : "";
   result.cpu_method = cpu_method_label(cpu_options(scene));
   try {
     result.expected = render_cpu(scene, cpu_options(scene));

@@ -47,6 +47,11 @@ class CaseRunner {
   // The CPU options used for a scene: the caller's, with the profile and the device's
   // sub-pixel precision applied.
   CpuOptions cpu_options(const Scene& scene) const;
+  // The lavapipe release the device's driver (or the last capture's) is judged by, and why not
+  // its own when it is not modelled (compare/run_info.hpp carries the warning to every output).
+  LavapipeReleaseChoice lavapipe_choice() const;
+  // "spec", or the lavapipe release the CPU reproduces: "lavapipe-25.0".
+  std::string profile_name() const;
 
   CaseResult run(const Scene& scene);
   // The same verdicts for the render recorded in `capture_dir` (a runner made from a capture).
@@ -64,6 +69,7 @@ class CaseRunner {
   DeviceInfo device_;
   bool from_captures_ = false;
   std::optional<DeviceLimits> capture_limits_;  // the last capture's, for cpu_options
+  std::string capture_driver_;                  // the last capture's driver info, for cpu_options
 };
 
 // The device a capture folder's render.json names (name, driver, limits; sub-pixel bits 8 when

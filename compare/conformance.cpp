@@ -148,7 +148,10 @@ size_t batch_size_for(size_t cases, unsigned jobs) {
 
 RunInfo run_info_for(const CaseRunner& runner) {
   RunInfo info;
-  info.profile = to_string(runner.profile());
+  info.profile = runner.profile_name();
+  const CpuOptions options = runner.cpu_options(Scene{});
+  if (runner.profile() == CompareProfile::Lavapipe && options.lavapipe_from_driver)
+    info.profile_warning = runner.lavapipe_choice().warning;
   info.device = runner.device().name;
   info.driver = runner.device().driver_info;
   info.fma = runner.cpu_options(Scene{}).fma;
@@ -314,7 +317,9 @@ ConformanceResult run_conformance(const ConformanceOptions& options, const Confo
 void print_conformance_summary(std::FILE* out, const ConformanceResult& result, const std::string& out_dir,
                                const std::string& resume_hint) {
   const auto& records = result.records;
-  fmt::print(out, "\n{} case(s) run on {} ({} profile)\n", records.size(), result.info.device, result.info.profile);
+  fmt::print(out, "\n{} case(s) run on {} ({}; {} profile)\n", records.size(), result.info.device, result.info.driver,
+             result.info.profile);
+  if (!result.info.profile_warning.empty()) fmt::print(out, "warning: {}\n", result.info.profile_warning);
   auto statuses = count_statuses(records);
   if (!result.info.not_run.empty()) statuses["Missing"] += result.info.not_run.size();
   for (const auto& [status, count] : statuses) fmt::print(out, "  {:<32} {}\n", status, count);

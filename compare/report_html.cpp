@@ -95,6 +95,7 @@ data case_row(const CaseRecord& c) {
 data page_data(const RunInfo& info, const std::vector<CaseRecord>& records) {
   data page;
   page.set("profile", info.profile);
+  page.set("profile_warning", info.profile_warning);
   page.set("device", info.device);
   page.set("driver", info.driver);
   page.set("fma", info.fma ? "yes" : "no");

@@ -12,13 +12,14 @@
 namespace rastercmp {
 
 struct RunInfo {
-  std::string profile;               // "lavapipe" or "spec"
+  std::string profile;               // "spec" or the lavapipe release reproduced: "lavapipe-25.0"
   std::string device;                // Vulkan device name
   std::string driver;                // driver info, e.g. "Mesa 22.3.6 (LLVM 15.0.6)"
   bool fma = false;                  // whether the CPU model fused (lavapipe on this host)
   bool complete = false;             // set only by the last write of a run that finished
   bool interrupted = false;          // stopped by a signal (SIGINT, SIGTERM, SIGHUP)
   std::vector<std::string> not_run;  // cases without a result yet (or ever), in run order
+  std::string profile_warning;       // why the driver is judged by another release than its own
   bool operator==(const RunInfo&) const = default;
 };
 

@@ -62,6 +62,7 @@ RunInfo run_info_from_json(const nlohmann::json& j, const std::string& file) {
   RunInfo info;
   try {
     info.profile = j.at("profile").get<std::string>();
+    info.profile_warning = j.value("profile_warning", std::string());
     info.device = j.at("device").get<std::string>();
     info.driver = j.at("driver").get<std::string>();
     info.fma = j.at("fma").get<bool>();
@@ -155,6 +156,7 @@ std::string junit_xml(const RunInfo& info, const std::vector<CaseRecord>& record
 std::string summary_json(const RunInfo& info, const std::vector<CaseRecord>& records) {
   nlohmann::ordered_json j;
   j["profile"] = info.profile;
+  if (!info.profile_warning.empty()) j["profile_warning"] = info.profile_warning;
   j["device"] = info.device;
   j["driver"] = info.driver;
   j["fma"] = info.fma;

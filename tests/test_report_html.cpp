@@ -258,7 +258,7 @@ std::vector<CaseRecord> write_report(const fs::path& report, const fs::path& sce
   records[1].status = "Crash";  // as the runner names a case whose process died
   records[3].explains.push_back({{2, 2, 0}, "cases/rastercmp.t.fail/explain_2_2_s0.txt"});
   write_text_file_atomic((report / records[3].explains[0].file).string(), "rastercmp.t.fail: pixel (2, 2) <history>\n");
-  write_report_html(report.string(), RunInfo{"lavapipe", "llvmpipe <test>", "Mesa", true, true, false, {}}, records);
+  write_report_html(report.string(), RunInfo{"lavapipe", "llvmpipe <test>", "Mesa", true, true, false, {}, ""}, records);
   return records;
 }
 
@@ -300,7 +300,7 @@ TEST(ReportHtml, IsDeterministicAndEscapesText) {
   const ScratchDir scratch_page("page");
   const fs::path report = scratch_page.path() / "report";
   const auto records = write_report(report, scratch_page.path() / "scenes");
-  const RunInfo info{"lavapipe", "llvmpipe <test>", "Mesa", true, true, false, {}};
+  const RunInfo info{"lavapipe", "llvmpipe <test>", "Mesa", true, true, false, {}, ""};
   const std::string html = render_report_html(info, records);
   EXPECT_EQ(html, render_report_html(info, records));
   EXPECT_EQ(html, read_file(report / "index.html"));

@@ -92,7 +92,7 @@ std::vector<CaseRecord> sample_records() {
 }
 
 RunInfo sample_info() {
-  return RunInfo{"lavapipe", "llvmpipe (LLVM 15.0.6, 256 bits)", "Mesa 22.3.6", true, true, false, {}};
+  return RunInfo{"lavapipe", "llvmpipe (LLVM 15.0.6, 256 bits)", "Mesa 22.3.6", true, true, false, {}, ""};
 }
 
 // A fresh folder for one test, removed when the test ends (one per process: ctest runs tests in

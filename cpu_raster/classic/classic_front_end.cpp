@@ -120,7 +120,9 @@ void run_line(const DrawContext& dc, const AssembledPrimitive& prim, std::vector
     if (!result.visible) return;
     clipped = result.line;
   } else {
-    const ClippedLine result = clip_line(line, dc.frame->viewport);
+    const LineXyClip xy =
+        dc.frame->rules.has(LavapipeRule::LineGuardBand) ? LineXyClip::GuardBand : LineXyClip::Clip;  // §8.2
+    const ClippedLine result = clip_line(line, dc.frame->viewport, 0, xy);
     if (result.fate == ClipFate::Outside || result.fate == ClipFate::Discarded) return;
     clipped = result.line;
   }

@@ -24,7 +24,7 @@ void check_classic_support(const Scene& scene, const CpuOptions& options) {
 }
 
 std::string describe_methods(const CpuOptions& options) {
-  std::string text = std::string(kLavapipeProfileDevice) + ", methods";
+  std::string text = lavapipe_profile_device(options) + ", methods";
   for (const MethodChoice& choice : options.methods) text += " " + choice.stage + "=" + choice.name;
   return text;
 }
@@ -61,7 +61,8 @@ ClassicFrame prepare_classic_frame(const Scene& scene, const CpuOptions& options
   ClassicFrame prepared{parse_classic_methods(options.methods), {}, {}};
   cpu::check_lavapipe_profile_support(scene);
   check_classic_support(scene, options);
-  prepared.frame = cpu::make_frame_context(scene, options.fma, prepared.chosen.setup);
+  prepared.frame = cpu::make_frame_context(scene, options.fma, prepared.chosen.setup, cpu::WorkSkips{},
+                                            options.lavapipe->rules());
   for (uint32_t d = 0; d < scene.draws.size(); ++d)
     collect_primitives(prepared.frame, d, prepared.chosen, prepared.primitives);
   return prepared;

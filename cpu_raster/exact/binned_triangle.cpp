@@ -5,6 +5,7 @@
 #include <cstdlib>
 
 #include "cpu_raster/exact/raster_primitive.hpp"
+#include "model/errors.hpp"
 
 namespace rastercmp::cpu {
 namespace {
@@ -89,6 +90,55 @@ bool in_direct_range(const std::array<FixedPoint, 3>& v) {
     if (dx + dy >= (int64_t(1) << 23)) return false;
   }
   return true;
+}
+
+void refuse_if_overflow_reworked(const LavapipeRules& rules) {
+  if (rules.has(LavapipeRule::RasterizerOverflowReworked))
+    throw NotSupportedError(
+        "a primitive past llvmpipe's 32-bit set-up range (an edge of 32768 px or more, or a coordinate beyond "
+        "131072 px): Mesa 26.2 changed how that arithmetic wraps, which this profile does not model "
+        "(docs/lavapipe-rules.md §8.7)");
+}
+
+bool quad_in_direct_range(const std::array<FixedPoint, 4>& corners) {
+  for (size_t i = 0; i < 4; ++i) {
+    const size_t j = (i + 1) % 4;
+    const int64_t dx = std::abs(corners[i].x.wide() - corners[j].x.wide());
+    const int64_t dy = std::abs(corners[i].y.wide() - corners[j].y.wide());
+    if (dx + dy >= (int64_t(1) << 23)) return false;
+  }
+  return true;
+}
+
+std::array<LpPlane, 4> lp_line_planes(const std::array<FixedPoint, 4>& corners) {
+  std::array<LpPlane, 4> planes;
+  for (size_t i = 0; i < 4; ++i) {
+    const size_t j = (i + 1) % 4;
+    const int32_t dcdx = sub32(corners[i].y.raw, corners[j].y.raw), dcdy = sub32(corners[i].x.raw, corners[j].x.raw);
+    LpPlane& p = planes[i];
+    p.c = sub64(int64_t(dcdx) * corners[i].x.raw, int64_t(dcdy) * corners[i].y.raw);
+    if (dcdx < 0 || (dcdx == 0 && dcdy > 0)) p.c = add64(p.c, 1);  // top-left (bottom_edge_rule 0)
+    p.dcdx = int32_t(uint32_t(dcdx) * uint32_t(kFixedOne));         // "dcdx *= FIXED_ONE"
+    p.dcdy = int32_t(uint32_t(dcdy) * uint32_t(kFixedOne));
+    int32_t eo = 0;
+    if (p.dcdx < 0) eo = sub32(eo, p.dcdx);
+    if (p.dcdy > 0) eo = add32(eo, p.dcdy);
+    p.eo = uint32_t(eo);
+  }
+  return planes;
+}
+
+PixelRect wrapped_line_bbox(const std::array<FixedPoint, 4>& corners) {
+  int32_t min_x = corners[0].x.raw, max_x = min_x, min_y = corners[0].y.raw, max_y = min_y;
+  for (size_t i = 1; i < 4; ++i) {
+    min_x = std::min(min_x, corners[i].x.raw);
+    max_x = std::max(max_x, corners[i].x.raw);
+    min_y = std::min(min_y, corners[i].y.raw);
+    max_y = std::max(max_y, corners[i].y.raw);
+  }
+  constexpr int32_t kRoundUp = kFixedOne - 1;
+  return PixelRect{add32(min_x, kRoundUp) >> kFixedOrder, add32(min_y, kRoundUp) >> kFixedOrder,
+                   sub32(add32(max_x, kRoundUp) >> kFixedOrder, 1), sub32(add32(max_y, kRoundUp) >> kFixedOrder, 1)};
 }
 
 std::array<LpPlane, 3> lp_edge_planes(const std::array<FixedPoint, 3>& v) {

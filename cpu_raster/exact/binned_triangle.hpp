@@ -25,6 +25,7 @@
 #include "cpu_raster/exact/draw_region.hpp"
 #include "cpu_raster/exact/edge_plane.hpp"
 #include "cpu_raster/exact/fixed_point.hpp"
+#include "model/lavapipe_release.hpp"
 
 namespace rastercmp::cpu {
 
@@ -55,8 +56,22 @@ PixelRect wrapped_triangle_bbox(const std::array<FixedPoint, 3>& v);
 // |dcdx| + |dcdy| < 2^23 fixed units (dcdx << 8 and eo fit in int32, and a tile's c >> 8 in int32).
 bool in_direct_range(const std::array<FixedPoint, 3>& v);
 
+// Mesa 26.2 reworked this arithmetic (dcdx and dcdy no longer shifted, binning in exact int64,
+// other wrap points: lavapipe-rules §8.7); the profile does not model it and refuses a primitive
+// that needs it (NotSupportedError naming the rule) rather than guess.
+void refuse_if_overflow_reworked(const LavapipeRules& rules);
+
 // The three edge planes of do_triangle_ccw for a counter-clockwise triangle.
 std::array<LpPlane, 3> lp_edge_planes(const std::array<FixedPoint, 3>& v);
+
+// Lines past the direct range (Mesa 23.2 and later draw lines unclipped in x and y, so their quads
+// reach it; rules §8.2): the same test over the quad's four edges, try_setup_line's four planes
+// (int32 differences, c in int64, c += 1 when dcdx < 0 or (dcdx == 0 and dcdy > 0), then dcdx,
+// dcdy *= 256 in int32 and eo from the shifted values' signs) and its box, x0 = (min + 255) >> 8,
+// x1 = ((max + 255) >> 8) - 1, in int32.
+bool quad_in_direct_range(const std::array<FixedPoint, 4>& corners);
+std::array<LpPlane, 4> lp_line_planes(const std::array<FixedPoint, 4>& corners);
+PixelRect wrapped_line_bbox(const std::array<FixedPoint, 4>& corners);
 
 // lp_setup_add_scissor_planes' plane for one of draw_region.hpp's scissor EdgePlanes.
 LpPlane lp_scissor_plane(const EdgePlane& scissor);

@@ -1,6 +1,7 @@
 #include "cpu_raster/exact/clip_line.hpp"
 
 #include <bit>
+#include <cmath>
 
 #include "cpu_raster/exact/clip_test.hpp"
 #include "cpu_raster/exact/float_ops.hpp"
@@ -31,7 +32,7 @@ bool accumulate_t(const ClipVertex& v0, const ClipVertex& v1, uint32_t mask, flo
 }  // namespace
 
 ClippedLine clip_line(const std::array<ClipVertex, 2>& line, const ViewportTransform& viewport,
-                      uint32_t inside_planes) {
+                      uint32_t inside_planes, LineXyClip xy) {
   ClippedLine result;
   result.line = line;
   const ClipVertex& v0 = line[0];
@@ -44,13 +45,28 @@ ClippedLine clip_line(const std::array<ClipVertex, 2>& line, const ViewportTrans
     if (inside_planes != 0) accumulate_t(v0, v1, inside_planes, result.t0, result.t1, discarded);
     return result;
   }
-  if ((v0.clip_mask & v1.clip_mask) != 0) {
+  uint32_t clip_planes = union_mask;
+  if (xy == LineXyClip::GuardBand) {  // draw_pipe_clip.c clip_line_guard_xy (§8.2)
+    constexpr uint32_t kXyPlanes = (1u << kClipRight) | (1u << kClipLeft) | (1u << kClipBottom) | (1u << kClipTop);
+    clip_planes = union_mask & ~kXyPlanes;
+    // Outside in x or y only, even both endpoints beyond the same edge (a wide line reaches in):
+    // drawn whole, with the JIT window coordinates.
+    if (clip_planes == 0) {
+      const bool behind = v0.pos_clip.w <= 0.0f && v1.pos_clip.w <= 0.0f;
+      const bool nan = std::isnan(v0.pos_clip.x) || std::isnan(v0.pos_clip.y) || std::isnan(v1.pos_clip.x) ||
+                       std::isnan(v1.pos_clip.y);
+      result.fate = behind || nan ? ClipFate::Outside : ClipFate::Inside;
+      return result;
+    }
+  }
+  if ((v0.clip_mask & v1.clip_mask) != 0) {  // any shared bit, x and y included
     result.fate = ClipFate::Outside;
     return result;
   }
   float& t0 = result.t0;
   float& t1 = result.t1;
-  if (!accumulate_t(v0, v1, union_mask, t0, t1, discarded)) {
+  // An endpoint outside any plane is replaced below, even when only x or y put it there (t = 0).
+  if (!accumulate_t(v0, v1, clip_planes, t0, t1, discarded)) {
     result.fate = discarded ? ClipFate::Discarded : ClipFate::Outside;  // Outside: clipped away entirely
     return result;
   }

@@ -16,9 +16,15 @@ struct ClippedLine {
   float t0 = 0, t1 = 0;              // the clip parameters of line[0] and line[1] (0: not moved)
 };
 
+// How lines meet the x and y planes (lavapipe-rules §8.2): clipped like every plane (Mesa 22.3), or
+// with Mesa 23.2's clip_line_guard_xy: a line outside only in x or y is drawn whole (dropped when
+// both w <= 0 or an x or y is NaN), the draw region cutting it in set-up; one outside a depth plane
+// too is clipped against the depth planes alone, unless both endpoints share an outside bit.
+enum class LineXyClip { Clip, GuardBand };
+
 // `inside_planes`: as for clip_triangle, planes to run a line wholly inside through anyway; it comes
 // back unchanged (t0 = t1 = 0; no endpoint has a mask bit, so none is replaced).
 ClippedLine clip_line(const std::array<ClipVertex, 2>& line, const ViewportTransform& viewport,
-                      uint32_t inside_planes = 0);
+                      uint32_t inside_planes = 0, LineXyClip xy = LineXyClip::Clip);
 
 }  // namespace rastercmp::cpu

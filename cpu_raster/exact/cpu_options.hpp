@@ -4,9 +4,11 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "cpu_raster/exact/work_skips.hpp"
+#include "model/lavapipe_release.hpp"
 #include "model/scene.hpp"
 
 namespace rastercmp {
@@ -17,6 +19,13 @@ struct CpuOptions {
   CpuProfile profile = CpuProfile::Lavapipe;
   // Model lavapipe's llvm.fmuladd as fused (true on FMA hosts; see lavapipe_fuses_on_this_host()).
   bool fma = true;
+  // The lavapipe release the Lavapipe profile (and the spec profile's estimate) reproduces
+  // (model/lavapipe_release.hpp). The oldest unless the caller picks one: the commands pick the
+  // release of the driver they compare with (lavapipe_from_driver) or the one --profile names.
+  const LavapipeRelease* lavapipe = &lavapipe_releases().front();
+  // Whether `lavapipe` is to follow the driver the render is compared with (--profile lavapipe)
+  // rather than stay as forced (--profile lavapipe-X.Y).
+  bool lavapipe_from_driver = false;
   // Sub-pixel precision of the device being judged (spec profile); lavapipe: 8.
   uint32_t sub_pixel_bits = 8;
   // 0: the exact scalar path alone. >= 1: the fast path with this many threads (bit-identical).
@@ -32,7 +41,9 @@ struct CpuOptions {
   cpu::WorkSkips skips;
 };
 
-// RenderResult::device of the Lavapipe profile.
-inline constexpr const char* kLavapipeProfileDevice = "cpu lavapipe-22.3.6 profile";
+// RenderResult::device of the Lavapipe profile: "cpu lavapipe-22.3.6 profile".
+inline std::string lavapipe_profile_device(const CpuOptions& options) {
+  return "cpu lavapipe-" + options.lavapipe->version.to_string() + " profile";
+}
 
 }  // namespace rastercmp

@@ -18,10 +18,14 @@ float one_over_area(const std::array<WindowVertex, 3>& v) {
 }
 
 // The UNORM r, lp_make_setup_variant_key: (float)(constant * mrd * 2) in double,
-// util_get_depth_format_mrd: mrd = 1 / (2^n - 1).
-float unorm_constant_term(float constant, DepthFormat format) {
-  const double mrd = depth_format_info(format).mrd;  // docs/lavapipe-rules.md §4.3
-  return static_cast<float>(double(constant) * mrd * 2);
+// util_get_depth_format_mrd: mrd = 1 / (2^n - 1) (docs/lavapipe-rules.md §4.3). From Mesa 25.2 the
+// constant is first moved half a unit away from 0 in float, and not doubled (§8.4).
+float unorm_constant_term(float constant, DepthFormat format, UnormBiasUnits units) {
+  const double mrd = depth_format_info(format).mrd;
+  if (units == UnormBiasUnits::TwiceMrd) return static_cast<float>(double(constant) * mrd * 2);
+  if (constant == 0.0f) return constant;                                       // "offset_units != 0"
+  const float adjusted = constant + (constant > 0.0f ? 0.5f : -0.5f);          // a float add
+  return static_cast<float>(double(adjusted) * mrd);
 }
 
 // D32_SFLOAT r = 2^(e - n) from the largest |z| of the vertices, by the exponent-bit trick
@@ -55,11 +59,12 @@ DepthPlane triangle_depth_plane(const std::array<WindowVertex, 3>& v, float pixe
 }
 
 DepthOffset triangle_depth_offset(const std::array<WindowVertex, 3>& v, const DepthBias& bias_in, DepthFormat format,
-                                  bool skip_when_off) {
+                                  bool skip_when_off, UnormBiasUnits unorm_units) {
   DepthOffset o;
   const DepthFormatInfo info = depth_format_info(format);
   const bool float_depth = info.encoding == DepthEncoding::Float;
-  const float units_in = float_depth ? bias_in.constant_factor : unorm_constant_term(bias_in.constant_factor, format);
+  const float units_in =
+      float_depth ? bias_in.constant_factor : unorm_constant_term(bias_in.constant_factor, format, unorm_units);
   const bool applied = bias_in.enable && !(units_in == 0.0f && bias_in.slope_factor == 0.0f);
   if (!applied && skip_when_off) return o;  // o = 0.0f exactly
   // Not applied (the skip is off): the same arithmetic with zero factors; its result is not used.
@@ -79,7 +84,7 @@ DepthOffset triangle_depth_offset(const std::array<WindowVertex, 3>& v, const De
     o.r = float_format_r(v, info.mantissa_bits);
     o.constant_term = o.r * units;
   } else {
-    o.r = unorm_constant_term(1.0f, format);
+    o.r = static_cast<float>(depth_format_info(format).mrd * (unorm_units == UnormBiasUnits::TwiceMrd ? 2 : 1));
     o.constant_term = units;
   }
   o.unclamped = o.constant_term + mult;

@@ -10,6 +10,7 @@
 #include <array>
 
 #include "cpu_raster/exact/viewport.hpp"
+#include "model/lavapipe_release.hpp"
 #include "model/scene.hpp"
 
 namespace rastercmp::cpu {
@@ -33,10 +34,20 @@ struct DepthOffset {
 // pixel_center: 0.5 single sample, 0 multisample (key->multisample).
 DepthPlane triangle_depth_plane(const std::array<WindowVertex, 3>& v, float pixel_center);
 
+// How a UNORM format's constant factor c becomes depth units (lp_make_setup_variant_key):
+// (float)(c * mrd * 2) in double (§4.3), or from Mesa 25.2 (float)(fl(c ± 0.5f) * mrd) for c != 0
+// (§8.4). Float formats take c as it is in both.
+enum class UnormBiasUnits { TwiceMrd, HalfUnitRounding };
+
 // skip_when_off: the bias is off or both factors are 0, so o = 0 and no term is formed. false
 // (WorkSkips::bias_only_when_enabled off): the terms are formed with zero factors, o stays 0.
 DepthOffset triangle_depth_offset(const std::array<WindowVertex, 3>& v, const DepthBias& bias, DepthFormat format,
-                                  bool skip_when_off = true);
+                                  bool skip_when_off = true, UnormBiasUnits units = UnormBiasUnits::TwiceMrd);
+
+// The release's UnormBiasUnits (model/lavapipe_release.hpp).
+inline UnormBiasUnits unorm_bias_units(const LavapipeRules& rules) {
+  return rules.has(LavapipeRule::UnormBiasHalfUnit) ? UnormBiasUnits::HalfUnitRounding : UnormBiasUnits::TwiceMrd;
+}
 
 // Line plane from the original first/second endpoint; dx_eff/dy_eff are dx, dy for rectangular
 // lines and the "wide line" weighted ones for Bresenham lines (§5.5).

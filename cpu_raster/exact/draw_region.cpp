@@ -46,9 +46,17 @@ PixelRect draw_region(const Scene& scene, const ViewportTransform& viewport) {
   return possible_intersection(viewport_pixel_rect(viewport), region);  // point_tri_clip: always
 }
 
-void add_scissor_planes(const PixelRect& bbox, const PixelRect& r, bool multisample, PlaneSet& planes) {
-  const int64_t adj = multisample ? 127 : 0;  // the MSAA quirk of §2.5
+void add_scissor_planes(const PixelRect& bbox, const PixelRect& r, bool multisample, PlaneSet& planes,
+                        bool sample_exact) {
   const int64_t one = kFixedOne;
+  if (sample_exact) {  // left and top inclusive, right and bottom exclusive pixel edges (§8.6)
+    if (bbox.x0 < r.x0) planes.push(EdgePlane{-(r.x0 * one) + 1, -1, 0, false});     // left
+    if (bbox.x1 > r.x1) planes.push(EdgePlane{(int64_t(r.x1) + 1) * one, 1, 0, false});  // right
+    if (bbox.y0 < r.y0) planes.push(EdgePlane{-(r.y0 * one) + 1, 0, 1, false});      // top
+    if (bbox.y1 > r.y1) planes.push(EdgePlane{(int64_t(r.y1) + 1) * one, 0, -1, false});  // bottom
+    return;
+  }
+  const int64_t adj = multisample ? 127 : 0;  // the MSAA quirk of §2.5
   if (bbox.x0 < r.x0) planes.push(EdgePlane{-((r.x0 - 1) * one + adj), -1, 0, false});  // left
   if (bbox.x1 > r.x1) planes.push(EdgePlane{r.x1 * one + 127 + adj, 1, 0, false});      // right
   if (bbox.y0 < r.y0) planes.push(EdgePlane{-((r.y0 - 1) * one + adj), 0, 1, false});   // top

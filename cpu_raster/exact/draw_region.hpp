@@ -36,8 +36,11 @@ PixelRect viewport_pixel_rect(const ViewportTransform& viewport);
 // lp_setup.c try_update_scene_state: framebuffer ∩ scissor ∩ vpwh.
 PixelRect draw_region(const Scene& scene, const ViewportTransform& viewport);
 
-// lp_setup_add_scissor_planes, for the region edges `bbox` crosses; appended to `planes`.
-void add_scissor_planes(const PixelRect& bbox, const PixelRect& region, bool multisample, PlaneSet& planes);
+// lp_setup_add_scissor_planes, for the region edges `bbox` crosses; appended to `planes`. With
+// `sample_exact` (Mesa 25.3, lavapipe-rules §8.6) a sample passes iff its pixel is in the region,
+// at every sample count; without, the 4x planes let samples of the column and row before it pass.
+void add_scissor_planes(const PixelRect& bbox, const PixelRect& region, bool multisample, PlaneSet& planes,
+                        bool sample_exact = false);
 
 // The pixels lavapipe's rasterizer evaluates for a primitive with this (non-negative-clamped)
 // bounding box: its 64x64 tile, or the tiles of the box's part inside the region.

@@ -146,7 +146,8 @@ std::vector<FragmentRecord> explain_pixel(const Scene& scene, const CpuOptions& 
                      " sample(s)");
   const cpu::DenormalsFlushed ftz_daz;  // as render_exact (rules §7.10)
   const cpu::FrameContext frame =
-      cpu::make_frame_context(scene, options.fma, cpu::parse_setup_methods(options.methods));
+      cpu::make_frame_context(scene, options.fma, cpu::parse_setup_methods(options.methods), cpu::WorkSkips{},
+                              options.lavapipe->rules());
   Probe probe{int32_t(x), int32_t(y), sample, scene.samples, {}};
   probe.stored.fill(scene.has_depth() ? cpu::clear_depth_raw(scene.depth_format, scene.depth_clear) : 0);
   std::vector<FragmentRecord> records;

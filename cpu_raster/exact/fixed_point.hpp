@@ -103,4 +103,12 @@ std::optional<int32_t> util_iround(float value);
 // lp_setup_line.c subpixel_snap(a) = util_iround(256 * a), in fixed units.
 std::optional<int32_t> line_snap(float value_pixels);
 
+// Mesa 23.1 and later: util_iround is (int)lrintf(f) (rules §8.1): f rounded to the nearest
+// integer, ties to even, as a 64-bit cvtss2si, then its low 32 bits. NaN, Inf and |f| >= 2^63 give
+// 0x8000000000000000, whose low 32 bits are 0. Defined for every float.
+int32_t util_iround_lrintf(float value);
+
+// subpixel_snap with that util_iround: the low 32 bits of rne(fl(256 * a)).
+int32_t line_snap_lrintf(float value_pixels);
+
 }  // namespace rastercmp::cpu

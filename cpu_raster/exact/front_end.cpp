@@ -62,7 +62,8 @@ void run_line(const FrameContext& frame, const SetupContext& ctx, const Draw& dr
   std::array<ClipVertex, 2> line;
   for (size_t k = 0; k < 2; ++k)
     line[k] = make_clip_vertex(draw.positions_clip[prim.position[k]], frame.viewport, depth_clip, frame.fma);
-  const ClippedLine clipped = clip_line(line, frame.viewport, inside_planes(frame, depth_clip));
+  const LineXyClip xy = frame.rules.has(LavapipeRule::LineGuardBand) ? LineXyClip::GuardBand : LineXyClip::Clip;
+  const ClippedLine clipped = clip_line(line, frame.viewport, inside_planes(frame, depth_clip), xy);
   outcome.clip_fate = clipped.fate;
   if (clipped.fate == ClipFate::Outside || clipped.fate == ClipFate::Discarded) {
     sink(outcome);
@@ -82,7 +83,8 @@ void run_line(const FrameContext& frame, const SetupContext& ctx, const Draw& dr
 
 }  // namespace
 
-FrameContext make_frame_context(const Scene& scene, bool fma, const SetupMethods& methods, const WorkSkips& skips) {
+FrameContext make_frame_context(const Scene& scene, bool fma, const SetupMethods& methods, const WorkSkips& skips,
+                                const LavapipeRules& rules) {
   FrameContext frame;
   frame.scene = &scene;
   frame.viewport = make_viewport_transform(scene.effective_viewport());
@@ -92,6 +94,7 @@ FrameContext make_frame_context(const Scene& scene, bool fma, const SetupMethods
   frame.fma = fma;
   frame.methods = methods;
   frame.skips = skips;
+  frame.rules = rules;
   return frame;
 }
 
@@ -103,6 +106,7 @@ SetupContext make_setup_context(const FrameContext& frame, uint32_t draw_index) 
   ctx.fma = frame.fma;
   ctx.methods = frame.methods;
   ctx.skips = frame.skips;
+  ctx.rules = frame.rules;
   ctx.depth_format = frame.scene->depth_format;
   ctx.state = &frame.scene->draws[draw_index].state;
   ctx.draw_index = draw_index;

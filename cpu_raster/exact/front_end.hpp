@@ -27,10 +27,11 @@ struct FrameContext {
   bool fma = true;
   SetupMethods methods;
   WorkSkips skips;
+  LavapipeRules rules;  // the modelled release's (model/lavapipe_release.hpp); empty: 22.3.6
 };
 
 FrameContext make_frame_context(const Scene& scene, bool fma, const SetupMethods& methods,
-                                const WorkSkips& skips = WorkSkips{});
+                                const WorkSkips& skips = WorkSkips{}, const LavapipeRules& rules = LavapipeRules{});
 
 struct PrimitiveOutcome {
   uint32_t draw_index = 0;

@@ -38,7 +38,7 @@ SamplePoint sample_point(int32_t px, int32_t py, uint32_t sample, bool per_sampl
 }
 
 bool place_in_region(RasterPrimitive& p, const PixelRect& bbox, const PixelRect& region, const PixelRect& framebuffer,
-                     bool multisample, bool binned) {
+                     bool multisample, bool binned, bool sample_exact_scissor) {
   // u_rect_test_intersection rejects empty rectangles: an empty draw region (a scissor of width or
   // height 0, a viewport rectangle that rounds to no pixel) draws nothing, although the multisample
   // planes would pass samples of the column and row just before it, and so does a line whose
@@ -47,7 +47,7 @@ bool place_in_region(RasterPrimitive& p, const PixelRect& bbox, const PixelRect&
   p.bbox = bbox;
   p.bbox.x0 = std::max(p.bbox.x0, 0);  // "can safely discard negative regions"
   p.bbox.y0 = std::max(p.bbox.y0, 0);
-  add_scissor_planes(p.bbox, region, multisample, p.planes);
+  add_scissor_planes(p.bbox, region, multisample, p.planes, sample_exact_scissor);
   // Samples outside the region are reachable only in the column and row just before it (the
   // multisample scissor quirk, line boxes rounded up); right and bottom are exact (§2.5).
   const PixelRect region_and_quirk{region.x0 - 1, region.y0 - 1, region.x1, region.y1};

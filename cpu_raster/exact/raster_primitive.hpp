@@ -60,6 +60,7 @@ SamplePoint sample_point(int32_t px, int32_t py, uint32_t sample, bool per_sampl
 // visit from the binned area, the framebuffer and the extent of the primitive's vertices (not for a
 // binned triangle, whose wrapping arithmetic may cover samples outside it).
 bool place_in_region(RasterPrimitive& primitive, const PixelRect& bbox, const PixelRect& region,
-                     const PixelRect& framebuffer, bool multisample, bool binned = false);
+                     const PixelRect& framebuffer, bool multisample, bool binned = false,
+                     bool sample_exact_scissor = false);
 
 }  // namespace rastercmp::cpu

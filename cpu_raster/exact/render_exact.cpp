@@ -16,7 +16,8 @@ RenderResult render_exact(const Scene& scene, const CpuOptions& options) {
   cpu::check_lavapipe_profile_support(scene);
   const cpu::DenormalsFlushed ftz_daz;  // draw_vbo and the rasterizer threads (rules §7.10)
   const cpu::FrameContext frame =
-      cpu::make_frame_context(scene, options.fma, cpu::parse_setup_methods(options.methods), options.skips);
+      cpu::make_frame_context(scene, options.fma, cpu::parse_setup_methods(options.methods), options.skips,
+                                options.lavapipe->rules());
   cpu::RenderTargets targets = cpu::make_render_targets(scene);
   for (uint32_t d = 0; d < scene.draws.size(); ++d) {
     const cpu::DepthTestState depth =
@@ -26,7 +27,7 @@ RenderResult render_exact(const Scene& scene, const CpuOptions& options) {
     });
   }
   RenderResult result;
-  cpu::move_into_result(std::move(targets), kLavapipeProfileDevice, options.fma, result);
+  cpu::move_into_result(std::move(targets), lavapipe_profile_device(options), options.fma, result);
   return result;
 }
 

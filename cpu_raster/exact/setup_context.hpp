@@ -5,6 +5,7 @@
 #include "cpu_raster/exact/draw_region.hpp"
 #include "cpu_raster/exact/setup_methods.hpp"
 #include "cpu_raster/exact/work_skips.hpp"
+#include "model/lavapipe_release.hpp"
 #include "model/scene.hpp"
 
 namespace rastercmp::cpu {
@@ -16,6 +17,7 @@ struct SetupContext {
   bool fma = true;           // llvm.fmuladd fused
   SetupMethods methods;
   WorkSkips skips;  // depth and bias work done anyway when off (work_skips.hpp)
+  LavapipeRules rules;  // the modelled release's (model/lavapipe_release.hpp)
   DepthFormat depth_format = DepthFormat::None;
   const RasterState* state = nullptr;  // the draw's state
   uint32_t draw_index = 0;

@@ -111,15 +111,20 @@ TriangleSetup setup_triangle(const std::array<WindowVertex, 3>& window_in, uint3
     raster.vertex_fixed[i] = fixed[i];
     raster.planes.push(binned ? EdgePlane{} : make_edge(fixed[i], fixed[(i + 1) % 3], ctx.methods.tie_break));
   }
-  if (!place_in_region(raster, setup.bbox, ctx.region, ctx.framebuffer, ctx.multisample, binned)) {
+  if (!place_in_region(raster, setup.bbox, ctx.region, ctx.framebuffer, ctx.multisample, binned,
+                       ctx.rules.has(LavapipeRule::NoMsaaRegionLeak))) {
     setup.fate = SetupFate::OutsideRegion;
     return setup;
   }
-  if (binned) raster.binned = bin_placed(raster, ctx.region, ctx.framebuffer, ctx.multisample);
+  if (binned) {
+    refuse_if_overflow_reworked(ctx.rules);
+    raster.binned = bin_placed(raster, ctx.region, ctx.framebuffer, ctx.multisample);
+  }
   if (ctx.depth_plane_wanted()) {  // without an active test only when the depth skip is off
     raster.has_depth = ctx.depth_active();
     raster.depth = triangle_depth_plane(window, pixel_offset);
-    raster.offset = triangle_depth_offset(window, state.depth_bias, ctx.depth_format, ctx.skips.bias_only_when_enabled);
+    raster.offset = triangle_depth_offset(window, state.depth_bias, ctx.depth_format, ctx.skips.bias_only_when_enabled,
+                                          unorm_bias_units(ctx.rules));
   }
   return setup;
 }

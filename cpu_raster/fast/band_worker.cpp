@@ -207,7 +207,9 @@ void BandWorker::triangle(uint32_t d, uint32_t primitive, uint32_t a, uint32_t b
     t.dzdx = plane.dzdx;
     t.dzdy = plane.dzdy;
     if (state.depth_bias.enable)
-      t.offset = triangle_depth_offset(window, state.depth_bias, fd.setup.depth_format).offset;
+      t.offset =
+          triangle_depth_offset(window, state.depth_bias, fd.setup.depth_format, true, unorm_bias_units(fd.setup.rules))
+              .offset;
   }
   submit(t, fd.raster);
 }

@@ -61,7 +61,9 @@ PieceSetup setup_piece(const std::array<WindowVertex, 3>& window_in, uint32_t ow
     out.dzdx = plane.dzdx;
     out.dzdy = plane.dzdy;
     out.offset =
-        triangle_depth_offset(window, state.depth_bias, ctx.depth_format, ctx.skips.bias_only_when_enabled).offset;
+        triangle_depth_offset(window, state.depth_bias, ctx.depth_format, ctx.skips.bias_only_when_enabled,
+                              unorm_bias_units(ctx.rules))
+            .offset;
   }
   out.owner = owner;
   return PieceSetup::Drawn;

@@ -82,7 +82,7 @@ uint32_t worker_count(const Scene& scene, uint32_t threads, const FastConfig& co
 void init_frame(FastFrame& frame, const Scene& scene, const CpuOptions& options, const FastConfig& config,
                 RenderResult& result) {
   frame.scene = &scene;
-  frame.exact = make_frame_context(scene, options.fma, SetupMethods{});
+  frame.exact = make_frame_context(scene, options.fma, SetupMethods{}, WorkSkips{}, options.lavapipe->rules());
   init_targets(frame, scene, result);
   frame.workers = worker_count(scene, options.threads, config);
   frame.draws.resize(scene.draws.size());
@@ -333,7 +333,7 @@ void render_fast_into(const Scene& scene, const CpuOptions& options, const FastC
     measure_all_block_rows(frame);
   }
   run_workers(frame);
-  move_into_result(std::move(frame.targets), kLavapipeProfileDevice, options.fma, result);
+  move_into_result(std::move(frame.targets), lavapipe_profile_device(options), options.fma, result);
 }
 
 RenderResult render_fast(const Scene& scene, const CpuOptions& options, const FastConfig& config) {
