@@ -13,7 +13,7 @@ SAN_ENV := ASAN_OPTIONS=detect_leaks=1:halt_on_error=1:abort_on_error=0:exitcode
   UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1:exitcode=$(SAN_EXITCODE) \
   LSAN_OPTIONS=suppressions=$(CURDIR)/tests/sanitizer/lsan.supp:print_suppressions=0:exitcode=$(SAN_EXITCODE)
 
-.PHONY: setup build build-app conformance test test-unit build-san test-sanitize fuzz bench soak properties clean
+.PHONY: setup build build-app conformance test-debian13 test-unstable test test-unit build-san test-sanitize fuzz bench soak properties clean
 
 setup:
 	@bash scripts/setup.sh
@@ -103,6 +103,15 @@ properties: build
 	  else failed=$$((failed + 1)); echo "properties: $$t failed (run $$run): $$log"; fi; done; done; \
 	  echo "properties: $(PROPERTY_RUNS) runs of $(words $(PROPERTY_TESTS)) binaries, $$failed failed"; \
 	  test $$failed -eq 0
+
+# README's Quick start (make conformance, make test) from a clean clone of HEAD in a minimal Debian 13
+# or Debian unstable root made with debootstrap, on that release's lavapipe (scripts/debian-root.sh:
+# root and Debian's registry needed; docs/contributing.md gives the times).
+test-debian13:
+	@bash scripts/debian-root.sh trixie
+
+test-unstable:
+	@bash scripts/debian-root.sh sid
 
 clean:
 	rm -rf $(BUILD) $(BUILD_SAN) $(OUT)

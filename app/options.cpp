@@ -47,9 +47,9 @@ CpuOptions make_cpu_options(const RenderOptions& o, const Scene* scene) {
   cpu.profile = o.profile == "spec" ? CpuProfile::Spec : CpuProfile::Lavapipe;
   if (const LavapipeRelease* forced = find_lavapipe_release(o.profile)) {
     cpu.lavapipe = forced;
+    cpu.lavapipe_from_driver = false;
   } else {
     cpu.lavapipe = &default_lavapipe_release();  // until the driver compared with says which
-    cpu.lavapipe_from_driver = true;
   }
   cpu.fma = o.fma == "auto" ? lavapipe_fuses_on_this_host() : o.fma == "on";
   cpu.threads = o.threads;
@@ -136,8 +136,10 @@ void pick_installed_lavapipe_release(CpuOptions& cpu) {
   } catch (const EnvironmentError&) {
   }
   cpu.lavapipe = &default_lavapipe_release();
-  fmt::print(stderr, "warning: no lavapipe driver found to pick the release from: rendering as {} (--profile {} "
-             "names one)\n", cpu.lavapipe->profile, cpu.lavapipe->profile);
+  fmt::print(stderr,
+             "warning: no lavapipe driver found to pick the release from: rendering as {} (--profile {} "
+             "names one)\n",
+             cpu.lavapipe->profile, cpu.lavapipe->profile);
 }
 
 }  // namespace rastercmp::app

@@ -11,14 +11,16 @@ using enum LavapipeRule;
 
 // What changed, oldest first (docs/lavapipe-rules.md §8 has the evidence for each row).
 constexpr std::array kRuleChanges = {
-    LavapipeRuleChange{LineRoundHalfToEven, {23, 1, 0}, "util: Implement util_iround with lrintf unconditionally",
-                       "§8.1"},
+    LavapipeRuleChange{
+        LineRoundHalfToEven, {23, 1, 0}, "util: Implement util_iround with lrintf unconditionally", "§8.1"},
     LavapipeRuleChange{LineGuardBand, {23, 2, 0}, "aux/draw: add guardband clipping for lines", "§8.2"},
-    LavapipeRuleChange{BresenhamEndSignTests, {23, 2, 0}, "llvmpipe: fix some corner cases with line rendering",
-                       "§8.3"},
+    LavapipeRuleChange{
+        BresenhamEndSignTests, {23, 2, 0}, "llvmpipe: fix some corner cases with line rendering", "§8.3"},
     LavapipeRuleChange{UnormBiasHalfUnit, {25, 2, 0}, "llvmpipe: Improve depth bias rounding workaround", "§8.4"},
-    LavapipeRuleChange{MsaaLineDepthAtCentre, {25, 3, 0},
-                       "llvmpipe: Fix attribute interpolation setup when rendering lines with msaa", "§8.5"},
+    LavapipeRuleChange{MsaaLineDepthAtCentre,
+                       {25, 3, 0},
+                       "llvmpipe: Fix attribute interpolation setup when rendering lines with msaa",
+                       "§8.5"},
     LavapipeRuleChange{NoMsaaRegionLeak, {25, 3, 0}, "llvmpipe: fix incorrect scissor planes", "§8.6"},
     LavapipeRuleChange{RasterizerOverflowReworked, {26, 2, 0}, "llvmpipe: fix overflow in rasterizer", "§8.7"},
 };

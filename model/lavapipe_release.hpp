@@ -27,12 +27,12 @@ std::optional<MesaVersion> parse_mesa_version(std::string_view driver_info);
 // A behaviour of lavapipe that one release has and an earlier one has not. Each is a rule of
 // docs/lavapipe-rules.md §8; the stage that implements it cites the same section.
 enum class LavapipeRule : uint32_t {
-  LineRoundHalfToEven,      // util_iround is lrintf: line snapping and Bresenham width tie to even (§8.1)
-  LineGuardBand,            // lines clipped against z, w and user planes only, cut by the draw region (§8.2)
-  BresenhamEndSignTests,    // Bresenham ends decided by per-direction sign tests (§8.3)
-  UnormBiasHalfUnit,        // UNORM depth bias constant: fl(c ± 0.5) units, not 2c (§8.4)
-  MsaaLineDepthAtCentre,    // multisampled lines: no half-pixel offset in the depth plane (§8.5)
-  NoMsaaRegionLeak,         // scissor planes exact at every sample count, no 127/256 px leak (§8.6)
+  LineRoundHalfToEven,         // util_iround is lrintf: line snapping and Bresenham width tie to even (§8.1)
+  LineGuardBand,               // lines clipped against z, w and user planes only, cut by the draw region (§8.2)
+  BresenhamEndSignTests,       // Bresenham ends decided by per-direction sign tests (§8.3)
+  UnormBiasHalfUnit,           // UNORM depth bias constant: fl(c ± 0.5) units, not 2c (§8.4)
+  MsaaLineDepthAtCentre,       // multisampled lines: no half-pixel offset in the depth plane (§8.5)
+  NoMsaaRegionLeak,            // scissor planes exact at every sample count, no 127/256 px leak (§8.6)
   RasterizerOverflowReworked,  // llvmpipe's wrapping integer set-up changed: not modelled, refused (§8.7)
   Count,
 };

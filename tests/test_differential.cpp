@@ -167,6 +167,7 @@ TEST_F(DifferentialRegion, Msaa4xDepthPerturbationIsADepthMismatchInTheDiff) {
   scene.draws.push_back(steep);
   CpuOptions options;
   options.fma = shared_renderer().device().fma;
+  options.lavapipe = &test::release_of(shared_renderer());
   const RenderResult cpu = render_cpu(scene, options);
   RenderResult vk = shared_renderer().render(scene);
   for (const std::string& m : shared_renderer().validation_messages()) ADD_FAILURE() << "validation: " << m;

@@ -109,6 +109,7 @@ inline DiffFigures run_differential(const Scene& scene, const CpuVariant& varian
   EXPECT_TRUE(renderer.validation_messages().empty());
   CpuOptions options;
   options.fma = renderer.device().fma != variant.invert_fma;
+  options.lavapipe = &test::release_of(renderer);
   options.methods = variant.methods;
   const RenderResult cpu = render_cpu(scene, options);
   EXPECT_EQ(cpu.owner.size(), vk.owner.size());

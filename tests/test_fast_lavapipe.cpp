@@ -35,12 +35,14 @@ class FastAgainstLavapipe : public ::testing::Test {
     EXPECT_TRUE(renderer().validation_messages().empty()) << renderer().validation_messages().front();
     if (with_exact) {
       SCOPED_TRACE(scene.name + " exact path");
-      EXPECT_TRUE(fast_test::same_bytes(vulkan, fast_test::render_exact(scene, renderer().device().fma)));
+      EXPECT_TRUE(fast_test::same_bytes(
+          vulkan, fast_test::render_exact(scene, renderer().device().fma, test::release_of(renderer()))));
     }
     for (const uint32_t threads : {1u, 2u}) {
       SCOPED_TRACE(scene.name + " threads=" + std::to_string(threads));
-      EXPECT_TRUE(fast_test::same_bytes(
-          vulkan, fast_test::render_fast(scene, renderer().device().fma, threads, fast_test::best_isa())));
+      EXPECT_TRUE(
+          fast_test::same_bytes(vulkan, fast_test::render_fast(scene, renderer().device().fma, threads,
+                                                               fast_test::best_isa(), test::release_of(renderer()))));
     }
   }
 };

@@ -245,9 +245,11 @@ inline Scene mid_triangle_scene(uint64_t seed) {
 }
 
 // Renders with the exact path (threads = 0).
-inline RenderResult render_exact(const Scene& scene, bool fma) {
+inline RenderResult render_exact(const Scene& scene, bool fma,
+                                 const LavapipeRelease& release = lavapipe_releases().front()) {
   CpuOptions options;
   options.fma = fma;
+  options.lavapipe = &release;
   options.threads = 0;
   return render_cpu(scene, options);
 }
@@ -271,9 +273,11 @@ inline std::vector<FastIsa> host_isas() {
 // The variant render_cpu_fast picks on this host.
 inline FastIsa best_isa() { return host_isas().back(); }
 
-inline RenderResult render_fast(const Scene& scene, bool fma, uint32_t threads, FastIsa isa) {
+inline RenderResult render_fast(const Scene& scene, bool fma, uint32_t threads, FastIsa isa,
+                                const LavapipeRelease& release = lavapipe_releases().front()) {
   CpuOptions options;
   options.fma = fma;
+  options.lavapipe = &release;
   options.threads = threads;
   cpu::fast::FastConfig config;
   config.allow_avx2 = isa != FastIsa::Scalar;

@@ -13,6 +13,7 @@
 #include <string>
 
 #include "model/errors.hpp"
+#include "model/lavapipe_release.hpp"
 #include "vk_reference/vk_reference.hpp"
 
 namespace rastercmp::test {
@@ -38,9 +39,14 @@ class SharedRendererEnvironment : public ::testing::Environment {
 };
 
 // Registered once per test program, before main (gtest owns and deletes it).
-inline SharedRendererEnvironment* const kSharedRendererEnvironment = static_cast<SharedRendererEnvironment*>(
-    ::testing::AddGlobalTestEnvironment(new SharedRendererEnvironment));
+inline SharedRendererEnvironment* const kSharedRendererEnvironment =
+    static_cast<SharedRendererEnvironment*>(::testing::AddGlobalTestEnvironment(new SharedRendererEnvironment));
 
 inline VulkanRenderer& shared_renderer() { return kSharedRendererEnvironment->renderer(); }
+
+// The lavapipe release the CPU models to match `renderer`'s driver (--profile lavapipe does the same).
+inline const LavapipeRelease& release_of(const VulkanRenderer& renderer) {
+  return *lavapipe_release_for_driver(renderer.device().driver_info).release;
+}
 
 }  // namespace rastercmp::test

@@ -322,6 +322,7 @@ void expect_skips_change_nothing(const Scene& scene) {
   const bool vulkan = vulkan_available();
   CpuOptions options;
   options.fma = vulkan ? differential::shared_renderer().device().fma : lavapipe_fuses_on_this_host();
+  if (vulkan) options.lavapipe = &test::release_of(differential::shared_renderer());
   std::vector<RenderResult> results;
   for (const SkipConfig& config : skip_configs()) {
     options.skips = config.skips;

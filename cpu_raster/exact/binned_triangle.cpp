@@ -23,8 +23,6 @@ int32_t shl32(int32_t a, int k) { return int32_t(uint32_t(a) << k); }
 int64_t add64(int64_t a, int64_t b) { return int64_t(uint64_t(a) + uint64_t(b)); }
 int64_t sub64(int64_t a, int64_t b) { return int64_t(uint64_t(a) - uint64_t(b)); }
 
-
-
 // The planes' values at (x, y) moved from their values at (x0, y0): c - dcdx*dx + dcdy*dy (IMUL64).
 void move_to(const BinnedTriangle& t, const std::array<int, 8>& index, uint32_t n, std::array<int64_t, 8>& c,
              int32_t dx, int32_t dy) {
@@ -118,7 +116,7 @@ std::array<LpPlane, 4> lp_line_planes(const std::array<FixedPoint, 4>& corners) 
     LpPlane& p = planes[i];
     p.c = sub64(int64_t(dcdx) * corners[i].x.raw, int64_t(dcdy) * corners[i].y.raw);
     if (dcdx < 0 || (dcdx == 0 && dcdy > 0)) p.c = add64(p.c, 1);  // top-left (bottom_edge_rule 0)
-    p.dcdx = int32_t(uint32_t(dcdx) * uint32_t(kFixedOne));         // "dcdx *= FIXED_ONE"
+    p.dcdx = int32_t(uint32_t(dcdx) * uint32_t(kFixedOne));        // "dcdx *= FIXED_ONE"
     p.dcdy = int32_t(uint32_t(dcdy) * uint32_t(kFixedOne));
     int32_t eo = 0;
     if (p.dcdx < 0) eo = sub32(eo, p.dcdx);

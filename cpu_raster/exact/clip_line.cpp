@@ -31,8 +31,8 @@ bool accumulate_t(const ClipVertex& v0, const ClipVertex& v1, uint32_t mask, flo
 
 }  // namespace
 
-ClippedLine clip_line(const std::array<ClipVertex, 2>& line, const ViewportTransform& viewport,
-                      uint32_t inside_planes, LineXyClip xy) {
+ClippedLine clip_line(const std::array<ClipVertex, 2>& line, const ViewportTransform& viewport, uint32_t inside_planes,
+                      LineXyClip xy) {
   ClippedLine result;
   result.line = line;
   const ClipVertex& v0 = line[0];

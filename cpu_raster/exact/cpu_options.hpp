@@ -23,9 +23,9 @@ struct CpuOptions {
   // (model/lavapipe_release.hpp). The oldest unless the caller picks one: the commands pick the
   // release of the driver they compare with (lavapipe_from_driver) or the one --profile names.
   const LavapipeRelease* lavapipe = &lavapipe_releases().front();
-  // Whether `lavapipe` is to follow the driver the render is compared with (--profile lavapipe)
-  // rather than stay as forced (--profile lavapipe-X.Y).
-  bool lavapipe_from_driver = false;
+  // Whether a comparison replaces `lavapipe` by the release of the driver it compares with
+  // (--profile lavapipe, compare/case_run.hpp), rather than keep it as forced (--profile lavapipe-X.Y).
+  bool lavapipe_from_driver = true;
   // Sub-pixel precision of the device being judged (spec profile); lavapipe: 8.
   uint32_t sub_pixel_bits = 8;
   // 0: the exact scalar path alone. >= 1: the fast path with this many threads (bit-identical).

@@ -23,8 +23,8 @@ float one_over_area(const std::array<WindowVertex, 3>& v) {
 float unorm_constant_term(float constant, DepthFormat format, UnormBiasUnits units) {
   const double mrd = depth_format_info(format).mrd;
   if (units == UnormBiasUnits::TwiceMrd) return static_cast<float>(double(constant) * mrd * 2);
-  if (constant == 0.0f) return constant;                                       // "offset_units != 0"
-  const float adjusted = constant + (constant > 0.0f ? 0.5f : -0.5f);          // a float add
+  if (constant == 0.0f) return constant;                               // "offset_units != 0"
+  const float adjusted = constant + (constant > 0.0f ? 0.5f : -0.5f);  // a float add
   return static_cast<float>(double(adjusted) * mrd);
 }
 

@@ -9,7 +9,6 @@ namespace {
 
 constexpr int32_t kTileSize = 64;  // lp_limits.h TILE_SIZE
 
-
 PixelRect square_at(int32_t x, int32_t y, int32_t size) { return PixelRect{x, y, x + size - 1, y + size - 1}; }
 
 // u_rect_possible_intersection; an empty result stays empty.
@@ -50,13 +49,13 @@ void add_scissor_planes(const PixelRect& bbox, const PixelRect& r, bool multisam
                         bool sample_exact) {
   const int64_t one = kFixedOne;
   if (sample_exact) {  // left and top inclusive, right and bottom exclusive pixel edges (§8.6)
-    if (bbox.x0 < r.x0) planes.push(EdgePlane{-(r.x0 * one) + 1, -1, 0, false});     // left
-    if (bbox.x1 > r.x1) planes.push(EdgePlane{(int64_t(r.x1) + 1) * one, 1, 0, false});  // right
-    if (bbox.y0 < r.y0) planes.push(EdgePlane{-(r.y0 * one) + 1, 0, 1, false});      // top
+    if (bbox.x0 < r.x0) planes.push(EdgePlane{-(r.x0 * one) + 1, -1, 0, false});          // left
+    if (bbox.x1 > r.x1) planes.push(EdgePlane{(int64_t(r.x1) + 1) * one, 1, 0, false});   // right
+    if (bbox.y0 < r.y0) planes.push(EdgePlane{-(r.y0 * one) + 1, 0, 1, false});           // top
     if (bbox.y1 > r.y1) planes.push(EdgePlane{(int64_t(r.y1) + 1) * one, 0, -1, false});  // bottom
     return;
   }
-  const int64_t adj = multisample ? 127 : 0;  // the MSAA quirk of §2.5
+  const int64_t adj = multisample ? 127 : 0;                                            // the MSAA quirk of §2.5
   if (bbox.x0 < r.x0) planes.push(EdgePlane{-((r.x0 - 1) * one + adj), -1, 0, false});  // left
   if (bbox.x1 > r.x1) planes.push(EdgePlane{r.x1 * one + 127 + adj, 1, 0, false});      // right
   if (bbox.y0 < r.y0) planes.push(EdgePlane{-((r.y0 - 1) * one + adj), 0, 1, false});   // top

@@ -304,8 +304,8 @@ LineSetup setup_line(const std::array<WindowVertex, 2>& window, uint32_t owner, 
     raster.has_depth = ctx.depth_active();
     // setup->pixel_offset: 0.5, or from 25.3 0 when the line is multisampled (§8.5)
     const bool offset_zero = per_sample && ctx.rules.has(LavapipeRule::MsaaLineDepthAtCentre);
-    raster.depth = line_depth_plane(window[0], window[1], dx_eff, dy_eff, one_over_area,
-                                    offset_zero ? 0.0f : kHalfPixelCenter);
+    raster.depth =
+        line_depth_plane(window[0], window[1], dx_eff, dy_eff, one_over_area, offset_zero ? 0.0f : kHalfPixelCenter);
   }
   return setup;
 }
