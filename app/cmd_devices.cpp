@@ -5,6 +5,7 @@
 #include <vector>
 
 #include <fmt/core.h>
+#include <fmt/ranges.h>  // fmt::join (fmt 11 has it only there)
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
