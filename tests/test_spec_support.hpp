@@ -44,9 +44,10 @@ inline Draw window_triangles(const Scene& scene, const std::vector<glm::dvec2>& 
   return draw;
 }
 
-inline CpuOptions lavapipe_options() {
+inline CpuOptions lavapipe_options(const LavapipeRelease& release = lavapipe_releases().front()) {
   CpuOptions o;
   o.profile = CpuProfile::Lavapipe;
+  o.lavapipe = &release;
   return o;
 }
 
@@ -136,9 +137,11 @@ inline uint64_t accept_float_plane_extrapolation(const Scene& scene, uint32_t bi
     const uint32_t raw = exact.depth_raw[i];
     if (depth_in_interval(exact.depth_format, d, raw)) continue;
     const size_t pixel = i / exact.samples;
-    const uint32_t px = uint32_t(pixel % exact.width), py = uint32_t(pixel / exact.width), s = uint32_t(i % exact.samples);
-    const glm::dvec2 p = exact.samples > 1 ? glm::dvec2(px + cpu::kStandardSamples4x[s].x, py + cpu::kStandardSamples4x[s].y)
-                                           : glm::dvec2(px + 0.5, py + 0.5);
+    const uint32_t px = uint32_t(pixel % exact.width), py = uint32_t(pixel / exact.width),
+                   s = uint32_t(i % exact.samples);
+    const glm::dvec2 p = exact.samples > 1
+                             ? glm::dvec2(px + cpu::kStandardSamples4x[s].x, py + cpu::kStandardSamples4x[s].y)
+                             : glm::dvec2(px + 0.5, py + 0.5);
     for (const cpu::spec::SpecTriangle& t : primitives.triangles) {
       if (!t.depth.writes || !t.depth.plane_defined || t.depth.bias_any) continue;
       const auto area = [](glm::dvec2 a, glm::dvec2 b, glm::dvec2 c) {

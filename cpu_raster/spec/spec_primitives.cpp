@@ -125,9 +125,8 @@ void add_triangle(const DrawContext& ctx, const cpu::AssembledPrimitive& prim, S
                                glm::dvec2(t.window[2].x, t.window[2].y)},
                               ctx.bits);
     t.facing = facing_gate(draw.state, t.snapped.area_sign);
-    t.shape_certain = std::none_of(piece.begin(), piece.end(), [](const ClipVertex& v) {
-      return v.made_by_clipper && !(v.pos_clip.w > 0.0f);
-    });
+    t.shape_certain = std::none_of(piece.begin(), piece.end(),
+                                   [](const ClipVertex& v) { return v.made_by_clipper && !(v.pos_clip.w > 0.0f); });
     const ClipError error = clip_error(ctx, {&piece[0], &piece[1], &piece[2]}, {source[0], source[1], source[2]});
     t.depth = make_depth_judge(*ctx.scene, draw.state,
                                depth_primitive(ctx, {t.window[0], t.window[1], t.window[2]}, error,
@@ -151,8 +150,22 @@ void add_line(const DrawContext& ctx, const cpu::AssembledPrimitive& prim, SpecP
   }
   const ClippedLine clipped = clip_line(line, ctx.viewport);
   if (clipped.fate == ClipFate::Discarded) out.undefined = true;
-  if (clipped.fate == ClipFate::Outside || clipped.fate == ClipFate::Discarded) return;
-  const WindowVertex &a = clipped.line[0].window, &b = clipped.line[1].window;
+  if (clipped.fate == ClipFate::Discarded) return;
+  // "If either of a line segment's vertices lie outside of the clip volume, the line segment may be
+  // clipped": a device may also leave it whole in x and y (a guard band; lavapipe from Mesa 23.2,
+  // docs/lavapipe-rules.md §8.2), clipping only against the depth planes. Whatever that line covers
+  // is May. Only with both w > 0: past the eye the projected "segment" is not the line's.
+  const bool in_front = source[0].w > 0.0f && source[1].w > 0.0f;
+  const ClippedLine whole_xy = in_front ? clip_line(line, ctx.viewport, 0, cpu::LineXyClip::GuardBand) : clipped;
+  const bool whole_differs =
+      whole_xy.fate != ClipFate::Outside && whole_xy.fate != ClipFate::Discarded &&
+      (clipped.fate == ClipFate::Outside || clipped.line[0].window.x != whole_xy.line[0].window.x ||
+       clipped.line[0].window.y != whole_xy.line[0].window.y || clipped.line[1].window.x != whole_xy.line[1].window.x ||
+       clipped.line[1].window.y != whole_xy.line[1].window.y);
+  if (clipped.fate == ClipFate::Outside && !whole_differs) return;
+  // The segment judged: the clipped one, or the whole one where clipping removes it all.
+  const ClippedLine& judged = clipped.fate == ClipFate::Outside ? whole_xy : clipped;
+  const WindowVertex &a = judged.line[0].window, &b = judged.line[1].window;
   if (!usable(a) || !usable(b)) {
     out.undefined = true;
     return;
@@ -161,13 +174,27 @@ void add_line(const DrawContext& ctx, const cpu::AssembledPrimitive& prim, SpecP
   l.draw_index = ctx.draw_index;
   l.primitive_index = prim.primitive_index;
   l.shape = line_shape({glm::dvec2(a.x, a.y), glm::dvec2(b.x, b.y)}, draw.state.line_mode, draw.state.line_width);
+  if (clipped.fate == ClipFate::Outside) l.shape.must.clear();  // clipping may remove it: never Must
   // Only the segment is clipped: whether a wide line's fragments beyond the viewport rectangle are
   // produced is the device's choice (lavapipe scissors them, docs/lavapipe-rules.md §2.5), so Must stays
   // inside it.
   if (!l.shape.must.empty()) l.shape.must.push_back(viewport_quad(ctx.scene->effective_viewport()));
-  const ClipError error = clip_error(ctx, {&clipped.line[0], &clipped.line[1]}, {source[0], source[1]});
+  const ClippedLine* depth_from = &judged;
+  if (whole_differs && clipped.fate != ClipFate::Outside) {
+    const WindowVertex &wa = whole_xy.line[0].window, &wb = whole_xy.line[1].window;
+    if (!usable(wa) || !usable(wb)) {
+      out.undefined = true;
+      return;
+    }
+    const LineShape whole =
+        line_shape({glm::dvec2(wa.x, wa.y), glm::dvec2(wb.x, wb.y)}, draw.state.line_mode, draw.state.line_width);
+    l.shape.may.insert(l.shape.may.end(), whole.may.begin(), whole.may.end());
+    depth_from = &whole_xy;  // the same line, so its depth interval holds the clipped one's
+  }
+  const WindowVertex &da = depth_from->line[0].window, &db = depth_from->line[1].window;
+  const ClipError error = clip_error(ctx, {&depth_from->line[0], &depth_from->line[1]}, {source[0], source[1]});
   l.depth = make_depth_judge(*ctx.scene, draw.state,
-                             depth_primitive(ctx, {a, b}, error, max_abs_window_z({&line[0], &line[1]})));
+                             depth_primitive(ctx, {da, db}, error, max_abs_window_z({&line[0], &line[1]})));
   out.lines.push_back(std::move(l));
 }
 
