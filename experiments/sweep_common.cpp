@@ -6,6 +6,7 @@
 #include <fmt/core.h>
 
 #include "model/depth_format.hpp"
+#include "model/errors.hpp"
 #include "model/host.hpp"
 #include "model/image_io.hpp"
 
@@ -19,9 +20,22 @@ std::string num(double value) {
 
 std::string flag(bool value) { return value ? "true" : "false"; }
 
+const LavapipeRelease& installed_lavapipe_release() {
+  static const LavapipeRelease* const release = [] {
+    try {
+      for (const DeviceInfo& device : list_vulkan_devices())
+        if (device.is_lavapipe) return lavapipe_release_for_driver(device.driver_info).release;
+    } catch (const EnvironmentError&) {
+    }
+    return &lavapipe_releases().front();
+  }();
+  return *release;
+}
+
 CpuOptions exact_cpu_options() {
   CpuOptions options;
   options.fma = lavapipe_fuses_on_this_host();
+  options.lavapipe = &installed_lavapipe_release();
   return options;
 }
 

@@ -21,7 +21,11 @@ struct SweepOptions {
 std::string num(double value);
 std::string flag(bool value);  // "true" / "false"
 
-// The exact lavapipe path as lavapipe runs on this host (FMA as detected).
+// The lavapipe release the installed driver is (the first lavapipe device's driverInfo), the oldest
+// modelled one when there is none: what the sweeps compare with.
+const LavapipeRelease& installed_lavapipe_release();
+
+// The exact path as lavapipe on this host computes: its FMA, the installed release's rules.
 CpuOptions exact_cpu_options();
 
 // Both backends on one scene.
