@@ -5,13 +5,14 @@
 #include <vector>
 
 #include <fmt/core.h>
-#include <fmt/ranges.h>  // fmt::join (fmt 11 has it only there)
 #include <fmt/format.h>
+#include <fmt/ranges.h>  // fmt::join (fmt 11 has it only there)
 #include <nlohmann/json.hpp>
 
 #include "app/commands.hpp"
 #include "model/errors.hpp"
 #include "model/host.hpp"
+#include "model/lavapipe_release.hpp"
 #include "vk_reference/vk_reference.hpp"
 
 namespace rastercmp::app {
@@ -37,22 +38,31 @@ std::string device_text(const DeviceInfo& d, bool host_fma) {
   const std::vector<std::string> formats = depth_format_names(d);
   line("depth formats:", formats.empty() ? std::string("none") : fmt::format("{}", fmt::join(formats, ", ")));
   line("sample counts:", fmt::format("{}", fmt::join(d.sample_counts, ", ")));
-  if (d.is_lavapipe) line("host FMA:", fmt::format("{} (lavapipe fuses: {})", yes_no(host_fma), yes_no(d.fma)));
+  if (d.is_lavapipe) {
+    line("host FMA:", fmt::format("{} (lavapipe fuses: {})", yes_no(host_fma), yes_no(d.fma)));
+    const LavapipeReleaseChoice choice = lavapipe_release_for_driver(d.driver_info);
+    line("lavapipe profile:", choice.warning.empty()
+                                  ? std::string(choice.release->profile)
+                                  : fmt::format("{} (warning: {})", choice.release->profile, choice.warning));
+  }
   return text;
 }
 
 nlohmann::json device_json(const DeviceInfo& d) {
-  return nlohmann::json{{"index", d.index},
-                        {"name", d.name},
-                        {"type", d.type},
-                        {"driver_name", d.driver_name},
-                        {"driver_info", d.driver_info},
-                        {"api_version", d.api_version},
-                        {"sub_pixel_precision_bits", d.sub_pixel_precision_bits},
-                        {"depth_formats", depth_format_names(d)},
-                        {"sample_counts", d.sample_counts},
-                        {"is_lavapipe", d.is_lavapipe},
-                        {"fma", d.fma}};
+  return nlohmann::json{
+      {"index", d.index},
+      {"name", d.name},
+      {"type", d.type},
+      {"driver_name", d.driver_name},
+      {"driver_info", d.driver_info},
+      {"api_version", d.api_version},
+      {"sub_pixel_precision_bits", d.sub_pixel_precision_bits},
+      {"depth_formats", depth_format_names(d)},
+      {"sample_counts", d.sample_counts},
+      {"is_lavapipe", d.is_lavapipe},
+      {"fma", d.fma},
+      {"lavapipe_profile", d.is_lavapipe ? nlohmann::json(lavapipe_release_for_driver(d.driver_info).release->profile)
+                                         : nlohmann::json(nullptr)}};
 }
 
 int run_devices(bool json) {
