@@ -32,10 +32,16 @@ const LavapipeRelease& installed_lavapipe_release() {
   return *release;
 }
 
+namespace {
+const LavapipeRelease* g_reference_release = nullptr;  // set_reference_release; null: the installed one
+}  // namespace
+
+void set_reference_release(const LavapipeRelease& release) { g_reference_release = &release; }
+
 CpuOptions exact_cpu_options() {
   CpuOptions options;
   options.fma = lavapipe_fuses_on_this_host();
-  options.lavapipe = &installed_lavapipe_release();
+  options.lavapipe = g_reference_release != nullptr ? g_reference_release : &installed_lavapipe_release();
   return options;
 }
 

@@ -25,8 +25,10 @@ std::string flag(bool value);  // "true" / "false"
 // modelled one when there is none: what the sweeps compare with.
 const LavapipeRelease& installed_lavapipe_release();
 
-// The exact path as lavapipe on this host computes: its FMA, the installed release's rules.
+// The exact path as lavapipe on this host computes: its FMA, the installed release's rules (or
+// the release set_reference_release pinned: a measurement that must not depend on the host).
 CpuOptions exact_cpu_options();
+void set_reference_release(const LavapipeRelease& release);
 
 // Both backends on one scene.
 struct BackendPair {
