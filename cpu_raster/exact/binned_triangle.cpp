@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <cstdlib>
+#include <span>
 
 #include "cpu_raster/exact/raster_primitive.hpp"
 #include "model/errors.hpp"
@@ -81,14 +82,21 @@ PixelRect wrapped_triangle_bbox(const std::array<FixedPoint, 3>& v) {
                    sub32(max_y, 1) >> kFixedOrder};
 }
 
-bool in_direct_range(const std::array<FixedPoint, 3>& v) {
-  for (size_t i = 0; i < 3; ++i) {
-    const size_t j = (i + 1) % 3;
+namespace {
+
+// Every edge of the closed polygon has |dx| + |dy| < 2^23 fixed units.
+bool edges_in_direct_range(std::span<const FixedPoint> v) {
+  for (size_t i = 0; i < v.size(); ++i) {
+    const size_t j = (i + 1) % v.size();
     const int64_t dx = std::abs(v[i].x.wide() - v[j].x.wide()), dy = std::abs(v[i].y.wide() - v[j].y.wide());
     if (dx + dy >= (int64_t(1) << 23)) return false;
   }
   return true;
 }
+
+}  // namespace
+
+bool in_direct_range(const std::array<FixedPoint, 3>& v) { return edges_in_direct_range(v); }
 
 void refuse_if_overflow_reworked(const LavapipeRules& rules) {
   if (rules.has(LavapipeRule::RasterizerOverflowReworked))
@@ -98,15 +106,7 @@ void refuse_if_overflow_reworked(const LavapipeRules& rules) {
         "(docs/lavapipe-rules.md §8.7)");
 }
 
-bool quad_in_direct_range(const std::array<FixedPoint, 4>& corners) {
-  for (size_t i = 0; i < 4; ++i) {
-    const size_t j = (i + 1) % 4;
-    const int64_t dx = std::abs(corners[i].x.wide() - corners[j].x.wide());
-    const int64_t dy = std::abs(corners[i].y.wide() - corners[j].y.wide());
-    if (dx + dy >= (int64_t(1) << 23)) return false;
-  }
-  return true;
-}
+bool quad_in_direct_range(const std::array<FixedPoint, 4>& corners) { return edges_in_direct_range(corners); }
 
 std::array<LpPlane, 4> lp_line_planes(const std::array<FixedPoint, 4>& corners) {
   std::array<LpPlane, 4> planes;
