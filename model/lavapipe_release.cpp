@@ -80,13 +80,6 @@ LavapipeRules LavapipeRules::of(const MesaVersion& version) {
   return rules;
 }
 
-LavapipeRules LavapipeRules::with(LavapipeRule rule, bool on) const {
-  LavapipeRules copy = *this;
-  const uint32_t bit = 1u << uint32_t(rule);
-  copy.bits_ = on ? (copy.bits_ | bit) : (copy.bits_ & ~bit);
-  return copy;
-}
-
 std::span<const LavapipeRelease> lavapipe_releases() { return kReleases; }
 
 const LavapipeRelease& default_lavapipe_release() { return kReleases.back(); }

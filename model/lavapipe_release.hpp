@@ -53,7 +53,6 @@ class LavapipeRules {
   constexpr LavapipeRules() = default;
   static LavapipeRules of(const MesaVersion& version);  // every change introduced at or before it
   bool has(LavapipeRule rule) const { return (bits_ >> uint32_t(rule)) & 1u; }
-  LavapipeRules with(LavapipeRule rule, bool on) const;  // for tests that flip one rule
   friend bool operator==(const LavapipeRules&, const LavapipeRules&) = default;
 
  private:
