@@ -444,6 +444,41 @@ TEST_F(VkReferenceTest, PreparedSceneSubmitsRepeatedlyWithSameResult) {
   expect_no_validation_messages();
 }
 
+// The pipeline cache is bounded (a soak meets a new line width in most line scenes; lavapipe 26.2
+// ran out of memory mappings with an unbounded cache): past the maximum the least recently used
+// half goes, between frames only, and an evicted pipeline is made again with the same result.
+TEST_F(VkReferenceTest, PipelineCacheStaysBoundedAndEvictedPipelinesRenderTheSame) {
+  VkOptions options;
+  options.max_cached_pipelines = 4;
+  VulkanRenderer renderer(options);
+  const auto wide_line = [](float width) {
+    Scene scene = make_scene(8, 8);
+    Draw line = window_triangles(scene, {{0, 3.5f}, {8, 3.5f}}, 0.5f);
+    line.topology = Topology::LineList;
+    line.state.line_width = width;
+    scene.draws.push_back(line);
+    return scene;
+  };
+  const RenderResult first = renderer.render(wide_line(3.0f));
+  EXPECT_EQ(renderer.cached_pipelines(), 1u);
+  for (int k = 1; k <= 4; ++k) renderer.render(wide_line(3.0f + 0.25f * float(k)));
+  EXPECT_EQ(renderer.cached_pipelines(), 5u);  // trimmed before a frame, not after one
+  // A prepared frame pins what it recorded: nothing is evicted while it is alive.
+  {
+    const std::unique_ptr<VulkanRenderer::Prepared> held = renderer.prepare(wide_line(5.0f));
+    EXPECT_EQ(renderer.cached_pipelines(), 3u);  // 5 > 4: trimmed to the 2 most recent, then one made
+    const std::unique_ptr<VulkanRenderer::Prepared> second = renderer.prepare(wide_line(5.5f));
+    const std::unique_ptr<VulkanRenderer::Prepared> third = renderer.prepare(wide_line(6.0f));
+    EXPECT_EQ(renderer.cached_pipelines(), 5u);
+    renderer.submit_and_wait_seconds(*held);
+    EXPECT_EQ(renderer.read_back(*held).owner, render(wide_line(5.0f)).owner);
+  }
+  const RenderResult again = renderer.render(wide_line(3.0f));  // evicted above, made again
+  EXPECT_LE(renderer.cached_pipelines(), 4u);
+  EXPECT_EQ(again.owner, first.owner);
+  EXPECT_EQ(again.depth_raw, first.depth_raw);
+}
+
 TEST_F(VkReferenceTest, UnsupportedSampleCountIsNotSupported) {
   Scene scene = make_scene(8, 8);
   scene.samples = 2;  // lavapipe: framebuffer sample counts 1 and 4

@@ -148,6 +148,7 @@ void check_scene(const Scene& scene) {
 
 Frame::Frame(const Context& context, PipelineCache& pipelines, const Gathers& gathers, const Scene& scene)
     : context_(context),
+      pin_(pipelines),
       width_(scene.width),
       height_(scene.height),
       samples_(scene.samples),

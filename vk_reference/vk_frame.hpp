@@ -65,6 +65,7 @@ class Frame final : public VulkanRenderer::Prepared {
 
  private:
   const Context& context_;
+  PipelineCache::Pin pin_;  // the pipelines recorded below outlive this frame
   uint32_t width_, height_, samples_;
   DepthFormat depth_format_;
   Attachments attachments_;

@@ -1,7 +1,9 @@
 #include "vk_reference/vk_pipeline.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <string>
+#include <vector>
 
 #include <fmt/core.h>
 
@@ -166,8 +168,9 @@ void require_state_support(const Context& context, Topology topology, const Rast
   }
 }
 
-PipelineCache::PipelineCache(const Context& context)
+PipelineCache::PipelineCache(const Context& context, size_t max_pipelines)
     : context_(context),
+      max_pipelines_(std::max<size_t>(max_pipelines, 2)),
       vertex_(create_shader_module(context.device(), passthrough_vert, sizeof(passthrough_vert))),
       vertex_points_(create_shader_module(context.device(), passthrough_points_vert, sizeof(passthrough_points_vert))),
       fragment_(create_shader_module(context.device(), owner_frag, sizeof(owner_frag))),
@@ -184,7 +187,10 @@ VkRenderPass PipelineCache::render_pass(const AttachmentConfig& config) {
 VkPipeline PipelineCache::graphics_pipeline(const AttachmentConfig& config, Topology topology,
                                             const RasterState& state) {
   const PipelineKey key = make_pipeline_key(config, topology, state);
-  if (auto found = pipelines_.find(key); found != pipelines_.end()) return found->second.get();
+  if (auto found = pipelines_.find(key); found != pipelines_.end()) {
+    found->second.last_use = ++use_clock_;
+    return found->second.pipeline.get();
+  }
   require_state_support(context_, topology, state);
 
   const VkShaderModule vertex = draws_points(topology, state) ? vertex_points_.get() : vertex_.get();
@@ -215,7 +221,22 @@ VkPipeline PipelineCache::graphics_pipeline(const AttachmentConfig& config, Topo
   VkPipeline pipeline = VK_NULL_HANDLE;
   check(api().vkCreateGraphicsPipelines(context_.device(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline),
         "vkCreateGraphicsPipelines");
-  return pipelines_.emplace(key, own(context_.device(), api().vkDestroyPipeline, pipeline)).first->second.get();
+  CachedPipeline entry{own(context_.device(), api().vkDestroyPipeline, pipeline), ++use_clock_};
+  return pipelines_.emplace(key, std::move(entry)).first->second.pipeline.get();
+}
+
+size_t PipelineCache::trim() {
+  if (pins_ > 0 || pipelines_.size() <= max_pipelines_) return 0;
+  std::vector<uint64_t> uses;
+  uses.reserve(pipelines_.size());
+  for (const auto& [key, entry] : pipelines_) uses.push_back(entry.last_use);
+  // Keep the most recent half: every stamp is distinct, so the cut is exact.
+  const auto keep = static_cast<std::ptrdiff_t>(max_pipelines_ / 2);
+  std::nth_element(uses.begin(), uses.end() - keep, uses.end());
+  const uint64_t oldest_kept = *(uses.end() - keep);
+  const size_t before = pipelines_.size();
+  std::erase_if(pipelines_, [&](const auto& item) { return item.second.last_use < oldest_kept; });
+  return before - pipelines_.size();
 }
 
 }  // namespace rastercmp::vk

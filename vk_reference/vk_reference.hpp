@@ -2,6 +2,7 @@
 // into an R32_UINT owner attachment and the scene's depth attachment and reads both back.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -15,6 +16,8 @@ namespace rastercmp {
 struct VkOptions {
   std::string device;     // name substring or index; empty: lavapipe (llvmpipe)
   bool validate = false;  // enable VK_LAYER_KHRONOS_validation; messages are collected
+  // Pipelines kept between frames; past it the least recently used half goes (vk_pipeline.hpp).
+  size_t max_cached_pipelines = 256;
 };
 
 struct DeviceInfo {
@@ -66,6 +69,9 @@ class VulkanRenderer {
 
   // Validation-layer messages seen so far (warnings and errors), when validate is on.
   const std::vector<std::string>& validation_messages() const;
+
+  // Graphics pipelines held in the cache now (bounded by VkOptions::max_cached_pipelines).
+  size_t cached_pipelines() const;
 
  private:
   struct Impl;

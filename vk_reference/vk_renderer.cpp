@@ -1,5 +1,5 @@
 // VulkanRenderer: the public face of the reference (vk_reference.hpp). One instance and device per
-// renderer; render passes and pipelines cached across scenes; each scene a Frame.
+// renderer; render passes cached for its life, pipelines in a bounded cache (vk_pipeline.hpp); each scene a Frame.
 #include <memory>
 #include <stdexcept>
 
@@ -22,7 +22,7 @@ std::vector<DeviceInfo> list_vulkan_devices() {
 }
 
 struct VulkanRenderer::Impl {
-  explicit Impl(const VkOptions& options) : context(options), pipelines(context) {}
+  explicit Impl(const VkOptions& options) : context(options), pipelines(context, options.max_cached_pipelines) {}
 
   vk::Context context;
   vk::PipelineCache pipelines;
@@ -59,6 +59,7 @@ std::unique_ptr<VulkanRenderer::Prepared> VulkanRenderer::prepare(const Scene& s
   if (scene.samples > 1 && scene.depth_format != DepthFormat::None && !impl_->depth_gather) {
     impl_->depth_gather = std::make_unique<vk::SampleGather>(impl_->context, vk::GatherKind::Depth);
   }
+  impl_->pipelines.trim();  // between frames only (vk_pipeline.hpp)
   const vk::Gathers gathers{impl_->owner_gather.get(), impl_->depth_gather.get()};
   return std::make_unique<vk::Frame>(impl_->context, impl_->pipelines, gathers, scene);
 }
@@ -70,5 +71,7 @@ RenderResult VulkanRenderer::read_back(Prepared& prepared) { return as_frame(pre
 const std::vector<std::string>& VulkanRenderer::validation_messages() const {
   return impl_->context.validation_messages();
 }
+
+size_t VulkanRenderer::cached_pipelines() const { return impl_->pipelines.pipeline_count(); }
 
 }  // namespace rastercmp
