@@ -244,6 +244,31 @@ inline Scene mid_triangle_scene(uint64_t seed) {
   return scene;
 }
 
+// `triangles` small triangles whose set-up meets a denormal (z 0 and 1.5e-31, constant bias -0.5 on
+// d32_sfloat: r * c = -2^-127), the first with a vertex outside the view volume, so the draw's chunk
+// takes the draw pipeline (docs/lavapipe-rules.md §7.11). `then_unclipped`: an indexed list whose
+// second chunk (4 more triangles) has no clipped vertex.
+inline Scene denormal_setup_batch_scene(uint32_t triangles, bool then_unclipped) {
+  Scene scene;
+  scene.name = "test.denormal_setup_batch";
+  scene.width = scene.height = 64;
+  Draw draw;
+  const auto clip = [](float x, float y, float z) { return glm::vec4(x / 32.0f - 1.0f, y / 32.0f - 1.0f, z, 1.0f); };
+  draw.positions_clip = {{-1.1f, -0.9f, 0.0f, 1.0f}, {-0.5f, -0.9f, 1.5e-31f, 1.0f}, {-0.95f, -0.45f, 0.0f, 1.0f}};
+  const uint32_t total = then_unclipped ? 345 : triangles;
+  for (uint32_t i = 1; i < total; ++i) {
+    const float x = float(i % 36) * 1.75f + 1.0f, y = float(i / 36) * 5.5f + 8.0f;
+    draw.positions_clip.push_back(clip(x, y, 0.0f));
+    draw.positions_clip.push_back(clip(x + 1.7f, y + 0.3f, 1.5e-31f));
+    draw.positions_clip.push_back(clip(x + 0.2f, y + 1.6f, 0.0f));
+  }
+  if (then_unclipped)
+    for (uint32_t k = 0; k < draw.positions_clip.size(); ++k) draw.indices.push_back(k);
+  draw.state.depth_bias = DepthBias{true, -0.5f, 0.001f, 0.0f};
+  scene.draws.push_back(std::move(draw));
+  return scene;
+}
+
 // Renders with the exact path (threads = 0).
 inline RenderResult render_exact(const Scene& scene, bool fma,
                                  const LavapipeRelease& release = lavapipe_releases().front()) {

@@ -9,6 +9,7 @@
 #include "cpu_raster/classic/classic_fragments.hpp"
 #include "cpu_raster/classic/classic_visibility.hpp"
 #include "cpu_raster/classic/render_classic.hpp"
+#include "cpu_raster/exact/float_ops.hpp"
 #include "cpu_raster/exact/depth_sample.hpp"
 #include "cpu_raster/exact/rasterize.hpp"
 #include "model/errors.hpp"
@@ -187,6 +188,7 @@ std::string explain_classic_pixel(const Scene& scene, const CpuOptions& options,
                      std::to_string(sample) + " is outside the " + std::to_string(scene.width) + "x" +
                      std::to_string(scene.height) + " framebuffer with " + std::to_string(scene.samples) +
                      " sample(s)");
+  const cpu::DenormalsFlushed ftz_daz;  // as render_classic (rules §7.10)
   const ClassicFrame prepared = prepare_classic_frame(scene, options);
   const ClassicMethods& chosen = prepared.chosen;
   const std::vector<ClassicPrimitive>& primitives = prepared.primitives;

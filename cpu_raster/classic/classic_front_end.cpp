@@ -1,12 +1,14 @@
 #include "cpu_raster/classic/classic_front_end.hpp"
 
 #include <optional>
+#include <vector>
 
 #include "cpu_raster/classic/classic_clip.hpp"
 #include "cpu_raster/classic/classic_cull.hpp"
 #include "cpu_raster/exact/assemble.hpp"
 #include "cpu_raster/exact/clip_line.hpp"
-#include "cpu_raster/exact/clip_test.hpp"
+#include "cpu_raster/exact/draw_chunks.hpp"
+#include "cpu_raster/exact/front_end.hpp"
 #include "cpu_raster/exact/line_setup.hpp"
 #include "cpu_raster/exact/pipeline_cull.hpp"
 #include "model/render_result.hpp"
@@ -21,16 +23,15 @@ struct DrawContext {
   const Draw* draw = nullptr;
   SetupContext setup;
   DepthTestState depth;
-  bool pipelined = false;  // some vertex needs clipping: lavapipe's float cull runs (§1.5, §2.6)
-};
+  std::vector<bool> pipelined;  // per draw chunk: some vertex needs clipping (§1.5): the float cull runs (§2.6)
+  uint32_t per_chunk = 1;
+  TrailingPipelineRun trailing;  // set-up outside the denormal mode (front_end.hpp, §7.11)
 
-bool any_vertex_clipped(const Draw& draw, bool depth_clip) {
-  for (uint32_t k = 0; k < draw.vertex_count(); ++k) {
-    const uint32_t position = draw.indices.empty() ? k : draw.indices[k];
-    if (clip_mask(draw.positions_clip[position], depth_clip) != 0) return true;
+  bool chunk_pipelined(uint32_t primitive) const { return pipelined[primitive / per_chunk]; }
+  SetupDenormals setup_mode(uint32_t primitive) const {
+    return setup_denormals(trailing, chunk_pipelined(primitive), primitive);
   }
-  return false;
-}
+};
 
 template <size_t N>
 std::array<ClipVertex, N> clip_vertices(const DrawContext& dc, const AssembledPrimitive& prim) {
@@ -84,10 +85,11 @@ void run_triangle(const DrawContext& dc, const AssembledPrimitive& prim, std::ve
   for (size_t k = 0; k < pieces.size(); ++k) {
     const std::array<ClipVertex, 3>& piece = pieces[k];
     const std::array<WindowVertex, 3> window{piece[0].window, piece[1].window, piece[2].window};
-    if (!nv_cull && dc.pipelined && state.cull_mode != CullMode::None &&  // draw_pipe_cull.c (§2.6)
-        pipeline_cull_drops(pipeline_cull_determinant(window), state.cull_mode, state.front_face))
+    if (!nv_cull && dc.chunk_pipelined(prim.primitive_index) && state.cull_mode != CullMode::None &&
+        pipeline_cull_drops(pipeline_cull_determinant(window), state.cull_mode, state.front_face))  // §2.6
       continue;
-    const TriangleSetup setup = setup_triangle(window, owner, dc.setup);
+    const TriangleSetup setup =
+        setup_triangle_in_mode(dc.setup_mode(prim.primitive_index), window, owner, dc.setup, prim.primitive_index);
     if (setup.fate != SetupFate::Rasterized) continue;
     ClassicPrimitive primitive = make_primitive(dc, prim.primitive_index, false);
     primitive.clipped = any_made(piece, triangle);
@@ -126,8 +128,9 @@ void run_line(const DrawContext& dc, const AssembledPrimitive& prim, std::vector
     if (result.fate == ClipFate::Outside || result.fate == ClipFate::Discarded) return;
     clipped = result.line;
   }
-  const LineSetup setup = setup_line({clipped[0].window, clipped[1].window},
-                                     encode_owner(dc.setup.draw_index, prim.primitive_index), dc.setup);
+  const LineSetup setup =
+      setup_line_in_mode(dc.setup_mode(prim.primitive_index), {clipped[0].window, clipped[1].window},
+                         encode_owner(dc.setup.draw_index, prim.primitive_index), dc.setup, prim.primitive_index);
   if (setup.fate != SetupFate::Rasterized) return;
   ClassicPrimitive primitive = make_primitive(dc, prim.primitive_index, true);
   primitive.clipped = any_made(clipped, line);
@@ -149,16 +152,12 @@ void collect_primitives(const FrameContext& frame, uint32_t draw_index, const Cl
   dc.frame = &frame;
   dc.methods = &methods;
   dc.draw = &draw;
-  dc.setup.framebuffer = frame.framebuffer;
-  dc.setup.region = frame.region;
-  dc.setup.multisample = frame.multisample;
-  dc.setup.fma = frame.fma;
-  dc.setup.methods = frame.methods;
-  dc.setup.depth_format = frame.scene->depth_format;
+  dc.setup = make_setup_context(frame, draw_index);
   dc.setup.state = &state;
-  dc.setup.draw_index = draw_index;
   dc.depth = make_depth_test_state(*frame.scene, draw, frame.viewport, frame.fma);
-  dc.pipelined = any_vertex_clipped(draw, draw.state.depth_clip_enabled());
+  dc.pipelined = pipelined_chunks(draw, draw.state.depth_clip_enabled());
+  dc.per_chunk = primitives_per_chunk(draw);
+  dc.trailing = trailing_pipeline_run(draw, dc.pipelined);
   const bool is_line = is_line_topology(draw.topology);
   const uint32_t count = primitive_count(draw);
   for (uint32_t i = 0; i < count; ++i) {

@@ -7,6 +7,7 @@
 #include "cpu_raster/classic/classic_front_end.hpp"
 #include "cpu_raster/classic/classic_visibility.hpp"
 #include "cpu_raster/classic/method_registry.hpp"
+#include "cpu_raster/exact/float_ops.hpp"
 #include "cpu_raster/exact/profile_support.hpp"
 #include "cpu_raster/exact/render_targets.hpp"
 #include "model/errors.hpp"
@@ -71,6 +72,7 @@ ClassicFrame prepare_classic_frame(const Scene& scene, const CpuOptions& options
 }  // namespace cpu::classic
 
 RenderResult render_classic(const Scene& scene, const CpuOptions& options) {
+  const cpu::DenormalsFlushed ftz_daz;  // as render_exact: draw_vbo and the rasterizer threads (rules §7.10)
   const ClassicFrame prepared = prepare_classic_frame(scene, options);
   const ClassicMethods& chosen = prepared.chosen;
   const cpu::FrameContext& frame = prepared.frame;

@@ -21,6 +21,7 @@ float one_over_area(const std::array<WindowVertex, 3>& v) {
 // util_get_depth_format_mrd: mrd = 1 / (2^n - 1) (docs/lavapipe-rules.md §4.3). From Mesa 25.2 the
 // constant is first moved half a unit away from 0 in float, and not doubled (§8.4).
 float unorm_constant_term(float constant, DepthFormat format, UnormBiasUnits units) {
+  const DenormalsKept state_time;  // lp_make_setup_variant_key runs before draw_vbo (rules §7.11)
   const double mrd = depth_format_info(format).mrd;
   if (units == UnormBiasUnits::TwiceMrd) return static_cast<float>(double(constant) * mrd * 2);
   if (constant == 0.0f) return constant;                               // "offset_units != 0"
@@ -65,7 +66,10 @@ DepthOffset triangle_depth_offset(const std::array<WindowVertex, 3>& v, const De
   const bool float_depth = info.encoding == DepthEncoding::Float;
   const float units_in =
       float_depth ? bias_in.constant_factor : unorm_constant_term(bias_in.constant_factor, format, unorm_units);
-  const bool applied = bias_in.enable && !(units_in == 0.0f && bias_in.slope_factor == 0.0f);
+  // The C of lp_make_setup_variant_key and of the set-up's code generation, before draw_vbo: a
+  // denormal factor or clamp counts as non-zero there (rules §7.11), and the generated code then
+  // reads it as 0 where the set-up runs under DAZ.
+  const bool applied = bias_in.enable && !(is_zero_bits(units_in) && is_zero_bits(bias_in.slope_factor));
   if (!applied && skip_when_off) return o;  // o = 0.0f exactly
   // Not applied (the skip is off): the same arithmetic with zero factors; its result is not used.
   const DepthBias bias = applied ? bias_in : DepthBias{false, 0.0f, 0.0f, 0.0f};
@@ -89,9 +93,9 @@ DepthOffset triangle_depth_offset(const std::array<WindowVertex, 3>& v, const De
   }
   o.unclamped = o.constant_term + mult;
   o.offset = o.unclamped;
-  if (bias.clamp > 0.0f)
+  if (is_positive_bits(bias.clamp))  // key->pgon_offset_clamp > 0, decided in C before draw_vbo
     o.offset = sse_min(bias.clamp, o.offset);
-  else if (bias.clamp < 0.0f)
+  else if (is_negative_bits(bias.clamp))
     o.offset = sse_max(bias.clamp, o.offset);
   o.clamped = float_bits(o.offset) != float_bits(o.unclamped);
   o.computed = applied;

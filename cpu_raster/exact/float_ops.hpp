@@ -52,9 +52,9 @@ class ScopedDenormalMode {
     (void)flush;
 #endif
   }
-  ~ScopedDenormalMode() {
+  ~ScopedDenormalMode() {  // the mode bits only: the exception flags raised meanwhile stay (DenormalWatch)
 #ifdef RASTERCMP_HAS_MXCSR
-    _mm_setcsr(saved_);
+    _mm_setcsr((_mm_getcsr() & ~kMxcsrFtzDaz) | (saved_ & kMxcsrFtzDaz));
 #endif
   }
   ScopedDenormalMode(const ScopedDenormalMode&) = delete;
@@ -72,6 +72,47 @@ struct DenormalsFlushed : ScopedDenormalMode {
 struct DenormalsKept : ScopedDenormalMode {
   DenormalsKept() : ScopedDenormalMode(false) {}
 };
+
+// Watches the calling thread's arithmetic for denormals: clears the MXCSR flags DE (a denormal
+// operand, raised only without DAZ) and UE (a tiny result: flushed under FTZ, or inexact without it)
+// on construction; met() says whether either was raised since. Under FTZ|DAZ with no denormal
+// input, met() false means every intermediate was normal or zero, so the same operations without
+// the mode give the same bits. Without MXCSR every computation counts as having met one.
+class DenormalWatch {
+ public:
+  DenormalWatch() {
+#ifdef RASTERCMP_HAS_MXCSR
+    _mm_setcsr(_mm_getcsr() & ~kMxcsrDenormalFlags);
+#endif
+  }
+  bool met() const {
+#ifdef RASTERCMP_HAS_MXCSR
+    return (_mm_getcsr() & kMxcsrDenormalFlags) != 0;
+#else
+    return true;
+#endif
+  }
+
+ private:
+  static constexpr uint32_t kMxcsrDenormalFlags = 0x12u;  // DE (bit 1) | UE (bit 4)
+};
+
+// Comparisons with 0 as code outside the denormal mode makes them (by the bits: under DAZ a
+// comparison would read a denormal as 0). NaN is neither positive nor negative, as `x > 0` and
+// `x < 0` say of it.
+inline bool is_zero_bits(float value) { return (std::bit_cast<uint32_t>(value) & 0x7fffffffu) == 0; }
+inline bool is_positive_bits(float value) {
+  return !std::isnan(value) && !std::signbit(value) && !is_zero_bits(value);
+}
+inline bool is_negative_bits(float value) {
+  return !std::isnan(value) && std::signbit(value) && !is_zero_bits(value);
+}
+
+// By its bits: under DAZ a comparison would read the value as zero.
+inline bool is_denormal(float value) {
+  const uint32_t bits = std::bit_cast<uint32_t>(value);
+  return (bits & 0x7f800000u) == 0 && (bits & 0x007fffffu) != 0;
+}
 
 // Whether the calling thread flushes denormals (both bits set).
 inline bool denormals_flushed() {

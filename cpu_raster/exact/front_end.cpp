@@ -1,12 +1,18 @@
 #include "cpu_raster/exact/front_end.hpp"
 
+#include <algorithm>
+
+#include <fmt/core.h>
+
 #include "cpu_raster/exact/assemble.hpp"
 #include "cpu_raster/exact/clip_line.hpp"
 #include "cpu_raster/exact/clip_test.hpp"
 #include "cpu_raster/exact/clip_vertex.hpp"
 #include "cpu_raster/exact/draw_chunks.hpp"
+#include "cpu_raster/exact/float_ops.hpp"
 #include "cpu_raster/exact/line_setup.hpp"
 #include "cpu_raster/exact/pipeline_cull.hpp"
+#include "model/errors.hpp"
 #include "model/render_result.hpp"
 
 namespace rastercmp::cpu {
@@ -15,6 +21,37 @@ namespace {
 // The planes a primitive wholly inside is clipped against anyway: none, unless the clip skip is off.
 uint32_t inside_planes(const FrameContext& frame, bool depth_clip) {
   return frame.skips.clip_only_when_needed ? 0 : tested_clip_planes(depth_clip);
+}
+
+// A float as the rasterizer threads read it: under DAZ a denormal is a zero of its sign (§7.10).
+uint32_t bits_as_read(float value) {
+  const uint32_t bits = float_bits(value);
+  return (bits & 0x7f800000u) == 0 ? (bits & 0x80000000u) : bits;
+}
+
+bool same_as_read(const DepthPlane& a, const DepthPlane& b) {
+  return bits_as_read(a.a0) == bits_as_read(b.a0) && bits_as_read(a.dzdx) == bits_as_read(b.dzdx) &&
+         bits_as_read(a.dzdy) == bits_as_read(b.dzdy);
+}
+
+bool same_planes(const PlaneSet& a, const PlaneSet& b) {
+  if (a.count != b.count) return false;
+  for (uint32_t k = 0; k < a.count; ++k) {
+    const EdgePlane &p = a.plane[k], &q = b.plane[k];
+    if (p.c != q.c || p.dcdx != q.dcdx || p.dcdy != q.dcdy) return false;
+  }
+  return true;
+}
+
+// Whether two set-ups of one primitive rasterize alike (what the rasterizer reads of them).
+bool same_rasterization(SetupFate fate_a, const RasterPrimitive& a, SetupFate fate_b, const RasterPrimitive& b) {
+  if (fate_a != fate_b) return false;
+  if (fate_a != SetupFate::Rasterized) return true;
+  bool same = a.edge_count == b.edge_count && same_planes(a.planes, b.planes) && a.bbox == b.bbox &&
+              a.visit == b.visit && a.has_depth == b.has_depth && (a.binned == nullptr) == (b.binned == nullptr);
+  for (size_t k = 0; k < a.vertex_fixed.size() && same; ++k)
+    same = a.vertex_fixed[k].x.raw == b.vertex_fixed[k].x.raw && a.vertex_fixed[k].y.raw == b.vertex_fixed[k].y.raw;
+  return same && same_as_read(a.depth, b.depth) && bits_as_read(a.offset.offset) == bits_as_read(b.offset.offset);
 }
 
 void record_triangle_setup(PrimitiveOutcome& outcome, const TriangleSetup& setup) {
@@ -51,7 +88,9 @@ void run_triangle(const FrameContext& frame, const SetupContext& ctx, const Draw
       result.float_det = pipeline_cull_determinant(result.window);
       result.float_culled = pipeline_cull_drops(result.float_det, draw.state.cull_mode, draw.state.front_face);
     }
-    if (!result.float_culled) record_triangle_setup(result, setup_triangle(result.window, owner, ctx));
+    if (!result.float_culled)
+      record_triangle_setup(result, setup_triangle_in_mode(outcome.setup_denormals, result.window, owner, ctx,
+                                                           prim.primitive_index));
     sink(result);
   }
 }
@@ -71,14 +110,45 @@ void run_line(const FrameContext& frame, const SetupContext& ctx, const Draw& dr
   }
   outcome.piece_count = 1;
   outcome.window = {clipped.line[0].window, clipped.line[1].window, WindowVertex{}};
-  const LineSetup setup = setup_line({clipped.line[0].window, clipped.line[1].window},
-                                     encode_owner(ctx.draw_index, prim.primitive_index), ctx);
+  const LineSetup setup =
+      setup_line_in_mode(outcome.setup_denormals, {clipped.line[0].window, clipped.line[1].window},
+                         encode_owner(ctx.draw_index, prim.primitive_index), ctx, prim.primitive_index);
   outcome.reached_setup = true;
   outcome.setup_fate = setup.fate;
   outcome.has_bbox = setup.fate != SetupFate::NonFinite && setup.fate != SetupFate::Degenerate;
   outcome.bbox = setup.bbox;
   outcome.raster = setup.raster;
   sink(outcome);
+}
+
+// Runs `setup` (a callable returning TriangleSetup or LineSetup) in the mode lavapipe sets the
+// primitive up in (SetupDenormals, front_end.hpp). Under FTZ|DAZ first, watched: when no
+// intermediate was denormal or tiny and no input denormal, the mode cannot matter (DenormalWatch).
+template <class Setup>
+auto setup_in_mode(SetupDenormals mode, uint32_t draw_index, uint32_t primitive_index, const RasterState& state,
+                   Setup setup) {
+  DenormalWatch watch;
+  const auto flushed = [&] {
+    const DenormalsFlushed ftz_daz;
+    return setup();
+  }();
+  const DepthBias& bias = state.depth_bias;
+  const bool denormal_input =
+      is_denormal(bias.constant_factor) || is_denormal(bias.slope_factor) || is_denormal(bias.clamp);
+  if (mode == SetupDenormals::Flushed || (!watch.met() && !denormal_input)) return flushed;
+  const auto kept = [&] {
+    const DenormalsKept kept_mode;
+    return setup();
+  }();
+  if (mode == SetupDenormals::Kept) return kept;
+  if (!same_rasterization(kept.fate, kept.raster, flushed.fate, flushed.raster))
+    throw NotSupportedError(fmt::format(
+        "draw {} primitive {}: its set-up gives a different result with denormals flushed and kept, and "
+        "lavapipe's draw pipeline sets up this draw's clipped primitives in vertex-buffer batches, only "
+        "the last of them outside its denormal mode, whose boundaries the lavapipe profile does not model "
+        "(docs/lavapipe-rules.md §7.11)",
+        draw_index, primitive_index));
+  return kept;
 }
 
 }  // namespace
@@ -113,6 +183,29 @@ SetupContext make_setup_context(const FrameContext& frame, uint32_t draw_index) 
   return ctx;
 }
 
+TrailingPipelineRun trailing_pipeline_run(const Draw& draw, const std::vector<bool>& pipelined) {
+  const bool depth_clip = draw.state.depth_clip_enabled();
+  return trailing_pipeline_run_of(draw, pipelined, [&](uint32_t position) {
+    return clip_mask(draw.positions_clip[position], depth_clip) != 0;
+  });
+}
+
+SetupDenormals setup_denormals(const TrailingPipelineRun& run, bool pipelined, uint32_t primitive) {
+  if (!pipelined || primitive < run.first) return SetupDenormals::Flushed;
+  return run.fits_one_batch ? SetupDenormals::Kept : SetupDenormals::EitherMustAgree;
+}
+
+TriangleSetup setup_triangle_in_mode(SetupDenormals mode, const std::array<WindowVertex, 3>& window, uint32_t owner,
+                                     const SetupContext& ctx, uint32_t primitive_index) {
+  return setup_in_mode(mode, ctx.draw_index, primitive_index, *ctx.state,
+                       [&] { return setup_triangle(window, owner, ctx); });
+}
+
+LineSetup setup_line_in_mode(SetupDenormals mode, const std::array<WindowVertex, 2>& window, uint32_t owner,
+                             const SetupContext& ctx, uint32_t primitive_index) {
+  return setup_in_mode(mode, ctx.draw_index, primitive_index, *ctx.state, [&] { return setup_line(window, owner, ctx); });
+}
+
 void run_front_end(const FrameContext& frame, uint32_t draw_index, const OutcomeSink& sink) {
   const Draw& draw = frame.scene->draws[draw_index];
   const SetupContext ctx = make_setup_context(frame, draw_index);
@@ -120,12 +213,14 @@ void run_front_end(const FrameContext& frame, uint32_t draw_index, const Outcome
   base.draw_index = draw_index;
   base.is_line = is_line_topology(draw.topology);
   const std::vector<bool> pipelined = pipelined_chunks(draw, draw.state.depth_clip_enabled());  // §1.5
+  const TrailingPipelineRun run = trailing_pipeline_run(draw, pipelined);                       // §7.11
   const uint32_t count = primitive_count(draw), per_chunk = primitives_per_chunk(draw);
   for (uint32_t i = 0; i < count; ++i) {
     const AssembledPrimitive prim = assemble_primitive(draw, i);
     PrimitiveOutcome outcome = base;
     outcome.primitive_index = i;
     outcome.pipelined = pipelined[i / per_chunk];
+    outcome.setup_denormals = setup_denormals(run, outcome.pipelined, i);
     if (base.is_line)
       run_line(frame, ctx, draw, prim, outcome, sink);
     else

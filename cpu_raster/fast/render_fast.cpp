@@ -16,6 +16,7 @@
 #include "cpu_raster/exact/depth_sample.hpp"
 #include "cpu_raster/exact/draw_chunks.hpp"
 #include "cpu_raster/exact/float_ops.hpp"
+#include "cpu_raster/exact/front_end.hpp"
 #include "cpu_raster/exact/profile_support.hpp"
 #include "cpu_raster/exact/render_exact.hpp"
 #include "cpu_raster/exact/setup_methods.hpp"
@@ -39,6 +40,7 @@ constexpr size_t kVertexBlock = 4096;  // positions per task of the vertex phase
 bool frame_bounds_usable(const Scene& scene, const std::vector<FastDraw>& draws) {
   if (!scene.has_depth() || scene.samples != 1) return false;
   if (is_float(scene.depth_format) && !(scene.depth_clear >= 0.0f && !std::signbit(scene.depth_clear))) return false;
+  if (is_float(scene.depth_format) && is_denormal(scene.depth_clear)) return false;  // read as 0 (DAZ, §7.10)
   return std::all_of(draws.begin(), draws.end(),
                      [](const FastDraw& d) { return !d.raster.depth.write || depth_values_ordered(d.raster.depth); });
 }
@@ -126,6 +128,55 @@ struct VertexTask {
 // workers. With several workers, worker 0 first runs the profile check but its index scans
 // (check_pending) while the others start on the vertices, which read no index: everything that
 // does comes after this phase, and the scans come later (check_index_ranges, the block-row phase).
+// Whether a primitive of the draw's trailing pipelined run (front_end.hpp) meets a denormal or a
+// tiny value in its set-up: the clip and set-up of each, watched (DenormalWatch). Both vertex
+// orders of an unclipped triangle are tried (set-up may swap two vertices). False: every set-up of
+// the run gives the same bits with denormals flushed and kept, so the fast path's hold.
+bool trailing_setup_meets_denormals(const FastFrame& frame, uint32_t d) {
+  const FastDraw& fd = frame.draws[d];
+  const Draw& draw = frame.scene->draws[d];
+  const auto clipped = [&fd](uint32_t position) { return (fd.vertices[position].flags & kVertexClipBits) != 0; };
+  const TrailingPipelineRun run = trailing_pipeline_run_of(draw, pipelined_chunks_by(draw, clipped), clipped);
+  const uint32_t count = primitive_count(draw);
+  if (run.first >= count) return false;
+  const DepthBias& bias = draw.state.depth_bias;
+  if (is_denormal(bias.constant_factor) || is_denormal(bias.slope_factor) || is_denormal(bias.clamp)) return true;
+  const UnormBiasUnits units = unorm_bias_units(fd.setup.rules);
+  const auto window = [&](uint32_t position) {
+    const FastVertex& v = fd.vertices[position];
+    return WindowVertex{v.x, v.y, v.z};
+  };
+  // The results are stored where the compiler cannot drop the arithmetic that forms them.
+  volatile float sink = 0.0f;
+  const auto keep = [&sink](const DepthPlane& p, float offset) {
+    sink = p.a0;
+    sink = p.dzdx;
+    sink = p.dzdy;
+    sink = offset;
+  };
+  const DenormalWatch watch;
+  for (uint32_t i = run.first; i < count; ++i) {
+    const AssembledPrimitive prim = assemble_primitive(draw, i);
+    const uint32_t a = prim.position[0], b = prim.position[1], c = prim.position[2];
+    const uint32_t flags = fd.vertices[a].flags | fd.vertices[b].flags | fd.vertices[c].flags;
+    if (flags & kVertexClipBits) {
+      if (needs_clipping(fd.vertices[a].flags, fd.vertices[b].flags, fd.vertices[c].flags))
+        for_each_piece(
+            frame, d, i, a, b, c, [&](const FastTriangle& t) { keep(DepthPlane{t.a0, t.dzdx, t.dzdy}, t.offset); },
+            [&](const RasterPrimitive& p) { keep(p.depth, p.offset.offset); });
+      continue;
+    }
+    if (flags & kVertexSnapFailed) continue;
+    for (const std::array<WindowVertex, 3>& v :
+         {std::array<WindowVertex, 3>{window(a), window(b), window(c)},
+          std::array<WindowVertex, 3>{window(a), window(c), window(b)}}) {
+      keep(triangle_depth_plane(v, 0.5f),
+           bias.enable ? triangle_depth_offset(v, bias, fd.setup.depth_format, true, units).offset : 0.0f);
+    }
+  }
+  return watch.met();
+}
+
 void transform_all_vertices(FastFrame& frame, bool check_pending) {
   size_t total = 0;
   for (uint32_t d = 0; d < frame.draws.size(); ++d)
@@ -170,6 +221,13 @@ void transform_all_vertices(FastFrame& frame, bool check_pending) {
     const Draw& draw = frame.scene->draws[d];
     fd.chunk_size = primitives_per_chunk(draw);
     fd.pipelined_chunks.clear();
+    // A draw whose last chunks take the draw pipeline has those primitives set up outside lavapipe's
+    // denormal mode (SetupDenormals, front_end.hpp). The fast path sets up in the mode; where that
+    // can change a set-up, the exact front end draws the draw.
+    if ((draw_flags[d] & kVertexClipBits) && fd.setup.depth_active() && trailing_setup_meets_denormals(frame, d)) {
+      fd.fast = false;
+      continue;
+    }
     // the §1.5 chunk flags, from the vertices' clip bits; read only for the pipeline path's cull
     if ((draw_flags[d] & kVertexClipBits) && draw.state.cull_mode != CullMode::None)
       fd.pipelined_chunks = pipelined_chunks_by(
