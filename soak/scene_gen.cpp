@@ -431,6 +431,52 @@ void gen_msaa(Gen& g) {
   }
 }
 
+// Denormals (docs/lavapipe-rules.md §7.10, §7.11): tiny and denormal z on some vertices and zero on
+// others (the depth plane's gradients underflow), denormal and tiny clear values with every
+// compare op, depth bias and clamp on such planes, viewport depth ranges at the denormal boundary,
+// and a vertex outside the view volume now and then, so the draw takes the draw pipeline and its
+// set-up runs outside the denormal mode.
+void gen_denormal(Gen& g) {
+  g.frame();
+  g.s.depth_format = g.r.pick({DepthFormat::D32Sfloat, DepthFormat::D32Sfloat, DepthFormat::X8D24Unorm,
+                               DepthFormat::D16Unorm});
+  const auto tiny = [&g] {
+    const double magnitude = g.r.chance(0.5) ? g.log_uniform(1e-45, 1.2e-38) : g.log_uniform(1.2e-38, 1e-28);
+    return g.r.chance(0.2) ? -magnitude : magnitude;
+  };
+  if (g.r.chance(0.5)) g.s.depth_clear = float(g.r.chance(0.7) ? std::fabs(tiny()) : g.r.pick({0.0, 1.0}));
+  if (g.r.chance(0.25)) {
+    Viewport v = g.s.effective_viewport();
+    v.min_depth = float(g.r.chance(0.5) ? std::fabs(tiny()) : 0.0);
+    v.max_depth = float(g.r.chance(0.5) ? std::fabs(tiny()) : g.r.pick({1.0, 0.5}));
+    g.s.viewport = v;
+  }
+  const int draws = int(g.r.range(1, 4));
+  for (int k = 0; k < draws; ++k) {
+    const uint32_t triangles = g.r.chance(0.8) ? uint32_t(g.r.range(1, 4)) : uint32_t(g.r.range(5, 60));
+    std::vector<glm::vec4> p;
+    for (uint32_t t = 0; t < triangles; ++t) {
+      std::vector<glm::vec4> tri = g.triangle(g.r.chance(0.4) ? 0.5 : 0.0);
+      for (glm::vec4& v : tri) {
+        v.z = g.r.chance(0.5) ? 0.0f : float(tiny()) * v.w;
+        if (g.r.chance(0.1)) v.x = v.w * float(g.r.pick({1.1, -1.3, 3.0}));  // outside: the pipeline path
+      }
+      p.insert(p.end(), tri.begin(), tri.end());
+    }
+    Draw& d = g.add(Topology::TriangleList, p);
+    d.state.depth.compare_op = g.any_compare();
+    if (g.r.chance(0.15)) d.state.depth.write_enable = false;
+    if (g.r.chance(0.5)) {
+      d.state.depth_bias.enable = true;
+      d.state.depth_bias.constant_factor = float(g.r.pick({0.0, 1.0, -0.5, -1.0, 3.0, tiny()}));
+      d.state.depth_bias.slope_factor = float(g.r.pick({0.0, 0.001, 1.0, -2.0, tiny()}));
+      d.state.depth_bias.clamp = float(g.r.pick({0.0, 0.0, 1e-30, -1e-30, tiny()}));
+    }
+    if (g.r.chance(0.2)) d.state.depth_clamp = true;
+    g.cull_state(d.state);
+  }
+}
+
 // Many draws: strips, fans, indexed lists and lines with random state, overlapping.
 void gen_many(Gen& g) {
   g.frame({16, 24, 32});
@@ -477,7 +523,8 @@ const std::vector<std::pair<std::string, Generator>>& generators() {
                                                                    {"magnitude", gen_magnitude},
                                                                    {"lines", gen_lines},
                                                                    {"msaa", gen_msaa},
-                                                                   {"many", gen_many}};
+                                                                   {"many", gen_many},
+                                                                   {"denormal", gen_denormal}};
   return list;
 }
 
