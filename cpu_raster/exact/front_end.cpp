@@ -127,6 +127,10 @@ void run_line(const FrameContext& frame, const SetupContext& ctx, const Draw& dr
 template <class Setup>
 auto setup_in_mode(SetupDenormals mode, uint32_t draw_index, uint32_t primitive_index, const RasterState& state,
                    Setup setup) {
+  if (mode == SetupDenormals::Flushed) {
+    const DenormalsFlushed ftz_daz;
+    return setup();
+  }
   DenormalWatch watch;
   const auto flushed = [&] {
     const DenormalsFlushed ftz_daz;
@@ -135,7 +139,7 @@ auto setup_in_mode(SetupDenormals mode, uint32_t draw_index, uint32_t primitive_
   const DepthBias& bias = state.depth_bias;
   const bool denormal_input =
       is_denormal(bias.constant_factor) || is_denormal(bias.slope_factor) || is_denormal(bias.clamp);
-  if (mode == SetupDenormals::Flushed || (!watch.met() && !denormal_input)) return flushed;
+  if (!watch.met() && !denormal_input) return flushed;
   const auto kept = [&] {
     const DenormalsKept kept_mode;
     return setup();
