@@ -124,14 +124,10 @@ struct VertexTask {
   uint32_t flags = 0;  // OR of the vertices' flags
 };
 
-// Phase 2: every fast draw's positions transformed and snapped, in blocks shared out between the
-// workers. With several workers, worker 0 first runs the profile check but its index scans
-// (check_pending) while the others start on the vertices, which read no index: everything that
-// does comes after this phase, and the scans come later (check_index_ranges, the block-row phase).
 // Whether a primitive of the draw's trailing pipelined run (front_end.hpp) meets a denormal or a
 // tiny value in its set-up: the clip and set-up of each, watched (DenormalWatch). Both vertex
 // orders of an unclipped triangle are tried (set-up may swap two vertices). False: every set-up of
-// the run gives the same bits with denormals flushed and kept, so the fast path's hold.
+// the run gives the same bits with denormals flushed and kept, so the fast path's set-ups hold.
 bool trailing_setup_meets_denormals(const FastFrame& frame, uint32_t d) {
   const FastDraw& fd = frame.draws[d];
   const Draw& draw = frame.scene->draws[d];
@@ -177,6 +173,10 @@ bool trailing_setup_meets_denormals(const FastFrame& frame, uint32_t d) {
   return watch.met();
 }
 
+// Phase 2: every fast draw's positions transformed and snapped, in blocks shared out between the
+// workers. With several workers, worker 0 first runs the profile check but its index scans
+// (check_pending) while the others start on the vertices, which read no index: everything that
+// does comes after this phase, and the scans come later (check_index_ranges, the block-row phase).
 void transform_all_vertices(FastFrame& frame, bool check_pending) {
   size_t total = 0;
   for (uint32_t d = 0; d < frame.draws.size(); ++d)
