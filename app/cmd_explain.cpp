@@ -39,7 +39,10 @@ struct Renders {
 Renders render_on_device(const Scene& scene, const RenderOptions& options) {
   Renders r{make_cpu_options(options, &scene), {}, {}};
   VulkanRenderer vulkan(make_vk_options(options));
-  if (vulkan.device().sub_pixel_precision_bits != 0) r.cpu.sub_pixel_bits = vulkan.device().sub_pixel_precision_bits;
+  if (vulkan.device().sub_pixel_precision_bits != 0) {
+    r.cpu.sub_pixel_bits = vulkan.device().sub_pixel_precision_bits;
+    r.cpu.viewport_sub_pixel_bits = vulkan.device().limits.viewport_sub_pixel_bits;
+  }
   pick_lavapipe_release(r.cpu, vulkan.device().driver_info);
   r.expected = render_cpu(scene, r.cpu);
   r.actual = vulkan.render(scene);

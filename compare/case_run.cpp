@@ -46,10 +46,14 @@ CpuOptions CaseRunner::cpu_options(const Scene& scene) const {
   options.profile = profile_ == CompareProfile::Spec ? CpuProfile::Spec : CpuProfile::Lavapipe;
   if (options.lavapipe_from_driver) options.lavapipe = lavapipe_choice().release;
   // The spec profile judges the device with its own sub-pixel grid (CTS: subPixelPrecisionBits).
-  if (from_captures_ && capture_limits_)
+  // A capture without limits is judged with the specification's minimums (DeviceLimits).
+  if (from_captures_ && capture_limits_) {
     options.sub_pixel_bits = capture_limits_->sub_pixel_precision_bits;
-  else if (device_.sub_pixel_precision_bits != 0)
+    options.viewport_sub_pixel_bits = capture_limits_->viewport_sub_pixel_bits;
+  } else if (device_.sub_pixel_precision_bits != 0) {
     options.sub_pixel_bits = device_.sub_pixel_precision_bits;
+    options.viewport_sub_pixel_bits = device_.limits.viewport_sub_pixel_bits;
+  }
   return options;
 }
 

@@ -3,6 +3,7 @@
 #include <fmt/core.h>
 
 #include <algorithm>
+#include <array>
 #include <filesystem>
 
 #include "compare/case_run.hpp"
@@ -56,7 +57,10 @@ std::vector<uint32_t> alternatives_at(const RenderResult& expected, size_t index
 
 // Which simulated devices leave `owner` there: "a device with floor vertex rounding, top-left tie
 // rule leaves it (and 2 other devices)", or the general reason where none is named.
-std::string devices_text(const std::vector<ExactDeviceOwner>& devices, uint32_t owner) {
+std::string devices_text(const std::vector<ExactDeviceOwner>& devices, uint32_t owner, bool open) {
+  if (open)
+    return "the owner is open here: it may cover the pixel, and no primitive that certainly covers it certainly "
+           "beats it in the depth test";
   std::vector<std::string> names;
   for (const ExactDeviceOwner& d : devices)
     if (d.owner == owner) names.push_back(d.device);
@@ -67,11 +71,11 @@ std::string devices_text(const std::vector<ExactDeviceOwner>& devices, uint32_t 
 
 // The observed owner judged against the estimate's and the alternatives (compare/diff.hpp).
 std::string observed_text(const RenderResult& expected, const RenderResult& actual, CompareProfile profile, size_t i,
-                          const std::vector<ExactDeviceOwner>& devices) {
+                          const std::vector<ExactDeviceOwner>& devices, bool open) {
   const SampleClass c = classify_sample(expected, actual, profile, i);
   const std::string owner = owner_text(actual.owner[i]);
   if (c == SampleClass::AllowedOwner)
-    return owner + ": an allowed alternative (Pass): " + devices_text(devices, actual.owner[i]);
+    return owner + ": an allowed alternative (Pass): " + devices_text(devices, actual.owner[i], open);
   if (c == SampleClass::WrongOwner)
     return owner +
            ": neither the estimate's nor an allowed alternative (wrong owner, QualityWarning: only "
@@ -88,17 +92,58 @@ std::string owners_text(const Scene& scene, const CpuOptions& cpu_options, const
   const size_t i = expected.index(x, y, sample);
   const std::vector<uint32_t> alternatives = alternatives_at(expected, i);
   std::vector<ExactDeviceOwner> devices;
-  if (!alternatives.empty()) devices = exact_device_owners_at(scene, cpu_options, x, y, sample);
+  const bool open = spec_pixel_rules(scene, cpu_options, expected, x, y).owner_open;
+  if (!alternatives.empty() && !open) devices = exact_device_owners_at(scene, cpu_options, x, y, sample);
   std::string text =
       "spec owners (docs/spec-profile.md, Owners):\n  estimate:     " + owner_text(expected.owner[i]) + "\n";
   if (alternatives.empty())
     text +=
-        "  alternatives: none (no exact device simulated here leaves another owner; Owners names what is not "
-        "simulated)\n";
+        "  alternatives: none (no exact device simulated here leaves another owner, and where the owner is open "
+        "every other primitive is certainly beaten; Owners names what is not simulated)\n";
   for (size_t k = 0; k < alternatives.size(); ++k)
     text += fmt::format("  {:<14}{}: {}\n", k == 0 ? "alternatives:" : "", owner_text(alternatives[k]),
-                        devices_text(devices, alternatives[k]));
-  return text + "  observed:     " + observed_text(expected, actual, profile, i, devices) + "\n";
+                        devices_text(devices, alternatives[k], open));
+  return text + "  observed:     " + observed_text(expected, actual, profile, i, devices, open) + "\n";
+}
+
+// Spec profile: the sample's class, the limits it was judged with, and what each primitive near it
+// may do there (docs/spec-profile.md), so that a driver developer can argue with a MustNot.
+std::string class_text(const Scene& scene, const CpuOptions& cpu_options, const RenderResult& expected, uint32_t x,
+                       uint32_t y, uint32_t sample) {
+  static constexpr std::array<const char*, 3> kClass = {"MustNot", "May", "Must"};
+  const SpecPixelRules rules = spec_pixel_rules(scene, cpu_options, expected, x, y);
+  const CoverageClass c = expected.coverage_class[expected.index(x, y, sample)];
+  std::string text = fmt::format(
+      "spec class (docs/spec-profile.md): {}\n  limits:       subPixelPrecisionBits {}, viewportSubPixelBits {} ({} "
+      "other viewport representation(s) judged besides the scene's own), strictLines unknown (DEFAULT lines: rectangle "
+      "or "
+      "parallelogram), lineWidthGranularity unknown (the nearest supported width)\n",
+      kClass[size_t(c)], cpu_options.sub_pixel_bits, cpu_options.viewport_sub_pixel_bits, rules.viewports);
+  for (const SpecPixelRules::Primitive& p : rules.primitives)
+    text += fmt::format("  {:<14}{} ({}): {}, gate {}\n", &p == &rules.primitives.front() ? "primitives:" : "",
+                        owner_text(p.owner), p.line ? "line" : "triangle piece", p.coverage, p.gate);
+  std::string why;
+  if (!rules.in_scissor)
+    why = "outside the scissor rectangle (\"Scissor Test\": coverage 0)";
+  else if (rules.undefined)
+    why = "a primitive has undefined coordinates: anything inside the scissor may be covered";
+  else if (c == CoverageClass::MustNot)
+    why = rules.primitives.empty()
+              ? "no primitive reaches the pixel under any placement of its vertices"
+              : "no primitive may cover it: each misses the pixel box under every placement of its vertices on the "
+                "sub-pixel grid (triangles), misses the widest line region (lines), or certainly fails against the "
+                "clear value or is culled (gate never)";
+  else if (c == CoverageClass::Must)
+    why =
+        "a primitive covers it whatever the device chose (full, gate certain), or two triangles share an edge "
+        "through it and exactly one of them covers it";
+  else
+    why = "some primitive may cover it (partial, or gate maybe), none certainly";
+  if (rules.viewports > 0 && rules.in_scissor)
+    why += "; the class holds for every viewport representation (the primitives above: the scene's own viewport)";
+  text += "  why:          " + why + "\n";
+  if (rules.owner_open) text += "  owner open:   " + rules.open_reason + " (cpu_raster/spec/open_owners.hpp)\n";
+  return text;
 }
 
 std::string header_text(const Scene& scene, CompareProfile profile, uint32_t x, uint32_t y, uint32_t sample,
@@ -119,6 +164,9 @@ std::string explain_sample_text(const Scene& scene, const CpuOptions& cpu_option
   const std::vector<FragmentRecord> history = explain_pixel(scene, cpu_options, x, y, sample);
   return header_text(scene, profile, x, y, sample) + format_explanation(history) +
          tail_text(expected, actual, cpu_method_label(cpu_options), profile, x, y, sample) +
+         (profile == CompareProfile::Spec && !expected.coverage_class.empty()
+              ? class_text(scene, cpu_options, expected, x, y, sample)
+              : "") +
          owners_text(scene, cpu_options, expected, actual, profile, x, y, sample);
 }
 

@@ -27,10 +27,29 @@ struct ExactDeviceOwner {
 };
 
 // Every simulated exact device's owner of sample (x, y, sample), for `rastercmp explain`; empty
-// where the profile simulates none (lines, undefined primitives). Throws NotSupportedError for
+// where the profile simulates none (undefined primitives). Lines are not simulated. Throws NotSupportedError for
 // a scene the spec profile does not support.
 std::vector<ExactDeviceOwner> exact_device_owners_at(const Scene& scene, const CpuOptions& options, uint32_t x,
                                                      uint32_t y, uint32_t sample);
+
+// Spec profile: why a pixel has its class, for `rastercmp explain` (docs/spec-profile.md). For the
+// scene's own viewport; `viewports` counts the other representations of its bounds that were judged.
+struct SpecPixelRules {
+  struct Primitive {
+    uint32_t owner = kOwnerBackground;
+    bool line = false;
+    std::string coverage;  // "full", "partial" or "none": the primitive's own class at the pixel
+    std::string gate;      // "certain", "maybe" or "never": culling and the test against the clear value
+  };
+  std::vector<Primitive> primitives;  // every primitive whose reach holds the pixel, in submission order
+  bool in_scissor = true;
+  bool undefined = false;  // a primitive with undefined coordinates: May inside the scissor
+  bool owner_open = false;
+  std::string open_reason;  // why the owner is open (cpu_raster/spec/open_owners.hpp)
+  size_t viewports = 0;
+};
+SpecPixelRules spec_pixel_rules(const Scene& scene, const CpuOptions& options, const RenderResult& expected, uint32_t x,
+                                uint32_t y);
 
 // Checks one STAGE=NAME choice against the stages and names the CPU renderer knows (the classic
 // path's tables and the exact path's snap / tie_break). Returns "" when it is known, else what is

@@ -39,11 +39,12 @@ struct DepthInterval {
 };
 
 // The device limits the spec profile may read, as a capture's render.json records them ("limits").
-// A capture without them gets these defaults: subPixelPrecisionBits 8 (every device seen so far)
-// and the specification's minimum guarantees for the rest ("Limit Requirements": viewportSubPixelBits
-// 0, strictLines and standardSampleLocations not required, lineWidthRange (1.0, 1.0)).
+// A capture without them is judged as any conformant device could have made it: these defaults are
+// the specification's minimum guarantees ("Limit Requirements": subPixelPrecisionBits 4,
+// viewportSubPixelBits 0, strictLines and standardSampleLocations not required, lineWidthRange
+// (1.0, 1.0)).
 struct DeviceLimits {
-  uint32_t sub_pixel_precision_bits = 8;
+  uint32_t sub_pixel_precision_bits = 4;
   uint32_t viewport_sub_pixel_bits = 0;
   bool strict_lines = false;
   bool standard_sample_locations = false;

@@ -171,5 +171,45 @@ TEST(ExplainText, SpecProfileNamesTheOwnerAlternatives) {
             std::string::npos);
 }
 
+// Spec profile: the class of the sample, the limits it was judged with and each nearby primitive's
+// own class there, so that a driver developer can argue with a MustNot. A triangle of the quad
+// above and a width-1 line across row 3, 0.2 px above the centres: (1, 8) is MustNot with nothing
+// near, (10, 10) MustNot inside the triangle's bounds (it misses the box under every placement of
+// its vertices), (4, 4) Must, (6, 3) open for its owner, which the line may be; with
+// viewportSubPixelBits 0 a viewport with fractional bounds is judged in each of its representations.
+TEST(ExplainText, SpecProfileExplainsTheClassAndTheLimits) {
+  Scene scene = spec_test::make_scene(16, 16);
+  scene.draws.push_back(spec_test::window_triangles(scene, {{2, 2}, {12, 2}, {2, 12}}));
+  Draw line = spec_test::window_triangles(scene, {{3.5, 3.3}, {14.5, 3.3}});
+  line.topology = Topology::LineList;
+  scene.draws.push_back(line);
+  CpuOptions cpu = spec_test::spec_options(4);
+  cpu.viewport_sub_pixel_bits = 0;
+  const RenderResult expected = render_cpu(scene, cpu);
+  const auto explain = [&](uint32_t x, uint32_t y) {
+    return explain_sample_text(scene, cpu, expected, expected, CompareProfile::Spec, x, y, 0);
+  };
+  const std::string nothing = explain(1, 8);
+  EXPECT_NE(nothing.find("  why:          no primitive reaches the pixel"), std::string::npos) << nothing;
+  const std::string must_not = explain(10, 10);
+  EXPECT_NE(must_not.find("spec class (docs/spec-profile.md): MustNot\n  limits:       subPixelPrecisionBits 4, "
+                          "viewportSubPixelBits 0 (0 other viewport representation(s)"),
+            std::string::npos)
+      << must_not;
+  EXPECT_NE(must_not.find("draw 0 primitive 0 (id 0x00000000) (triangle piece): none, gate never"), std::string::npos)
+      << must_not;
+  EXPECT_NE(must_not.find("  why:          no primitive may cover it"), std::string::npos) << must_not;
+  const std::string must = explain(4, 4);
+  EXPECT_NE(must.find("spec class (docs/spec-profile.md): Must\n"), std::string::npos) << must;
+  EXPECT_NE(must.find("(triangle piece): full, gate certain"), std::string::npos) << must;
+  const std::string near_line = explain(6, 3);
+  EXPECT_NE(near_line.find("(line): partial, gate certain"), std::string::npos) << near_line;
+  EXPECT_NE(near_line.find("  owner open:   a line may cover the pixel"), std::string::npos) << near_line;
+  scene.viewport = Viewport{0.25f, 0, 15.5f, 16, 0, 1};
+  const RenderResult fractional = render_cpu(scene, cpu);
+  const std::string held = explain_sample_text(scene, cpu, fractional, fractional, CompareProfile::Spec, 1, 8, 0);
+  EXPECT_NE(held.find("viewportSubPixelBits 0 (4 other viewport representation(s)"), std::string::npos) << held;
+}
+
 }  // namespace
 }  // namespace rastercmp

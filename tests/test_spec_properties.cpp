@@ -240,6 +240,101 @@ RC_GTEST_PROP(SpecProfileProperty, ExactDevicesNeverViolateAndTheirOwnersAreList
   }
 }
 
+// docs/spec-profile.md "Owners", open owners: where a line may cover a sample but certainly does
+// not, a device may leave the line out there. Lavapipe's render of the same scene without its lines
+// is what such a device leaves where no line certainly covers: at every Must sample there its owner
+// must be the estimate's or an alternative. (With the triangles' depths inside their intervals, as
+// the properties above check, no certain triangle certainly beats that owner.)
+RC_GTEST_PROP(SpecProfileProperty, LinesLeftOutLeaveAnAllowedOwner, ()) {
+  using namespace cpu::spec;
+  const std::vector<Topology> triangles = {Topology::TriangleList, Topology::TriangleStrip, Topology::TriangleFan};
+  uint64_t checked = 0;
+  for (int k = 0; k < kScenesPerCase; ++k) {
+    Scene scene = random_frame();
+    Scene without = scene;
+    const int draws = pick(2, 5);
+    for (int d = 0; d < draws; ++d) {
+      const bool line = d == 0 || coin(40);
+      const Draw draw = random_draw(
+          scene, line ? (coin(50) ? Topology::LineList : Topology::LineStrip) : triangles[size_t(pick(0, 2))],
+          pick(1, 4));
+      scene.draws.push_back(draw);
+      if (!line) without.draws.push_back(draw);
+    }
+    if (has_multisample_bresenham_line(scene)) continue;  // a lavapipe deviation (above)
+    const RenderResult estimate = render_cpu(scene, lavapipe_options());
+    RenderResult spec = render_spec_profile(scene, spec_options(8), estimate);
+    const RenderResult left_out = render_cpu(without, lavapipe_options());
+    // The owner ids of `without` count its draws without the lines: map them back.
+    std::vector<uint32_t> draw_of;
+    for (uint32_t d = 0; d < scene.draws.size(); ++d)
+      if (!is_line_topology(scene.draws[d].topology)) draw_of.push_back(d);
+    const SpecPrimitives primitives = build_spec_primitives(scene, true, 8);
+    if (primitives.undefined) continue;
+    // Lavapipe's depth extrapolated past a triangle's vertices is a deviation (above) that can
+    // also turn the depth test: such scenes are left out.
+    RenderResult spec_without = render_spec_profile(without, spec_options(8), left_out);
+    if (accept_float_plane_extrapolation(without, 8, spec_without, left_out) > 0) continue;
+    const bool multisample = scene.samples > 1;
+    for (uint32_t y = 0; y < scene.height; ++y)
+      for (uint32_t x = 0; x < scene.width; ++x) {
+        const bool line_certain = std::any_of(primitives.lines.begin(), primitives.lines.end(), [&](const SpecLine& l) {
+          return line_coverage_at(l, int32_t(x), int32_t(y), 8, multisample) == Coverage::Full &&
+                 depth_gate_at(l.depth, glm::dvec2(x + 0.5, y + 0.5)) == Gate::Certain;
+        });
+        if (line_certain) continue;
+        for (uint32_t s = 0; s < scene.samples; ++s) {
+          const size_t i = spec.index(x, y, s);
+          if (spec.coverage_class[i] != CoverageClass::Must || left_out.owner[i] == kOwnerBackground) continue;
+          const uint32_t owner =
+              encode_owner(draw_of[owner_draw(left_out.owner[i])], owner_primitive(left_out.owner[i]));
+          ++checked;
+          if (owner != spec.owner[i] && !is_owner_alternative(spec, i, owner)) {
+            RC_LOG() << "sample (" << x << ", " << y << ") " << s << ": without the lines " << owner << ", estimate "
+                     << spec.owner[i] << "\n"
+                     << describe(scene);
+            RC_FAIL("a device that leaves the lines out leaves an owner the profile does not allow");
+          }
+        }
+      }
+  }
+  RC_CLASSIFY(checked > 0, "some Must sample checked");
+}
+
+// "The floating-point viewport bounds are represented with an implementation-dependent precision"
+// (viewportSubPixelBits, at least 0): lavapipe's render with the viewport's x, y, width and height
+// each rounded down or up to whole pixels is one conformant render of a scene whose bounds are
+// fractional, judged with viewportSubPixelBits 0.
+RC_GTEST_PROP(SpecProfileProperty, EveryRepresentedViewportIsAccepted, ()) {
+  for (int k = 0; k < kScenesPerCase; ++k) {
+    Scene scene = random_frame();
+    Viewport v = scene.effective_viewport();
+    v.x += float(pick(0, 255)) / 256;
+    v.y += float(pick(0, 255)) / 256;
+    v.width += float(pick(0, 255)) / 256;
+    v.height += float(pick(0, 255)) / 256 * (v.height < 0 ? -1 : 1);
+    scene.viewport = v;
+    const int draws = pick(1, 3);
+    for (int d = 0; d < draws; ++d)
+      scene.draws.push_back(random_draw(scene, coin(25) ? Topology::LineList : Topology::TriangleList, pick(1, 4)));
+    if (has_multisample_bresenham_line(scene)) continue;
+    CpuOptions options = spec_options(8);
+    options.viewport_sub_pixel_bits = 0;
+    const RenderResult spec = render_spec_profile(scene, options, render_cpu(scene, lavapipe_options()));
+    Scene held = scene;
+    const auto rounded = [](float value) { return coin(50) ? std::floor(value) : std::ceil(value); };
+    held.viewport = Viewport{rounded(v.x), rounded(v.y), rounded(v.width), rounded(v.height), v.min_depth, v.max_depth};
+    if (held.viewport->width == 0 || held.viewport->height == 0) continue;
+    const RenderResult exact = render_cpu(held, lavapipe_options());
+    RenderResult widened = spec;
+    RenderResult spec_held = render_spec_profile(held, spec_options(8), exact);
+    if (accept_float_plane_extrapolation(held, 8, spec_held, exact) > 0) continue;  // a deviation (above)
+    const Violations violations = judge(widened, exact);
+    if (violations.any()) RC_LOG() << describe(violations) << "\n" << describe(held);
+    RC_ASSERT_FALSE(violations.any());
+  }
+}
+
 // A grid of quads split into triangle pairs (a strip per row): every inner edge is shared, so
 // promotion decides most centres on them; lavapipe's top-left rule covers each exactly once.
 RC_GTEST_PROP(SpecProfileProperty, LavapipeNeverViolatesSharedEdgeGrids, ()) {

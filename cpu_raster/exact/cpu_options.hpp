@@ -28,6 +28,9 @@ struct CpuOptions {
   bool lavapipe_from_driver = true;
   // Sub-pixel precision of the device being judged (spec profile); lavapipe: 8.
   uint32_t sub_pixel_bits = 8;
+  // Precision of the viewport's bounds on the device being judged (spec profile:
+  // viewportSubPixelBits); lavapipe: 8.
+  uint32_t viewport_sub_pixel_bits = 8;
   // 0: the exact scalar path alone. >= 1: the fast path with this many threads (bit-identical).
   uint32_t threads = 0;
   // The fast path: every one of `threads` workers even on a scene one worker would take alone

@@ -1,5 +1,7 @@
 #include "cpu_raster/spec/depth_gate.hpp"
 
+#include "cpu_raster/spec/line_coverage.hpp"
+
 #include <algorithm>
 #include <array>
 #include <bit>
@@ -162,7 +164,7 @@ void set_interval_terms(const Scene& scene, const RasterState& state, const Dept
   j.reach_px = p.box_half_px + p.snap_px;
   j.interval_reach_px = p.sample_half_px + p.snap_px;  // a single sample lies at the pixel centre
   if (is_line) {
-    j.reach_px += 0.5 * std::ceil(p.line_width) + kLineReachMarginPx;
+    j.reach_px += 0.5 * std::ceil(widest_line_width(float(p.line_width))) + kLineReachMarginPx;
     j.interval_reach_px = j.reach_px;
   }
   const DepthBias& bias = state.depth_bias;

@@ -28,6 +28,10 @@ int64_t snap(double window, uint32_t bits, SnapRounding rounding) {
   return 0;
 }
 
+// Where a device's depth bias sits in SnappedPlane::bias: r and m are chosen apart ("Depth Bias
+// Computation" bounds r and lets m be approximated, independently).
+size_t bias_index(bool r_high, bool m_sqrt) { return (r_high ? 2 : 0) + (m_sqrt ? 1 : 0); }
+
 // One triangle on one device's grid, oriented so that its edge functions are positive inside.
 struct SnappedPlane {
   bool drawn = false;  // not culled, not of zero area
@@ -35,7 +39,7 @@ struct SnappedPlane {
   std::array<long double, 3> z{};
   Wide area = 0;  // cross(v1 - v0, v2 - v0) > 0, grid units squared
   std::array<bool, 3> top_left{};
-  std::array<double, 2> bias{};  // o for bias_high false / true (0 without bias)
+  std::array<double, 4> bias{};  // o for bias_index(device) (0 without bias)
 };
 
 SnappedPlane snapped_plane(const Scene& scene, const SpecTriangle& t, uint32_t bits, SnapRounding rounding) {
@@ -80,8 +84,12 @@ SnappedPlane snapped_plane(const Scene& scene, const SpecTriangle& t, uint32_t b
     r_high = 2 * r_low;
   }
   const double m_max = std::max(std::fabs(a), std::fabs(b)), m_sqrt = std::sqrt(a * a + b * b);
-  p.bias[0] = dbclamp(double(bias.slope_factor) * m_max + double(bias.constant_factor) * r_low, bias.clamp);
-  p.bias[1] = dbclamp(double(bias.slope_factor) * m_sqrt + double(bias.constant_factor) * r_high, bias.clamp);
+  for (const bool r_is_high : {false, true})
+    for (const bool m_is_sqrt : {false, true})
+      p.bias[bias_index(r_is_high, m_is_sqrt)] =
+          dbclamp(double(bias.slope_factor) * (m_is_sqrt ? m_sqrt : m_max) +
+                      double(bias.constant_factor) * (r_is_high ? r_high : r_low),
+                  bias.clamp);
   return p;
 }
 
@@ -111,7 +119,8 @@ GridSample grid_sample(const Scene& scene, uint32_t bits, uint32_t px, uint32_t 
   const int64_t one = int64_t(1) << gbits;
   if (scene.samples == 1) return {px * one + one / 2, py * one + one / 2};
   const SampleOffset& s = kStandardSamples4x[sample];
-  return {px * one + int64_t(std::ldexp(double(s.x), int(gbits))), py * one + int64_t(std::ldexp(double(s.y), int(gbits)))};
+  return {px * one + int64_t(std::ldexp(double(s.x), int(gbits))),
+          py * one + int64_t(std::ldexp(double(s.y), int(gbits)))};
 }
 
 // The fragment depth, if the triangle covers the sample under the tie rule.
@@ -143,7 +152,7 @@ double stored_key(DepthFormat format, double z, FloatRounding rounding) {
 // the earlier ones left (Vulkan "Depth Test": a passing fragment writes its depth when writes are
 // on; its owner is written whenever it passes).
 uint32_t simulate_owner(const Scene& scene, const std::vector<const Candidate*>& candidates, const ExactDevice& device,
-                  GridSample s) {
+                        GridSample s) {
   const Viewport viewport = scene.effective_viewport();
   const double z_min = std::min(viewport.min_depth, viewport.max_depth);
   const double z_max = std::max(viewport.min_depth, viewport.max_depth);
@@ -156,7 +165,7 @@ uint32_t simulate_owner(const Scene& scene, const std::vector<const Candidate*>&
     const RasterState& state = c->draw->state;
     const bool tested = scene.has_depth() && state.depth.test_enable;
     if (tested) {
-      double z = double(z_plane) + p.bias[device.bias_high ? 1 : 0];
+      double z = double(z_plane) + p.bias[bias_index(device.bias_r_high, device.bias_m_sqrt)];
       if (state.depth_clamp) z = std::clamp(z, z_min, z_max);  // "Depth Clamping and Range Adjustment"
       const double key = stored_key(scene.depth_format, z, device.d32);
       if (!ordered_compare(state.depth.compare_op, key, stored)) continue;
@@ -169,7 +178,8 @@ uint32_t simulate_owner(const Scene& scene, const std::vector<const Candidate*>&
 
 bool has_bias(const Scene& scene) {
   return std::any_of(scene.draws.begin(), scene.draws.end(), [](const Draw& d) {
-    return d.state.depth_bias.enable && (d.state.depth_bias.constant_factor != 0 || d.state.depth_bias.slope_factor != 0);
+    return d.state.depth_bias.enable &&
+           (d.state.depth_bias.constant_factor != 0 || d.state.depth_bias.slope_factor != 0);
   });
 }
 
@@ -184,19 +194,20 @@ std::vector<const Candidate*> all_candidates(const std::vector<Candidate>& candi
 std::vector<ExactDevice> exact_devices(const Scene& scene) {
   std::vector<ExactDevice> devices;
   const std::array<std::pair<SnapRounding, TieRule>, 4> grids = {{{SnapRounding::Nearest, TieRule::TopLeft},
-                                                                   {SnapRounding::Floor, TieRule::TopLeft},
-                                                                   {SnapRounding::Ceil, TieRule::TopLeft},
-                                                                   {SnapRounding::Nearest, TieRule::BottomRight}}};
+                                                                  {SnapRounding::Floor, TieRule::TopLeft},
+                                                                  {SnapRounding::Ceil, TieRule::TopLeft},
+                                                                  {SnapRounding::Nearest, TieRule::BottomRight}}};
   const bool bias = scene.has_depth() && has_bias(scene);
   const bool d32 = is_float(scene.depth_format);
   for (const auto& [snap_rounding, tie] : grids)
-    for (const bool high : {false, true}) {
-      if (high && !bias) continue;
-      for (const FloatRounding f : {FloatRounding::Nearest, FloatRounding::Down, FloatRounding::Up}) {
-        if (f != FloatRounding::Nearest && !d32) continue;
-        devices.push_back({snap_rounding, tie, high, f});
+    for (const bool r_high : {false, true})
+      for (const bool m_sqrt : {false, true}) {
+        if ((r_high || m_sqrt) && !bias) continue;
+        for (const FloatRounding f : {FloatRounding::Nearest, FloatRounding::Down, FloatRounding::Up}) {
+          if (f != FloatRounding::Nearest && !d32) continue;
+          devices.push_back({snap_rounding, tie, r_high, m_sqrt, f});
+        }
       }
-    }
   return devices;
 }
 
@@ -206,7 +217,8 @@ std::string describe_exact_device(const Scene& scene, const ExactDevice& device)
   std::string text = std::string(kSnap[size_t(device.snap)]) + " vertex rounding, " +
                      (device.tie == TieRule::TopLeft ? "top-left" : "bottom-right") + " tie rule";
   if (scene.has_depth() && has_bias(scene))
-    text += device.bias_high ? ", bias r at its upper end, m = sqrt form" : ", bias r at its lower end, m = max form";
+    text += std::string(device.bias_r_high ? ", bias r at its upper end" : ", bias r at its lower end") +
+            (device.bias_m_sqrt ? ", m in its sqrt form" : ", m in its max form");
   if (is_float(scene.depth_format)) text += std::string(", D32 rounding ") + kD32[size_t(device.d32)];
   return text;
 }

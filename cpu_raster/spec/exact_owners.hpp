@@ -25,7 +25,8 @@
 // leaves to quality (for example between coplanar primitives that share their vertices).
 //
 // Per sample, so a relaxation like the coverage classes: two neighbouring samples may be explained
-// by two different devices. Not simulated (no alternatives): scenes with lines or with undefined
+// by two different devices. Lines are not simulated: where a line may cover a sample the owner is
+// judged by open_owners.hpp instead. Not simulated (no alternatives): scenes with undefined
 // primitives, and scenes whose contested work exceeds kExactOwnerWorkLimit.
 #pragma once
 
@@ -47,17 +48,20 @@ enum class FloatRounding : uint8_t { Nearest, Down, Up };
 struct ExactDevice {
   SnapRounding snap = SnapRounding::Nearest;
   TieRule tie = TieRule::TopLeft;
-  bool bias_high = false;  // r at its upper end (2 x 2^-n, or 2 x 2^(e-n)) and m = sqrt form; else 2^-n and max form
+  // Depth bias, two choices apart: r at its upper end (2 x 2^-n, or 2 x 2^(e-n)) or lower (2^-n,
+  // 2^(e-n)); m in its sqrt form or the max form the specification lets it be approximated by.
+  bool bias_r_high = false;
+  bool bias_m_sqrt = false;
   FloatRounding d32 = FloatRounding::Nearest;
 };
 
 // The devices simulated for a scene: every snapping rounding with the top-left tie rule, nearest
-// with bottom-right; times both ends of r and m when a draw has depth bias; times the three D32
-// roundings for a D32 attachment.
+// with bottom-right; times both ends of r and both forms of m when a draw has depth bias; times the
+// three D32 roundings for a D32 attachment.
 std::vector<ExactDevice> exact_devices(const Scene& scene);
 
 // A device's choices in words, those exact_devices(scene) varies: "floor vertex rounding,
-// top-left tie rule", plus "bias r at its upper end, m = sqrt form" with depth bias and "D32 rounding
+// top-left tie rule", plus "bias r at its upper end, m in its sqrt form" with depth bias and "D32 rounding
 // up" with a D32 attachment (rastercmp explain, docs/compare.md).
 std::string describe_exact_device(const Scene& scene, const ExactDevice& device);
 

@@ -78,14 +78,28 @@ bool square_touches(const Quad& quad, dvec2 centre, double half) {
   return true;
 }
 
+// The widths a device may rasterize a line of `width` with (Vulkan "Line Segments": "If an
+// unsupported width is requested, the nearest supported width is used instead"; supported widths
+// lie lineWidthGranularity apart, at most 1.0 ("Limit Requirements"), and 1.0 is always supported).
+// Unknown granularity: the nearest supported width lies within half of 1.0, and no farther than 1.0.
+struct WidthRange {
+  double lo, hi;
+};
+WidthRange supported_widths(double width) {
+  const double reach = std::min(0.5, std::fabs(width - 1.0));
+  return {width - reach, width + reach};
+}
+
 }  // namespace
+
+double widest_line_width(float line_width) { return supported_widths(line_width).hi; }
 
 LineShape line_shape(const std::array<glm::dvec2, 2>& pos_window, LineMode mode, float line_width) {
   const dvec2 a = pos_window[0], b = pos_window[1];
-  const double width = line_width;
+  const WidthRange widths = supported_widths(line_width);
   // Bresenham rounds the width to an integer, in a direction the spec leaves open.
-  const double width_lo = std::max(1.0, std::floor(width)), width_hi = std::max(1.0, std::ceil(width));
-  const double widest = mode == LineMode::Bresenham ? width_hi : width;
+  const double width_lo = std::max(1.0, std::floor(widths.lo)), width_hi = std::max(1.0, std::ceil(widths.hi));
+  const double widest = mode == LineMode::Bresenham ? width_hi : widths.hi;
   LineShape shape;
   if (std::hypot(b.x - a.x, b.y - a.y) < kMinLinePx) {  // no direction: anything near the point
     shape.may.push_back(square(a, 0.5 * widest));
@@ -94,19 +108,19 @@ LineShape line_shape(const std::array<glm::dvec2, 2>& pos_window, LineMode mode,
   const double extend = 0.5 * widest;
   switch (mode) {
     case LineMode::Rectangular:
-      shape.must = {rectangle(a, b, width, 0)};
-      shape.may = {rectangle(a, b, width, extend)};
+      shape.must = {rectangle(a, b, widths.lo, 0)};
+      shape.may = {rectangle(a, b, widths.hi, extend)};
       break;
     case LineMode::Default:  // strictLines unknown: rectangle or parallelogram
-      shape.must = {rectangle(a, b, width, 0), parallelogram(a, b, width, 0)};
-      shape.may = {rectangle(a, b, width, extend), parallelogram(a, b, width, extend)};
+      shape.must = {rectangle(a, b, widths.lo, 0), parallelogram(a, b, widths.lo, 0)};
+      shape.may = {rectangle(a, b, widths.hi, extend), parallelogram(a, b, widths.hi, extend)};
       break;
     case LineMode::Bresenham:
       shape.must = {parallelogram(a, b, width_lo, 0)};
       shape.may = {parallelogram(a, b, width_hi, extend)};
       break;
     case LineMode::RectangularSmooth:  // the rectangle, but coverage is an implementation's alpha
-      shape.may = {rectangle(a, b, width, extend)};
+      shape.may = {rectangle(a, b, widths.hi, extend)};
       break;
   }
   return shape;

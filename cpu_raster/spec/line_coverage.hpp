@@ -38,7 +38,12 @@ struct LineShape {
   std::vector<Quad> may;   // May where the box, grown by the margin, touches any one
 };
 
-// pos_window: the clipped endpoints in window pixels (finite).
+// The widest width a device may rasterize a line of `line_width` with: the nearest supported width
+// (Vulkan "Line Segments"), lineWidthGranularity unknown (at most 1.0, "Limit Requirements").
+double widest_line_width(float line_width);
+
+// pos_window: the clipped endpoints in window pixels (finite). Must from the narrowest width a
+// device may use for `line_width`, May from the widest.
 LineShape line_shape(const std::array<glm::dvec2, 2>& pos_window, LineMode mode, float line_width);
 
 // The box of pixel (px, py) in pixels: centre and half-size (see pixel_box).

@@ -213,6 +213,35 @@ Gate triangle_gate_at(const SpecTriangle& triangle, int32_t px, int32_t py) {
   return weaker(triangle.facing, depth_gate_at(triangle.depth, glm::dvec2(px + 0.5, py + 0.5)));
 }
 
+ViewportRect viewport_rect(const Viewport& v) {
+  const double y_end = double(v.y) + double(v.height);
+  return {double(v.x), double(v.x) + double(v.width), std::min(double(v.y), y_end), std::max(double(v.y), y_end)};
+}
+
+bool box_inside_viewport(const ViewportRect& r, const ToleranceBox& box, uint32_t bits) {
+  const double unit = std::ldexp(1.0, -int(bits));
+  const double x0 = double(box.cx - box.half) * unit, x1 = double(box.cx + box.half) * unit;
+  const double y0 = double(box.cy - box.half) * unit, y1 = double(box.cy + box.half) * unit;
+  return x0 > r.x0 && x1 < r.x1 && y0 > r.y0 && y1 < r.y1;
+}
+
+Coverage capped(Coverage coverage, const SpecTriangle& t, const ViewportRect& viewport, const ToleranceBox& box,
+                uint32_t bits) {
+  if (coverage != Coverage::Full) return coverage;
+  return t.shape_certain && box_inside_viewport(viewport, box, bits) ? Coverage::Full : Coverage::Partial;
+}
+
+Coverage triangle_coverage_at(const SpecTriangle& t, const ViewportRect& viewport, int32_t px, int32_t py,
+                              uint32_t bits, bool multisample) {
+  const ToleranceBox box = pixel_box(px, py, bits, multisample);
+  return capped(classify_box(t.snapped, box), t, viewport, box, bits);
+}
+
+Coverage line_coverage_at(const SpecLine& line, int32_t px, int32_t py, uint32_t bits, bool multisample) {
+  const double half_px = std::ldexp(double(pixel_box(0, 0, bits, multisample).half), -int(bits));
+  return classify_line_box(line.shape, PixelSquare{glm::dvec2(px + 0.5, py + 0.5), half_px});
+}
+
 SpecPrimitives build_spec_primitives(const Scene& scene, bool fma, uint32_t sub_pixel_bits) {
   SpecPrimitives out;
   DrawContext ctx;

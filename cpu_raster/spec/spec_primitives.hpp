@@ -60,4 +60,25 @@ Gate triangle_gate_at(const SpecTriangle& triangle, int32_t px, int32_t py);
 
 SpecPrimitives build_spec_primitives(const Scene& scene, bool fma, uint32_t sub_pixel_bits);
 
+// The viewport rectangle in window pixels: the image of the clip volume -w_c <= x_c, y_c <= w_c
+// (Vulkan "Primitive Clipping", "Controlling the Viewport"), where every clipped primitive lies.
+struct ViewportRect {
+  double x0 = 0, x1 = 0, y0 = 0, y1 = 0;
+};
+ViewportRect viewport_rect(const Viewport& v);
+
+// The box lies strictly inside the viewport rectangle: its sides bound a triangle's clipped
+// polygon as its edges do, so a box across them cannot be FULL (the same rule as for lines).
+bool box_inside_viewport(const ViewportRect& r, const ToleranceBox& box, uint32_t bits);
+
+// FULL only for a piece whose shape is certain, and inside the viewport rectangle.
+Coverage capped(Coverage coverage, const SpecTriangle& t, const ViewportRect& viewport, const ToleranceBox& box,
+                uint32_t bits);
+
+// One primitive's own class at pixel (px, py), as the coverage map adds it (the union's Must also
+// comes from shared edges, coverage_map.hpp).
+Coverage triangle_coverage_at(const SpecTriangle& t, const ViewportRect& viewport, int32_t px, int32_t py,
+                              uint32_t bits, bool multisample);
+Coverage line_coverage_at(const SpecLine& line, int32_t px, int32_t py, uint32_t bits, bool multisample);
+
 }  // namespace rastercmp::cpu::spec

@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <string>
 
 #include "cpu_raster/spec/coverage_map.hpp"
 #include "cpu_raster/spec/depth_intervals.hpp"
 #include "cpu_raster/spec/exact_owners.hpp"
+#include "cpu_raster/spec/open_owners.hpp"
 #include "cpu_raster/spec/shared_edges.hpp"
 #include "cpu_raster/spec/spec_primitives.hpp"
 #include "model/errors.hpp"
@@ -33,33 +35,6 @@ cpu::PixelRect triangle_pixels(const SnappedTriangle& t, uint32_t bits, bool mul
   return pixels_near(t.x_min, t.x_max, t.y_min, t.y_max, bits, multisample, region);
 }
 
-// The viewport rectangle in window pixels: the image of the clip volume -w_c <= x_c, y_c <= w_c
-// (Vulkan "Primitive Clipping", "Controlling the Viewport"), where every clipped primitive lies.
-struct ViewportRect {
-  double x0 = 0, x1 = 0, y0 = 0, y1 = 0;
-};
-
-ViewportRect viewport_rect(const Viewport& v) {
-  const double y_end = double(v.y) + double(v.height);
-  return {double(v.x), double(v.x) + double(v.width), std::min(double(v.y), y_end), std::max(double(v.y), y_end)};
-}
-
-// The box lies strictly inside the viewport rectangle: its sides bound a triangle's clipped
-// polygon as its edges do, so a box across them cannot be FULL (the same rule as for lines).
-bool box_inside_viewport(const ViewportRect& r, const ToleranceBox& box, uint32_t bits) {
-  const double unit = std::ldexp(1.0, -int(bits));
-  const double x0 = double(box.cx - box.half) * unit, x1 = double(box.cx + box.half) * unit;
-  const double y0 = double(box.cy - box.half) * unit, y1 = double(box.cy + box.half) * unit;
-  return x0 > r.x0 && x1 < r.x1 && y0 > r.y0 && y1 < r.y1;
-}
-
-// FULL only for a piece whose shape is certain, and inside the viewport rectangle.
-Coverage capped(Coverage coverage, const SpecTriangle& t, const ViewportRect& viewport, const ToleranceBox& box,
-                uint32_t bits) {
-  if (coverage != Coverage::Full) return coverage;
-  return t.shape_certain && box_inside_viewport(viewport, box, bits) ? Coverage::Full : Coverage::Partial;
-}
-
 // The depth a primitive may write at pixel (px, py), where it may cover the pixel with `gate`. A
 // gate of Never (the fragment fails against the clear value) still counts: the fragment may pass
 // against a value an earlier draw wrote (a GREATER probe over a LESS-drawn quad).
@@ -84,9 +59,9 @@ void add_triangle(CoverageMap& map, DepthIntervalMap* depths, TouchCounts* touch
     for (int64_t x = first; x <= last; ++x) {
       const int32_t px = int32_t(x);
       const ToleranceBox box = pixel_box(px, py, bits, multisample);
-      const Coverage coverage = capped((x >= spans.full_first && x <= spans.full_last) ? Coverage::Full
-                                                                                       : classify_box(t.snapped, box),
-                                       t, viewport, box, bits);
+      const Coverage coverage =
+          capped((x >= spans.full_first && x <= spans.full_last) ? Coverage::Full : classify_box(t.snapped, box), t,
+                 viewport, box, bits);
       if (coverage == Coverage::None) continue;
       const Gate gate = triangle_gate_at(t, px, py);
       map.add(px, py, coverage, gate);
@@ -165,7 +140,7 @@ namespace {
 struct Contest {
   TouchCounts touches;
   SpecPrimitives primitives;
-  bool simulated = false;  // triangles only, none undefined: exact_owners.hpp can simulate them
+  bool simulated = false;  // none undefined: exact_owners.hpp can simulate the triangles
 };
 
 // Classes, and with `depths` the depth intervals, of the union of all draws; with `contest`, what
@@ -183,7 +158,7 @@ std::vector<CoverageClass> classify(const Scene& scene, const CpuOptions& option
     if (depths != nullptr) depths->make_any(map.region());
   }
   TouchCounts* touches = nullptr;
-  if (contest != nullptr && !primitives.undefined && primitives.lines.empty()) {
+  if (contest != nullptr && !primitives.undefined) {
     contest->touches.assign(size_t(scene.width) * scene.height, 0);
     touches = &contest->touches;
   }
@@ -210,22 +185,113 @@ std::vector<CoverageClass> spec_coverage_classes(const Scene& scene, const CpuOp
   return classify(scene, options, nullptr);
 }
 
+namespace {
+
+// What the profile judges a render by, for one viewport.
+struct Judgement {
+  std::vector<CoverageClass> classes;
+  std::vector<DepthInterval> intervals;
+  std::vector<OwnerAlternative> alternatives;
+};
+
+bool alternative_before(const OwnerAlternative& a, const OwnerAlternative& b) {
+  return a.sample != b.sample ? a.sample < b.sample : a.owner < b.owner;
+}
+
+Judgement judge(const Scene& scene, const CpuOptions& options, const PixelBuffer& estimate_owner) {
+  Judgement j;
+  DepthIntervalMap depths(scene);
+  Contest contest;
+  j.classes = classify(scene, options, &depths, &contest);
+  j.intervals = depths.intervals();
+  if (!contest.simulated) return j;
+  const uint32_t bits = effective_sub_pixel_bits(options.sub_pixel_bits);
+  std::vector<uint32_t> contested;
+  for (size_t i = 0; i < contest.touches.size(); ++i)
+    if (contest.touches[i] >= 2) contested.push_back(uint32_t(i));
+  // Where the owner is open (open_owners.hpp) its rule replaces the simulated devices'.
+  const std::vector<uint32_t> open = open_owner_pixels(scene, contest.primitives, j.classes, estimate_owner, bits);
+  std::vector<OwnerAlternative> simulated =
+      exact_owner_alternatives(scene, contest.primitives.triangles, bits, contested, estimate_owner);
+  std::erase_if(simulated, [&](const OwnerAlternative& a) {
+    return std::binary_search(open.begin(), open.end(), uint32_t(a.sample / scene.samples));
+  });
+  const std::vector<OwnerAlternative> opened =
+      open_owner_alternatives(scene, contest.primitives, bits, open, estimate_owner);
+  j.alternatives.resize(simulated.size() + opened.size());
+  std::merge(simulated.begin(), simulated.end(), opened.begin(), opened.end(), j.alternatives.begin(),
+             alternative_before);
+  return j;
+}
+
+// The judgement a device with any of the representations passes: Must or MustNot where every
+// representation says so, May elsewhere; the hull of the depth intervals; every alternative owner
+// (a relaxation per sample, like the classes themselves).
+void widen(Judgement& into, const Judgement& other, DepthFormat format) {
+  for (size_t i = 0; i < into.classes.size(); ++i)
+    if (into.classes[i] != other.classes[i]) into.classes[i] = CoverageClass::May;
+  for (size_t i = 0; i < into.intervals.size(); ++i) {
+    DepthInterval& a = into.intervals[i];
+    const DepthInterval& b = other.intervals[i];
+    if (b.any) a.any = true;
+    if (depth_raw_order(format, b.lo_raw) < depth_raw_order(format, a.lo_raw)) {
+      a.lo_raw = b.lo_raw;
+      a.lo_term = b.lo_term;
+    }
+    if (depth_raw_order(format, b.hi_raw) > depth_raw_order(format, a.hi_raw)) {
+      a.hi_raw = b.hi_raw;
+      a.hi_term = b.hi_term;
+    }
+  }
+  std::vector<OwnerAlternative> merged;
+  std::set_union(into.alternatives.begin(), into.alternatives.end(), other.alternatives.begin(),
+                 other.alternatives.end(), std::back_inserter(merged), alternative_before);
+  into.alternatives = std::move(merged);
+}
+
+}  // namespace
+
+std::vector<Viewport> spec_viewport_representations(const Scene& scene, const CpuOptions& options) {
+  const Viewport v = scene.effective_viewport();
+  const uint32_t viewport_bits = options.viewport_sub_pixel_bits;
+  const double unit = std::ldexp(1.0, -int(std::min<uint32_t>(viewport_bits, 16)));
+  const auto both = [unit](float value) {
+    const double scaled = double(value) / unit;
+    return std::array<float, 2>{float(std::floor(scaled) * unit), float(std::ceil(scaled) * unit)};
+  };
+  const std::array<float, 2> xs = both(v.x), ys = both(v.y), ws = both(v.width), hs = both(v.height);
+  std::vector<Viewport> out;
+  for (const float x : xs)
+    for (const float y : ys)
+      for (const float w : ws)
+        for (const float h : hs) {
+          const Viewport r{x, y, w, h, v.min_depth, v.max_depth};
+          const bool seen = std::any_of(out.begin(), out.end(), [&](const Viewport& o) {
+            return o.x == r.x && o.y == r.y && o.width == r.width && o.height == r.height;
+          });
+          if (!seen && r.width != 0 && r.height != 0) out.push_back(r);
+        }
+  return out;
+}
+
 RenderResult render_spec_profile(const Scene& scene, const CpuOptions& options, RenderResult estimate) {
   check_spec_profile_support(scene);
   RenderResult result = std::move(estimate);
   result.device = "cpu spec profile (subPixelPrecisionBits " + std::to_string(options.sub_pixel_bits) + ")";
-  DepthIntervalMap depths(scene);
-  Contest contest;
-  result.coverage_class = classify(scene, options, &depths, &contest);
-  result.depth_interval = depths.intervals();
-  if (contest.simulated) {
-    std::vector<uint32_t> contested;
-    for (size_t i = 0; i < contest.touches.size(); ++i)
-      if (contest.touches[i] >= 2) contested.push_back(uint32_t(i));
-    result.owner_alternatives =
-        exact_owner_alternatives(scene, contest.primitives.triangles, effective_sub_pixel_bits(options.sub_pixel_bits),
-                                 contested, result.owner);
+  const Viewport viewport = scene.effective_viewport();
+  const std::vector<Viewport> held = spec_viewport_representations(scene, options);
+  Judgement j = judge(scene, options, result.owner);
+  for (const Viewport& v : held) {
+    if (v.x == viewport.x && v.y == viewport.y && v.width == viewport.width && v.height == viewport.height) continue;
+    Scene represented = scene;
+    represented.viewport = v;
+    widen(j, judge(represented, options, result.owner), scene.depth_format);
   }
+  // Alternatives name Must samples only.
+  std::erase_if(j.alternatives, [&](const OwnerAlternative& a) { return j.classes[a.sample] != CoverageClass::Must; });
+  result.coverage_class = std::move(j.classes);
+  result.depth_interval = std::move(j.intervals);
+  result.owner_alternatives = std::move(j.alternatives);
   return result;
 }
 

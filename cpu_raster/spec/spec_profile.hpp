@@ -24,6 +24,14 @@ std::vector<CoverageClass> spec_coverage_classes(const Scene& scene, const CpuOp
 // InputError (an index past the positions). The façade calls it before rendering the estimate.
 void check_spec_profile_support(const Scene& scene);
 
+// Vulkan "Controlling the Viewport": "The floating-point viewport bounds are represented with an
+// implementation-dependent precision", CpuOptions::viewport_sub_pixel_bits of it. The viewports a
+// device may hold for the scene's: x, y, width and height each on that grid, rounded either way
+// (the scene's own alone when its bounds lie on the grid). The profile judges a render by these and
+// the scene's own: Must and MustNot where every one says so, May elsewhere, the hull of the depth
+// intervals, every owner alternative.
+std::vector<Viewport> spec_viewport_representations(const Scene& scene, const CpuOptions& options);
+
 // backend "cpu", device "cpu spec profile (subPixelPrecisionBits N)", coverage_class from
 // spec_coverage_classes. owner and depth_raw are a best estimate: `estimate`, the lavapipe
 // profile's render of the same scene with the same fma, threads and methods, which the caller
