@@ -67,6 +67,7 @@ struct Child {
   Clock::time_point started, case_started;
   std::string result_buffer, output;
   bool timed_out = false, told_to_stop = false, recorded_any = false;
+  std::string broken;  // what the child wrote on the result pipe that is not the protocol's; killed for it
 
   bool open() const { return result_fd >= 0 || output_fd >= 0; }
 };
@@ -139,40 +140,53 @@ bool drain(int fd, std::string& into) {
   }
 }
 
-// Handles the complete lines of the result pipe.
+// Handles the complete lines of the result pipe. A line that is not the protocol's (a driver that
+// writes into the descriptor, a half record) is the child's fault, never the run's: the child is
+// killed, and the case it was running is a Crash that names the line (run_in_children).
 void take_results(Child& c, const std::function<void(ChildOutcome&&)>& done) {
   size_t end;
-  while ((end = c.result_buffer.find('\n')) != std::string::npos) {
+  while (c.broken.empty() && (end = c.result_buffer.find('\n')) != std::string::npos) {
     const std::string line = c.result_buffer.substr(0, end);
     c.result_buffer.erase(0, end + 1);
     const auto tab1 = line.find('\t');
     const std::string kind = line.substr(0, tab1);
     const auto tab2 = tab1 == std::string::npos ? std::string::npos : line.find('\t', tab1 + 1);
-    size_t i = 0;
+    size_t i = c.batch.size();
     try {
-      i = std::stoul(line.substr(tab1 + 1, tab2 == std::string::npos ? std::string::npos : tab2 - tab1 - 1));
+      if (tab1 != std::string::npos)
+        i = std::stoul(line.substr(tab1 + 1, tab2 == std::string::npos ? std::string::npos : tab2 - tab1 - 1));
     } catch (const std::exception&) {
       i = c.batch.size();
     }
-    if (tab1 == std::string::npos || i >= c.batch.size() || (kind != "begin" && kind != "record"))
-      throw std::runtime_error("conformance-worker: unexpected line on the result pipe: " + line.substr(0, 200));
+    const bool well_formed =
+        i < c.batch.size() && (kind == "begin" || (kind == "record" && tab2 != std::string::npos && c.current == i));
+    if (!well_formed) {
+      c.broken = "wrote an unexpected line on the result pipe: " + line.substr(0, 200);
+      break;
+    }
     if (kind == "begin") {
       c.begun[i] = true;
       c.current = i;
       c.case_started = Clock::now();
       continue;
     }
-    const nlohmann::json j = nlohmann::json::parse(line.substr(tab2 + 1));
     ChildOutcome outcome;
+    try {
+      const nlohmann::json j = nlohmann::json::parse(line.substr(tab2 + 1));
+      outcome.record = case_from_json(j, "(result pipe)", "$");
+      outcome.duration_s = j.value("duration_s", 0.0);
+    } catch (const std::exception& e) {
+      c.broken = std::string("wrote a record that does not read (") + e.what() + "): " + line.substr(0, 200);
+      break;
+    }
     outcome.id = c.batch[i].id;
-    outcome.record = case_from_json(j, "(result pipe)", "$");
-    outcome.duration_s = j.value("duration_s", 0.0);
     outcome.record.duration_s = outcome.duration_s;
     c.recorded[i] = true;
     c.recorded_any = true;
     c.current.reset();
     done(std::move(outcome));
   }
+  if (!c.broken.empty() && c.pid > 0) kill(c.pid, SIGKILL);
 }
 
 void trim_output(std::string& output) {
@@ -276,9 +290,12 @@ std::vector<size_t> run_in_children(const ChildRunOptions& o, const std::vector<
       const double elapsed = seconds(Clock::now() - c.case_started);
       const std::string tail = last_lines(c.output, kOutputLines);
       const bool began_any = std::find(c.begun.begin(), c.begun.end(), true) != c.begun.end();
-      if (!c.timed_out && WIFEXITED(status) && WEXITSTATUS(status) == 2)
+      // Bad input or no device, found before the child began any case, is the run's (exit 2, 3); once
+      // it began a case, whatever ends it (a driver that calls exit(2)) costs that case alone.
+      const bool run_problem = !c.timed_out && c.broken.empty() && !began_any && WIFEXITED(status);
+      if (run_problem && WEXITSTATUS(status) == 2)
         throw InputError(o.report_dir, "", "a conformance child process failed:" + tail);
-      if (!c.timed_out && WIFEXITED(status) && WEXITSTATUS(status) == 3)
+      if (run_problem && WEXITSTATUS(status) == 3)
         throw EnvironmentError("a conformance child process found no Vulkan device:" + tail);
       if (c.current) {
         ChildOutcome outcome;
@@ -288,6 +305,10 @@ std::vector<size_t> run_in_children(const ChildRunOptions& o, const std::vector<
           outcome.end = ChildEnd::Timeout;
           outcome.message = fmt::format("ran past --timeout {:g} s (killed after {:.1f} s); last output:{}",
                                         o.timeout_s, elapsed, tail.empty() ? " (none)" : tail);
+        } else if (!c.broken.empty()) {
+          outcome.end = ChildEnd::Crash;
+          outcome.message = fmt::format("the case's process {} after {:.2f} s and was killed; last output:{}", c.broken,
+                                        elapsed, tail.empty() ? " (none)" : tail);
         } else {
           outcome.end = ChildEnd::Crash;
           outcome.message = fmt::format("the case's process {} after {:.2f} s; last output:{}", describe_status(status),
@@ -305,9 +326,10 @@ std::vector<size_t> run_in_children(const ChildRunOptions& o, const std::vector<
           ChildOutcome outcome;
           outcome.id = lost.id;
           outcome.end = ChildEnd::Missing;
-          outcome.message = fmt::format(
-              "no result: the case's process {} before beginning it{}; last output:{}", describe_status(status),
-              c.timed_out ? fmt::format(" (killed after {:.0f} s)", elapsed) : "", tail.empty() ? " (none)" : tail);
+          outcome.message = fmt::format("no result: the case's process {} before beginning it{}; last output:{}",
+                                        c.broken.empty() ? describe_status(status) : c.broken + " and was killed",
+                                        c.timed_out ? fmt::format(" (killed after {:.0f} s)", elapsed) : "",
+                                        tail.empty() ? " (none)" : tail);
           done(std::move(outcome));
         }
       } else if ((stop.load() != 0) || c.told_to_stop) {

@@ -3,6 +3,7 @@
 #include <fmt/core.h>
 #include <sys/prctl.h>
 #include <unistd.h>
+#include <algorithm>
 
 #include <cerrno>
 #include <csignal>
@@ -34,17 +35,18 @@ std::string injected_fault(const std::string& case_name) {
     rest = end == std::string_view::npos ? std::string_view{} : rest.substr(end + 1);
     const auto colon = entry.find(':');
     const std::string_view kind = entry.substr(0, colon);
-    if (colon == std::string_view::npos || (kind != "crash" && kind != "hang" && kind != "fail_once"))
+    constexpr std::string_view kKinds[] = {"crash", "hang", "fail_once", "crash_then_fail", "exit2", "stray_line"};
+    if (colon == std::string_view::npos || std::find(std::begin(kKinds), std::end(kKinds), kind) == std::end(kKinds))
       throw std::invalid_argument(
-          "RASTERCMP_TEST_CASE_FAULT: expected KIND:CASE with KIND crash, hang or fail_once, "
-          "found \"" +
+          "RASTERCMP_TEST_CASE_FAULT: expected KIND:CASE with KIND crash, hang, fail_once, crash_then_fail, exit2 "
+          "or stray_line, found \"" +
           std::string(entry) + "\"");
     if (entry.substr(colon + 1) == case_name) found = std::string(kind);
   }
   return found;
 }
 
-// Whether a fail_once fault fires now: the first time, it leaves a file behind.
+// Whether a fail_once or crash_then_fail fault is met for the first time: it leaves a file behind.
 bool first_time(const std::string& case_name) {
   const char* dir = std::getenv("RASTERCMP_TEST_FAULT_DIR");
   if (dir == nullptr || *dir == '\0')
@@ -86,17 +88,21 @@ int run_case_worker(const WorkerOptions& o, const std::atomic<int>& stop) {
       fmt::print(stderr, "test-only fault: {} in {}\n", fault, scene.name);
       std::fflush(stderr);
     }
-    if (fault == "crash") {  // a plain SIGSEGV death, also where a sanitizer has its own handler
+    // crash_then_fail: a crash the first time, a plain failure after it (never a pass).
+    const bool crash_now = fault == "crash" || (fault == "crash_then_fail" && first_time(scene.name));
+    if (crash_now) {  // a plain SIGSEGV death, also where a sanitizer has its own handler
       std::signal(SIGSEGV, SIG_DFL);
       std::raise(SIGSEGV);
     }
     while (fault == "hang") std::this_thread::sleep_for(std::chrono::seconds(1));
-    CaseResult result =
-        from_captures ? runner.run_capture(scene, capture_dir_for(o.captures_root, o.suite_dir, o.scene_files[i]))
-                      : runner.run(scene);
-    if (fault == "fail_once" && first_time(scene.name)) {
+    if (fault == "exit2") std::_Exit(2);  // a driver that exits with the code of bad input
+    if (fault == "stray_line") write_all(o.result_fd, "a driver's line\n");  // into the result pipe
+    CaseResult result = from_captures
+                            ? runner.run_capture(scene, capture_dir_for(o.captures_root, o.suite_dir, o.scene_files[i]))
+                            : runner.run(scene);
+    if ((fault == "fail_once" && first_time(scene.name)) || fault == "crash_then_fail") {
       result.verdict = Verdict::Fail;
-      result.message = "test-only injected failure (RASTERCMP_TEST_CASE_FAULT fail_once)";
+      result.message = "test-only injected failure (RASTERCMP_TEST_CASE_FAULT " + fault + ")";
     }
     const SuiteCase suite_case{scene.name, o.scene_files[i], scene};
     CaseRecord record = make_case_record(suite_case, result, Expectations{});

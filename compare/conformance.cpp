@@ -6,8 +6,11 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
+#include <csignal>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <regex>
 
@@ -140,7 +143,8 @@ class RunState {
 size_t batch_size_for(size_t cases, unsigned jobs) {
   // Enough batches to keep every job busy near the end; few enough that start-up (about 0.5 s a
   // process) stays small beside the cases.
-  const size_t per_job = (cases + std::max(1u, jobs) * 4 - 1) / (std::max(1u, jobs) * 4);
+  const size_t batches = size_t(std::max(1u, jobs)) * 4;  // size_t: no wrap for any --jobs
+  const size_t per_job = (cases + batches - 1) / batches;
   return std::clamp<size_t>(per_job, 1, 16);
 }
 
@@ -189,16 +193,34 @@ OutputLock::~OutputLock() {
 }
 
 size_t remove_stale_temporaries(const std::string& out_dir) {
-  // model/image_io.cpp and compare/report_images.cpp name them ".STEM.tmpPID.EXT".
-  static const std::regex temporary(R"(\..*\.tmp[0-9]+(\.[A-Za-z0-9]+)?)");
+  // model/image_io.cpp and compare/report_images.cpp name them ".STEM.tmpPID.EXT", in the folders
+  // a run writes: --out itself, report/ and each case's report/cases/<case>/. Only those folders,
+  // and only a temporary whose writer is gone: a file of that shape elsewhere below --out is
+  // someone else's, and a live process (a render into the same folder) still writes its own.
+  static const std::regex temporary(R"(\..*\.tmp([0-9]{1,10})(\.[A-Za-z0-9]+)?)");
+  const auto writer_gone = [](const std::string& pid_text) {
+    const long long pid = std::stoll(pid_text);
+    if (pid <= 0 || pid > std::numeric_limits<pid_t>::max()) return true;
+    return ::kill(pid_t(pid), 0) != 0 && errno == ESRCH;
+  };
   size_t removed = 0;
   std::error_code ec;
   removed += fs::remove_all(fs::path(out_dir) / kRetryDir, ec) > 0 ? 1 : 0;
+  std::vector<fs::path> folders = {fs::path(out_dir), fs::path(out_dir) / "report"};
+  for (auto it = fs::directory_iterator(fs::path(out_dir) / "report" / "cases", ec);
+       !ec && it != fs::directory_iterator(); it.increment(ec))
+    if (it->is_directory(ec) && !it->is_symlink(ec)) folders.push_back(it->path());
   std::vector<fs::path> stale;
-  for (auto it = fs::recursive_directory_iterator(out_dir, ec); !ec && it != fs::recursive_directory_iterator();
-       it.increment(ec))
-    if (it->is_regular_file(ec) && std::regex_match(it->path().filename().string(), temporary))
-      stale.push_back(it->path());
+  for (const fs::path& folder : folders) {
+    std::error_code walk;
+    for (auto it = fs::directory_iterator(folder, walk); !walk && it != fs::directory_iterator(); it.increment(walk)) {
+      std::smatch m;
+      const std::string name = it->path().filename().string();
+      if (it->is_regular_file(walk) && !it->is_symlink(walk) && std::regex_match(name, m, temporary) &&
+          writer_gone(m[1].str()))
+        stale.push_back(it->path());
+    }
+  }
   for (const fs::path& p : stale) removed += fs::remove(p, ec) ? 1 : 0;
   return removed;
 }
@@ -273,7 +295,7 @@ ConformanceResult run_conformance(const ConformanceOptions& options, const Confo
   });
 
   // Re-run what fails the run, each case alone in a fresh process, its report files set aside:
-  // a case whose re-run gives another status is a Flake (deqp-runner), and keeps its first record.
+  // a case whose re-run passes is a Flake (deqp-runner), and keeps its first record.
   const fs::path retry_dir = out / kRetryDir;
   for (unsigned round = 0; round < options.flake_retries && stop_signal.load() == 0; ++round) {
     std::vector<ChildCase> again;
@@ -290,8 +312,12 @@ ConformanceResult run_conformance(const ConformanceOptions& options, const Confo
       CaseRecord record = *state.at(i);
       if (retried.status == record.status) return;
       record.message += fmt::format(" [re-run {}: {} ({})]", round + 1, retried.status, retried.message);
-      record.status = "Flake";
-      record.fails_run = false;
+      // A Flake failed, then passed: a re-run that fails another way (Timeout after Crash) leaves
+      // the case failing the run, with both reasons.
+      if (!retried.fails_run) {
+        record.status = "Flake";
+        record.fails_run = false;
+      }
       state.set(i, std::move(record));
       state.publish();
     });

@@ -43,6 +43,61 @@ std::vector<std::string> temporaries_below(const fs::path& dir) {
   return found;
 }
 
+// A Flake failed, then passed: a case that crashes and then fails on its re-run never passed, so
+// it keeps failing the run (its first record, with the re-run's reason), and the run fails.
+TEST(CliChildren, ACaseThatFailsAnotherWayOnItsReRunIsNoFlake) {
+  RASTERCMP_SKIP_WITHOUT_VULKAN();
+  const TempDir tmp;
+  fs::create_directories(tmp / "suite");
+  for (const char* name : {"t.a", "t.twice"}) write_file(tmp / "suite" / (std::string(name) + ".json"), scene(name));
+  fs::create_directories(tmp / "faults");
+  const EnvEdits faults = {{"RASTERCMP_TEST_CASE_FAULT", "crash_then_fail:t.twice"},
+                           {"RASTERCMP_TEST_FAULT_DIR", (tmp / "faults").string()}};
+  const fs::path out = tmp / "out";
+  const std::vector<std::string> args = {"conformance", "--suite", (tmp / "suite").string(), "--out", out.string()};
+  const RunResult r = run_cli(args, faults);
+  const std::string what = describe(args, r);
+  ASSERT_EQ(r.exit_code, 1) << what;
+  const nlohmann::json summary = nlohmann::json::parse(read_file(out / "summary.json"));
+  EXPECT_EQ(summary.at("passed"), false);
+  auto cases = cases_by_name(summary);
+  EXPECT_EQ(cases["t.a"]["status"], "Pass");
+  EXPECT_EQ(cases["t.twice"]["status"], "Crash");
+  EXPECT_NE(cases["t.twice"]["message"].get<std::string>().find("re-run 1: Fail"), std::string::npos)
+      << cases["t.twice"].dump(1);
+  EXPECT_EQ(read_file(out / "failures.csv"), "t.twice,Crash\n");
+}
+
+// A driver that exits with status 2 (the code of bad input) or writes a line into the result pipe
+// during a case costs that case (Crash, with the reason), never the run: the other cases run, the
+// run completes with exit 1.
+TEST(CliChildren, ADriversExitCodeOrStrayOutputCostsItsCaseOnly) {
+  RASTERCMP_SKIP_WITHOUT_VULKAN();
+  const TempDir tmp;
+  fs::create_directories(tmp / "suite");
+  for (const char* name : {"t.a", "t.exit", "t.stray", "t.z"})
+    write_file(tmp / "suite" / (std::string(name) + ".json"), scene(name));
+  const EnvEdits faults = {{"RASTERCMP_TEST_CASE_FAULT", "exit2:t.exit;stray_line:t.stray"}};
+  const fs::path out = tmp / "out";
+  const std::vector<std::string> args = {"conformance",     "--suite", (tmp / "suite").string(), "--out", out.string(),
+                                         "--flake-retries", "0"};
+  const RunResult r = run_cli(args, faults);
+  const std::string what = describe(args, r);
+  ASSERT_EQ(r.exit_code, 1) << what;
+  const nlohmann::json summary = nlohmann::json::parse(read_file(out / "summary.json"));
+  EXPECT_EQ(summary.at("complete"), true) << what;
+  auto cases = cases_by_name(summary);
+  EXPECT_EQ(cases["t.a"]["status"], "Pass");
+  EXPECT_EQ(cases["t.z"]["status"], "Pass");
+  EXPECT_EQ(cases["t.exit"]["status"], "Crash");
+  EXPECT_NE(cases["t.exit"]["message"].get<std::string>().find("exited with code 2"), std::string::npos)
+      << cases["t.exit"].dump(1);
+  EXPECT_EQ(cases["t.stray"]["status"], "Crash");
+  EXPECT_NE(cases["t.stray"]["message"].get<std::string>().find("unexpected line on the result pipe: a driver's line"),
+            std::string::npos)
+      << cases["t.stray"].dump(1);
+}
+
 TEST(CliChildren, ARunSurvivesACrashAndAHangAndTellsAFlakeFromAFailure) {
   RASTERCMP_SKIP_WITHOUT_VULKAN();
   const TempDir tmp;
@@ -53,8 +108,8 @@ TEST(CliChildren, ARunSurvivesACrashAndAHangAndTellsAFlakeFromAFailure) {
   const fs::path out = tmp / "out";
   write_file(tmp / "stale", "");
   fs::create_directories(out / "report");
-  write_file(out / ".summary.tmp4242.json", "{\"passed\": tr");  // a run killed mid-write left these
-  write_file(out / "report" / ".cpu.tmp99.png", "half a PNG");
+  write_file(out / ".summary.tmp2147483000.json", "{\"passed\": tr");  // a run killed mid-write left these
+  write_file(out / "report" / ".cpu.tmp2147483001.png", "half a PNG");
   const std::vector<std::string> args = {"conformance", "--suite",   (tmp / "suite").string(), "--timeout", "4",
                                          "--out",       out.string()};
   const RunResult r = run_cli(args, faults);
@@ -133,18 +188,19 @@ TEST(CliChildren, ASecondRunIntoALockedFolderExits2NamingTheHolder) {
   EXPECT_EQ(files_of(snapshot_tree(out)), before);
 }
 
-// A full disk, made with a file-size limit (ulimit -f; SIGXFSZ ignored, so a write past it fails
-// with EFBIG as one past a full disk fails with ENOSPC): the command fails with exit 2 and leaves
-// no file under a final name that is not whole, and no temporary file.
+// A full disk, made with a file-size limit (ulimit -f; rastercmp ignores SIGXFSZ, so a write past it
+// fails with EFBIG as one past a full disk fails with ENOSPC, and the signal does not kill it): the
+// command fails with exit 2 and leaves no file under a final name that is not whole, and no
+// temporary file.
 TEST(CliChildren, AFullDiskLeavesNoHalfFileUnderAFinalName) {
   const TempDir tmp;
   write_file(tmp / "big.json", R"({"name": "t.big", "width": 256, "height": 256, "depth_format": "d32_sfloat",
     "draws": [{"positions": [[-0.9, -0.9, 0.2], [0.9, -0.8, 0.6], [-0.1, 0.9, 0.9]]}]})");
   for (const int kib : {1, 8, 40}) {
     const fs::path out = tmp / ("out" + std::to_string(kib));
-    const std::string command = "trap '' XFSZ; ulimit -f " + std::to_string(kib) + "; exec " + kBinary.string() +
-                                " render " + (tmp / "big.json").string() + " --backend cpu --out " + out.string() +
-                                " >" + (tmp / "log").string() + " 2>&1";
+    const std::string command = "ulimit -f " + std::to_string(kib) + "; exec " + kBinary.string() + " render " +
+                                (tmp / "big.json").string() + " --backend cpu --out " + out.string() + " >" +
+                                (tmp / "log").string() + " 2>&1";
     const int status = std::system(("sh -c \"" + command + "\"").c_str());
     ASSERT_TRUE(WIFEXITED(status)) << command;
     EXPECT_EQ(WEXITSTATUS(status), 2) << command << "\n" << read_file(tmp / "log");

@@ -299,5 +299,26 @@ TEST_F(PlanConformance, TheBuiltInSuiteIsFoundNextToTheExecutable) {
   EXPECT_EQ(candidates[1], "/opt/x/share/rastercmp/scenes");
 }
 
+// The clean-up at the start of a run removes the temporaries ".STEM.tmpPID.EXT" a killed run left,
+// only in the folders a run writes (--out, report/, report/cases/<case>/) and only where the writer
+// is gone: a user's file of that shape deeper below --out, and a live process's temporary, stay.
+TEST(ConformanceCleanup, StaleTemporariesOnlyInTheRunsFoldersAndOfDeadWriters) {
+  const fs::path out = fs::temp_directory_path() / ("rastercmp_cleanup_" + std::to_string(getpid()));
+  fs::remove_all(out);
+  const std::string dead = "2147483000", live = std::to_string(getpid());
+  const std::vector<fs::path> removed = {out / (".summary.tmp" + dead + ".json"),
+                                         out / "report" / (".index.tmp" + dead + ".html"),
+                                         out / "report" / "cases" / "t.a" / (".cpu.tmp" + dead + ".png")};
+  const std::vector<fs::path> kept = {out / "notes" / (".draft.tmp" + dead + ".md"),
+                                      out / "report" / "cases" / "t.a" / "deeper" / (".x.tmp" + dead + ".png"),
+                                      out / (".results.tmp" + live + ".csv"), out / "summary.json"};
+  for (const fs::path& p : removed) write_file(p, "half");
+  for (const fs::path& p : kept) write_file(p, "keep");
+  EXPECT_EQ(remove_stale_temporaries(out.string()), removed.size());
+  for (const fs::path& p : removed) EXPECT_FALSE(fs::exists(p)) << p;
+  for (const fs::path& p : kept) EXPECT_TRUE(fs::exists(p)) << p;
+  fs::remove_all(out);
+}
+
 }  // namespace
 }  // namespace rastercmp
