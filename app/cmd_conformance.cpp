@@ -197,7 +197,9 @@ void add_conformance_command(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   cmd->add_option("--captures", o.captures_root,
                   "judge the renders recorded below this folder (rastercmp capture --out) instead of rendering");
-  cmd->add_option("--jobs", o.jobs, "cases run at the same time, each in its own child process")->capture_default_str();
+  cmd->add_option("--jobs", o.jobs, "cases run at the same time, each in its own child process (at most 256)")
+      ->check(CLI::Range(1u, kMaxConformanceJobs))
+      ->capture_default_str();
   cmd->add_option("--timeout", o.timeout_s, "seconds a case may take before it is killed and recorded as Timeout")
       ->capture_default_str();
   cmd->add_option("--flake-retries", o.flake_retries,

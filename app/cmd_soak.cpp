@@ -3,6 +3,7 @@
 // primitives have run; each failure is reduced and written to DIR (docs/soak.md).
 // Exit: 0 no failure, 1 failures found, 2 bad input, 3 no Vulkan.
 #include <fmt/core.h>
+#include <charconv>
 
 #include <memory>
 #include <string>
@@ -64,7 +65,16 @@ int run_soak_command(SoakArgs& args) {
 void add_soak_command(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<SoakArgs>();
   CLI::App* cmd = app.add_subcommand("soak", "random differential soak: generated scenes against the Vulkan device");
-  cmd->add_option("--seed", args->soak.seed, "random seed (same seed, same scenes)");
+  // Checked before CLI11 converts it, which saturates a value past 2^64 - 1 instead of refusing it.
+  const CLI::Validator uint64_text(
+      [](std::string& text) {
+        uint64_t value = 0;
+        const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+        if (!text.empty() && ec == std::errc() && end == text.data() + text.size()) return std::string();
+        return "expected an integer from 0 to 18446744073709551615, found " + text;
+      },
+      "UINT64");
+  cmd->add_option("--seed", args->soak.seed, "random seed (same seed, same scenes)")->check(uint64_text);
   cmd->add_option("--count", args->soak.primitives, "primitives to run (scenes are generated until this many ran)")
       ->required()
       ->check(CLI::Range(uint64_t(1), uint64_t(1) << 40));

@@ -1,4 +1,5 @@
 // rastercmp: the command-line front end. Exit codes: README "Exit codes" (model/errors.hpp).
+#include <csignal>
 #include <cstdio>
 #include <exception>
 #include <string>
@@ -11,6 +12,10 @@
 
 int main(int argc, char** argv) {
   using namespace rastercmp;
+  // A write past a file-size limit (ulimit -f) then fails with EFBIG, as one on a full disk fails
+  // with ENOSPC, and the writers report it (exit 2, nothing half-written under a final name)
+  // instead of the process dying of SIGXFSZ with no message.
+  std::signal(SIGXFSZ, SIG_IGN);
   CLI::App app{"rastercmp: a CPU rasterizer and lavapipe, compared pixel by pixel"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("rastercmp ") + RASTERCMP_VERSION);

@@ -26,6 +26,9 @@ namespace rastercmp {
 inline constexpr int kExitInterrupted = 130;        // 128 + SIGINT, as a shell reports it
 inline constexpr double kDefaultCaseTimeoutS = 60;  // the slowest built-in case takes about 2 s
 
+// The most child processes `conformance --jobs` runs at once (each holds a Vulkan device).
+inline constexpr unsigned kMaxConformanceJobs = 256;
+
 struct ConformanceOptions {
   std::string suite_dir;  // empty: default_suite_dir()
   std::string caselist_file;
@@ -42,7 +45,7 @@ struct ConformanceOptions {
   // The child command: the executable, "conformance-worker" and the render options (the same
   // profile and CPU options as above: the children render, this process only names the device).
   std::vector<std::string> worker_command;
-  unsigned jobs = 1;                        // children at a time
+  unsigned jobs = 1;                        // children at a time, 1 to kMaxConformanceJobs
   double timeout_s = kDefaultCaseTimeoutS;  // per case
   unsigned flake_retries = 1;               // re-runs of a case that fails the run
 };

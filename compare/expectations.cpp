@@ -124,9 +124,48 @@ std::map<std::string, std::string> parse_baseline(std::string_view text, const s
   return baseline;
 }
 
+namespace {
+
+// std::regex compiles and matches by recursion, so a pattern long or deeply nested enough
+// overflows the stack (a 100,000-character line, 30,000 nested parentheses). Case names are short:
+// these bounds are far above any useful pattern.
+constexpr size_t kMaxPatternLength = 1000;
+constexpr size_t kMaxPatternNesting = 16;
+
+// "" when the pattern is within the bounds, else what is wrong with it.
+std::string pattern_bounds_problem(std::string_view line) {
+  if (line.size() > kMaxPatternLength)
+    return "expected a regular expression of at most " + std::to_string(kMaxPatternLength) + " characters, found " +
+           std::to_string(line.size());
+  size_t depth = 0, deepest = 0;
+  bool in_class = false;
+  for (size_t k = 0; k < line.size(); ++k) {
+    const char c = line[k];
+    if (c == '\\') {
+      ++k;  // an escaped character
+    } else if (in_class) {
+      in_class = c != ']';
+    } else if (c == '[') {
+      in_class = true;
+    } else if (c == '(') {
+      deepest = std::max(deepest, ++depth);
+    } else if (c == ')' && depth > 0) {
+      --depth;
+    }
+  }
+  if (deepest > kMaxPatternNesting)
+    return "expected a regular expression nested at most " + std::to_string(kMaxPatternNesting) +
+           " groups deep, found " + std::to_string(deepest);
+  return "";
+}
+
+}  // namespace
+
 std::vector<Pattern> parse_patterns(std::string_view text, const std::string& file) {
   std::vector<Pattern> patterns;
   for_each_content_line(text, [&](size_t n, std::string_view line) {
+    if (const std::string problem = pattern_bounds_problem(line); !problem.empty())
+      throw InputError(file, line_path(n), problem);
     try {
       patterns.push_back({std::string(line), std::regex(std::string(line), std::regex::ECMAScript)});
     } catch (const std::regex_error& e) {

@@ -192,6 +192,20 @@ void write_render_outputs(const RenderResult& r, const std::string& dir) {
 namespace {
 
 // render.json alone; `depth` and the stated size come back apart (0: not stated).
+// The sample counts a render may record (Vulkan's VkSampleCountFlagBits reach 64).
+constexpr uint32_t kMaxRenderSamples = 64;
+
+// A size in render.json: absent is 0 (the images then disagree with the scene); a negative or
+// fractional number, or one past `max`, is refused rather than wrapped to a huge unsigned value.
+uint32_t size_field(const nlohmann::json& meta, const char* key, const std::string& meta_path, uint32_t max) {
+  if (!meta.contains(key)) return 0;
+  const nlohmann::json& v = meta.at(key);
+  if (!v.is_number_unsigned() || v.get<uint64_t>() > max)
+    throw InputError(meta_path, std::string("$.") + key,
+                     "expected an integer from 0 to " + std::to_string(max) + ", found " + v.dump());
+  return uint32_t(v.get<uint64_t>());
+}
+
 RenderResult read_render_json(const std::string& dir, bool& depth, uint32_t& width, uint32_t& height,
                               uint32_t& samples) {
   const std::string meta_path = (fs::path(dir) / "render.json").string();
@@ -212,9 +226,9 @@ RenderResult read_render_json(const std::string& dir, bool& depth, uint32_t& wid
     r.fma = meta.value("fma", false);
     fmt_name = meta.value("depth_format", "none");
     depth = meta.value("depth", false);
-    width = meta.value("width", 0u);
-    height = meta.value("height", 0u);
-    samples = meta.value("samples", 0u);
+    width = size_field(meta, "width", meta_path, kMaxFramebufferSide);
+    height = size_field(meta, "height", meta_path, kMaxFramebufferSide);
+    samples = size_field(meta, "samples", meta_path, kMaxRenderSamples);
     if (meta.contains("device_name")) {
       r.device_name = meta.at("device_name").get<std::string>();
       r.driver = meta.value("driver", "");

@@ -121,6 +121,14 @@ TEST(CliCapture, BrokenCapturesAreResourceErrorsNamingTheFile) {
                              1);
   EXPECT_NE(l.out.find("ResourceError"), std::string::npos) << l.out;
   EXPECT_NE(l.out.find(bad_limits.string() + ": $.limits.subPixelPrecisionBits"), std::string::npos) << l.out;
+  // A negative size is refused, not wrapped to 4294967248.
+  write_file(bad_limits, "{\"backend\": \"vulkan\", \"width\": -48, \"height\": 32, \"samples\": 1}\n");
+  const RunResult w = run_ok({"compare", (suite / "msaa" / "lines" / "mixed_modes.json").string(), "--profile", "spec",
+                              "--capture", bad_limits.parent_path().string()},
+                             1);
+  EXPECT_NE(w.out.find(bad_limits.string() + ": $.width: expected an integer from 0 to 16384, found -48"),
+            std::string::npos)
+      << w.out;
   // A capture root with nothing in it is a usage error of the whole run (exit 2).
   const fs::path empty = tmp / "empty";
   fs::create_directories(empty);

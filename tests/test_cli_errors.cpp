@@ -109,6 +109,8 @@ TEST(CliErrors, BadOrMissingOptionsExitTwoAndWriteNothing) {
       {"explain", scene, "--pixel", "64,0"},                              // outside the 64x64 framebuffer
       {"conformance", "--out", out, "--case"},                            // option without its value
       {"conformance", "--out", out, "--shard", "3/2"},                    // shard index beyond the count
+      {"conformance", "--out", out, "--jobs", "1073741824"},              // was SIGFPE (4 x jobs wrapped to 0)
+      {"conformance", "--out", out, "--jobs", "257"},                     // past kMaxConformanceJobs
       {"conformance", "--out", out, "--suite", (tmp / "none").string()},  // no such suite
       {"merge"},                                                          // nothing to merge
       {"bench", "--scene", "suite", "--suite", (tmp / "none").string()},  // no such suite (was exit 4)
@@ -377,6 +379,9 @@ TEST(CliErrors, SoakAndReduceRejectBadInput) {
       {{"soak", "--count", "10", "--family", "no_such_family"}, "unknown family"},
       {{"soak", "--count", "0"}, "--count"},
       {{"soak", "--count", "ten"}, "--count"},
+      {{"soak", "--count", "10", "--seed", "18446744073709551616"},
+       "expected an integer from 0 to 18446744073709551615, found 18446744073709551616"},
+      {{"soak", "--count", "10", "--seed", "-1"}, "--seed"},
       {{"soak"}, "--count"},
       {{"soak", "--count", "10", "--every-worker"}, "--every-worker: needs --threads 2 or more"},
       {{"soak", "--count", "10", "--every-worker", "--threads", "1"}, "--every-worker: needs --threads 2 or more"},

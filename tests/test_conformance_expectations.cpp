@@ -119,6 +119,27 @@ TEST(Baseline, MalformedLinesNameTheFileAndLine) {
   EXPECT_THROW(parse_patterns("ok\n(unclosed\n", "flakes.txt"), InputError);
 }
 
+// std::regex recurses: a pattern long or nested enough overflowed the stack (SIGSEGV). Such lines
+// are bad input naming the file and line; nesting inside a bracket or escaped does not count.
+TEST(Expectations, PatternsAreBoundedBeforeTheyAreCompiled) {
+  const auto problem = [](const std::string& text) -> std::string {
+    try {
+      parse_patterns(text, "skips.txt");
+    } catch (const InputError& e) {
+      return e.json_path() + ": " + e.what();
+    }
+    return "";
+  };
+  EXPECT_NE(problem(std::string(100000, 'a') + "\n").find("at most 1000 characters, found 100000"), std::string::npos);
+  EXPECT_NE(problem("ok\n" + std::string(30000, '(') + std::string(30000, ')') + "\n").find("line 2"),
+            std::string::npos);
+  EXPECT_NE(problem(std::string(17, '(') + "a" + std::string(17, ')') + "\n").find("nested at most 16 groups deep"),
+            std::string::npos);
+  EXPECT_EQ(problem(std::string(16, '(') + "a" + std::string(16, ')') + "\n"), "");
+  EXPECT_EQ(problem("[((((((((((((((((((]" + std::string(20, '\\') + "\n"), "");
+  EXPECT_EQ(problem(std::string(1000, 'a') + "\n"), "");
+}
+
 TEST(Outcome, PassAndExpectedFailDoNotFailTheRun) {
   const Expectations e = mesa_style();
   const Outcome pass = judge_outcome("rastercmp.fill.a", Verdict::Pass, e);
