@@ -67,14 +67,19 @@ struct Child {
   Clock::time_point started, case_started;
   std::string result_buffer, output;
   bool timed_out = false, told_to_stop = false, recorded_any = false;
-  std::string broken;  // what the child wrote on the result pipe that is not the protocol's; killed for it
-
-  bool open() const { return result_fd >= 0 || output_fd >= 0; }
+  std::string broken;   // what the child wrote on the result pipe that is not the protocol's; killed for it
+  bool exited = false;  // reaped (waitpid); `status` is its wait status
+  int status = 0;
 };
 
 void close_fd(int& fd) {
   if (fd >= 0) close(fd);
   fd = -1;
+}
+
+// The child's process group (its pid: spawn makes it the leader), helpers included.
+void kill_group(const Child& c) {
+  if (c.pid > 0) kill(-c.pid, SIGKILL);
 }
 
 std::unique_ptr<Child> spawn(const ChildRunOptions& o, std::vector<ChildCase> batch) {
@@ -93,7 +98,14 @@ std::unique_ptr<Child> spawn(const ChildRunOptions& o, std::vector<ChildCase> ba
   posix_spawn_file_actions_adddup2(&actions, output.write, 1);
   posix_spawn_file_actions_adddup2(&actions, output.write, 2);
   posix_spawn_file_actions_adddup2(&actions, result.write, kResultFd);
-  const int rc = posix_spawn(&child->pid, argv[0], &actions, nullptr, argv.data(), environ);
+  // Its own process group: a helper the driver forks (a crash handler, a cache daemon) inherits it,
+  // so the deadline and the end of the child kill the whole group (kill_group).
+  posix_spawnattr_t attributes;
+  posix_spawnattr_init(&attributes);
+  posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETPGROUP);
+  posix_spawnattr_setpgroup(&attributes, 0);
+  const int rc = posix_spawn(&child->pid, argv[0], &actions, &attributes, argv.data(), environ);
+  posix_spawnattr_destroy(&attributes);
   posix_spawn_file_actions_destroy(&actions);
   close(result.write);
   close(output.write);
@@ -116,10 +128,8 @@ struct ChildrenGuard {
   std::vector<std::unique_ptr<Child>>& children;
   ~ChildrenGuard() {
     for (auto& c : children) {
-      if (c->pid > 0) {
-        kill(c->pid, SIGKILL);
-        waitpid(c->pid, nullptr, 0);
-      }
+      kill_group(*c);
+      if (c->pid > 0) waitpid(c->pid, nullptr, 0);
       close_fd(c->result_fd);
       close_fd(c->output_fd);
     }
@@ -186,7 +196,7 @@ void take_results(Child& c, const std::function<void(ChildOutcome&&)>& done) {
     c.current.reset();
     done(std::move(outcome));
   }
-  if (!c.broken.empty() && c.pid > 0) kill(c.pid, SIGKILL);
+  if (!c.broken.empty()) kill_group(c);
 }
 
 void trim_output(std::string& output) {
@@ -237,7 +247,7 @@ std::vector<size_t> run_in_children(const ChildRunOptions& o, const std::vector<
       for (const ChildCase& c : queue) not_run.push_back(c.id);
       queue.clear();
       for (auto& c : children)
-        if (!c->told_to_stop) {
+        if (!c->told_to_stop && c->pid > 0) {
           kill(c->pid, SIGTERM);  // the worker finishes its current case, then exits
           c->told_to_stop = true;
         }
@@ -269,24 +279,45 @@ std::vector<size_t> run_in_children(const ChildRunOptions& o, const std::vector<
       if (fd == &child->result_fd) take_results(*child, done);
     }
 
-    // Deadlines: a case (or a child's start) past the timeout is killed.
+    // Deadlines: a case (or a child's start) past the timeout is killed, with its process group.
+    // The deadline holds whatever the pipes do: closed by a child that hangs, or held open by a
+    // helper after the child ended.
     for (auto& c : children)
-      if (!c->timed_out && seconds(Clock::now() - c->case_started) > limit(*c)) {
-        kill(c->pid, SIGKILL);
+      if (!c->timed_out && !c->exited && seconds(Clock::now() - c->case_started) > limit(*c)) {
+        kill_group(*c);
         c->timed_out = true;
       }
 
-    // Children whose pipes are closed have ended: reap them and account for their cases.
+    // Reap without blocking: the loop goes on polling `stop` and the deadlines. An ended child's
+    // group is killed first, while its pid still names the group: helpers it left die with it.
+    for (auto& c : children) {
+      if (c->exited) continue;
+      siginfo_t info{};
+      if (waitid(P_PID, id_t(c->pid), &info, WEXITED | WNOHANG | WNOWAIT) != 0 || info.si_pid != c->pid) continue;
+      kill_group(*c);
+      while (waitpid(c->pid, &c->status, 0) < 0 && errno == EINTR) {
+      }
+      c->exited = true;
+      c->pid = -1;
+    }
+
+    // Children that have ended: what they wrote is in the pipes (read now; a helper that still holds
+    // them is not waited for, and dies with the group). Account for their cases.
     for (auto it = children.begin(); it != children.end();) {
       Child& c = **it;
-      if (c.open()) {
+      if (!c.exited) {
         ++it;
         continue;
       }
-      int status = 0;
-      while (waitpid(c.pid, &status, 0) < 0 && errno == EINTR) {
-      }
-      c.pid = -1;
+      for (int* fd : {&c.result_fd, &c.output_fd})
+        if (*fd >= 0) {
+          fcntl(*fd, F_SETFL, O_NONBLOCK);
+          drain(*fd, fd == &c.result_fd ? c.result_buffer : c.output);
+          close_fd(*fd);
+        }
+      trim_output(c.output);
+      take_results(c, done);
+      const int status = c.status;
       const double elapsed = seconds(Clock::now() - c.case_started);
       const std::string tail = last_lines(c.output, kOutputLines);
       const bool began_any = std::find(c.begun.begin(), c.begun.end(), true) != c.begun.end();

@@ -35,11 +35,12 @@ std::string injected_fault(const std::string& case_name) {
     rest = end == std::string_view::npos ? std::string_view{} : rest.substr(end + 1);
     const auto colon = entry.find(':');
     const std::string_view kind = entry.substr(0, colon);
-    constexpr std::string_view kKinds[] = {"crash", "hang", "fail_once", "crash_then_fail", "exit2", "stray_line"};
+    constexpr std::string_view kKinds[] = {"crash", "hang",       "fail_once", "crash_then_fail",
+                                           "exit2", "stray_line", "helper",    "close_fds_hang"};
     if (colon == std::string_view::npos || std::find(std::begin(kKinds), std::end(kKinds), kind) == std::end(kKinds))
       throw std::invalid_argument(
-          "RASTERCMP_TEST_CASE_FAULT: expected KIND:CASE with KIND crash, hang, fail_once, crash_then_fail, exit2 "
-          "or stray_line, found \"" +
+          "RASTERCMP_TEST_CASE_FAULT: expected KIND:CASE with KIND crash, hang, fail_once, crash_then_fail, exit2, "
+          "stray_line, helper or close_fds_hang, found \"" +
           std::string(entry) + "\"");
     if (entry.substr(colon + 1) == case_name) found = std::string(kind);
   }
@@ -55,6 +56,18 @@ bool first_time(const std::string& case_name) {
   if (fs::exists(marker)) return false;
   std::ofstream(marker) << "failed once\n";
   return true;
+}
+
+// A helper process, as a driver's crash handler or cache daemon: it inherits stdout, stderr and the
+// result pipe and sleeps for ever; its pid goes to RASTERCMP_TEST_FAULT_DIR/CASE.helper.
+void start_helper(const std::string& case_name) {
+  const char* dir = std::getenv("RASTERCMP_TEST_FAULT_DIR");
+  if (dir == nullptr || *dir == '\0')
+    throw std::invalid_argument("RASTERCMP_TEST_CASE_FAULT helper: expected RASTERCMP_TEST_FAULT_DIR");
+  const pid_t helper = fork();
+  if (helper == 0)
+    for (;;) pause();
+  std::ofstream(fs::path(dir) / (case_name + ".helper")) << helper << "\n";
 }
 
 void write_all(int fd, const std::string& text) {
@@ -97,6 +110,11 @@ int run_case_worker(const WorkerOptions& o, const std::atomic<int>& stop) {
     while (fault == "hang") std::this_thread::sleep_for(std::chrono::seconds(1));
     if (fault == "exit2") std::_Exit(2);  // a driver that exits with the code of bad input
     if (fault == "stray_line") write_all(o.result_fd, "a driver's line\n");  // into the result pipe
+    if (fault == "helper") start_helper(scene.name);
+    if (fault == "close_fds_hang") {  // both pipes reach end of file, the process lives on
+      for (int fd = 0; fd < 1024; ++fd) close(fd);
+      for (;;) pause();
+    }
     CaseResult result = from_captures
                             ? runner.run_capture(scene, capture_dir_for(o.captures_root, o.suite_dir, o.scene_files[i]))
                             : runner.run(scene);

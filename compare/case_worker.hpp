@@ -9,7 +9,9 @@
 // TEST-ONLY faults: when the environment variable RASTERCMP_TEST_CASE_FAULT holds
 // `KIND:CASE[;KIND:CASE...]`, the child, on starting case CASE, crashes (`crash`: raises SIGSEGV,
 // as a faulting driver would), hangs (`hang`: sleeps for ever), exits with status 2 (`exit2`, as a
-// driver that calls exit(2)), writes a line of its own into the result pipe (`stray_line`) or,
+// driver that calls exit(2)), writes a line of its own into the result pipe (`stray_line`), forks a
+// helper that holds the pipes and sleeps for ever (`helper`, its pid written to
+// RASTERCMP_TEST_FAULT_DIR/CASE.helper), closes every descriptor and hangs (`close_fds_hang`) or,
 // the first time only, reports a Fail (`fail_once`) or crashes and then reports a Fail every time
 // after (`crash_then_fail`), remembered by creating the file RASTERCMP_TEST_FAULT_DIR/CASE. It
 // exists so that tests/test_cli_children.cpp can check that a run survives these and tells a flake

@@ -5,6 +5,10 @@
 // (compare/case_worker.hpp) on a suite of four tiny scenes.
 #include <gtest/gtest.h>
 #include <sys/file.h>
+#include <chrono>
+#include <csignal>
+#include <fstream>
+#include <thread>
 
 #include <cstdlib>
 #include <nlohmann/json.hpp>
@@ -96,6 +100,59 @@ TEST(CliChildren, ADriversExitCodeOrStrayOutputCostsItsCaseOnly) {
   EXPECT_NE(cases["t.stray"]["message"].get<std::string>().find("unexpected line on the result pipe: a driver's line"),
             std::string::npos)
       << cases["t.stray"].dump(1);
+}
+
+// Whether process `pid` has ended (gone, or a zombie nobody reaps: a container's init may not).
+bool process_ended(pid_t pid) {
+  std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+  std::string text;
+  if (!std::getline(stat, text)) return true;
+  const auto paren = text.rfind(')');
+  return paren != std::string::npos && paren + 2 < text.size() && text[paren + 2] == 'Z';
+}
+
+// A driver that forks a helper which inherits the pipes and never exits: each child is its own
+// process group, so the end of the child ends the helper too, and the run does not wait for the
+// helper's end of file. Without that the run never ended.
+TEST(CliChildren, AHelperTheDriverForksNeitherHoldsTheRunNorOutlivesIt) {
+  RASTERCMP_SKIP_WITHOUT_VULKAN();
+  const TempDir tmp;
+  fs::create_directories(tmp / "suite");
+  for (const char* name : {"t.a", "t.helper"}) write_file(tmp / "suite" / (std::string(name) + ".json"), scene(name));
+  fs::create_directories(tmp / "faults");
+  const EnvEdits faults = {{"RASTERCMP_TEST_CASE_FAULT", "helper:t.helper"},
+                           {"RASTERCMP_TEST_FAULT_DIR", (tmp / "faults").string()}};
+  const std::vector<std::string> args = {"conformance", "--suite", (tmp / "suite").string(), "--out",
+                                         (tmp / "out").string()};
+  const RunResult r = run_cli(args, faults);
+  ASSERT_EQ(r.exit_code, 0) << describe(args, r);
+  const pid_t helper = pid_t(std::stol(read_file(tmp / "faults" / "t.helper.helper")));
+  bool ended = false;
+  for (int k = 0; k < 100 && !ended; ++k) {  // SIGKILL is delivered at once; allow a busy machine
+    ended = process_ended(helper);
+    if (!ended) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  if (!ended) kill(helper, SIGKILL);
+  EXPECT_TRUE(ended) << "helper " << helper << " outlived the run";
+}
+
+// A driver that closes every descriptor and hangs: both pipes reach end of file while the process
+// lives. The deadline still holds (Timeout), and the run ends. Without it the parent blocked in
+// waitpid for good, deaf to SIGINT. Only this case is in the suite: no case meant to pass meets
+// the short timeout.
+TEST(CliChildren, AChildThatClosesItsPipesAndHangsTimesOut) {
+  RASTERCMP_SKIP_WITHOUT_VULKAN();
+  const TempDir tmp;
+  fs::create_directories(tmp / "suite");
+  write_file(tmp / "suite" / "t.closer.json", scene("t.closer"));
+  const EnvEdits faults = {{"RASTERCMP_TEST_CASE_FAULT", "close_fds_hang:t.closer"}};
+  const std::vector<std::string> args = {
+      "conformance", "--suite", (tmp / "suite").string(), "--out", (tmp / "out").string(),
+      "--timeout",   "2",       "--flake-retries",        "0"};
+  const RunResult r = run_cli(args, faults);
+  ASSERT_EQ(r.exit_code, 1) << describe(args, r);
+  auto cases = cases_by_name(nlohmann::json::parse(read_file(tmp / "out" / "summary.json")));
+  EXPECT_EQ(cases["t.closer"]["status"], "Timeout") << cases["t.closer"].dump(1);
 }
 
 TEST(CliChildren, ARunSurvivesACrashAndAHangAndTellsAFlakeFromAFailure) {
