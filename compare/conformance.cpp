@@ -240,6 +240,7 @@ ConformancePlan plan_conformance(const ConformanceOptions& o) {
   std::vector<SuiteCase> selected = select_cases(std::move(suite), filter, o.caselist_file);
   if (selected.empty())
     throw UsageError(fmt::format("no case of the suite {} is left after --caselist and --case", suite_dir));
+  plan.selected_cases = selected.size();
   plan.cases = take_shard(std::move(selected), plan.shard);
   for (const SuiteCase& c : plan.cases) {
     const auto skip = std::find_if(plan.expectations.skips.begin(), plan.expectations.skips.end(),
@@ -259,6 +260,9 @@ ConformanceResult run_conformance(const ConformanceOptions& options, const Confo
     const std::unique_ptr<CaseRunner> runner = make_runner(options, plan);
     info = run_info_for(*runner);
   }
+  info.shard_index = plan.shard.index;
+  info.shard_count = plan.shard.count;
+  info.selected_cases = plan.selected_cases;
   std::error_code ec;
   fs::remove(out / "not_run.txt", ec);  // from an earlier run into the same folder
   RunState state(plan, info, options.out_dir);

@@ -55,8 +55,9 @@ struct ConformancePlan {
   std::vector<std::string> skipped_by;  // per case: the --skips pattern it matches, "" to run it
   Expectations expectations;
   Shard shard;
-  size_t suite_size = 0;  // cases in the suite before any filter
-  std::string suite_dir;  // the suite folder read
+  size_t suite_size = 0;      // cases in the suite before any filter
+  size_t selected_cases = 0;  // after --caselist and --case, before the shard
+  std::string suite_dir;      // the suite folder read
 };
 
 // Checks the output folder (writable, or InputError before any work), reads the expectation

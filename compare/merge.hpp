@@ -20,6 +20,11 @@ struct MergeResult {
 
 // Throws InputError for a missing or malformed shard output, shards run with a different
 // profile or device, or a case present in two shards; InputError for an unwritable OUT_DIR.
-MergeResult merge_conformance_outputs(const std::string& out_dir, const std::vector<std::string>& shard_dirs);
+// Shards of a sharded run (summary.json "shard": "I/N", N > 1) must all be there, every I from 0
+// to N-1, else InputError naming the missing ones; with `allow_missing` the merge goes on and
+// their cases (summary.json "selected_cases" less those merged) count as Missing, so the merged
+// run is incomplete and does not pass.
+MergeResult merge_conformance_outputs(const std::string& out_dir, const std::vector<std::string>& shard_dirs,
+                                      bool allow_missing = false);
 
 }  // namespace rastercmp

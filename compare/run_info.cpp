@@ -11,7 +11,7 @@ std::map<std::string, size_t> count_statuses(const std::vector<CaseRecord>& reco
 }
 
 bool run_passed(const RunInfo& info, const std::vector<CaseRecord>& records) {
-  return info.complete && !info.interrupted && info.not_run.empty() &&
+  return info.complete && !info.interrupted && info.not_run.empty() && info.missing_unnamed == 0 &&
          std::none_of(records.begin(), records.end(), [](const CaseRecord& c) { return c.fails_run; });
 }
 

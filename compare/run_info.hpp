@@ -20,6 +20,12 @@ struct RunInfo {
   bool interrupted = false;          // stopped by a signal (SIGINT, SIGTERM, SIGHUP)
   std::vector<std::string> not_run;  // cases without a result yet (or ever), in run order
   std::string profile_warning;       // why the driver is judged by another release than its own
+  // Which part of the selection this run is (--shard I/N), and how many cases the selection
+  // (suite, --caselist, --case) held before sharding: merge checks that its shards are all there.
+  uint32_t shard_index = 0, shard_count = 1;
+  size_t selected_cases = 0;
+  // Cases of shards that were never merged (merge --allow-missing): Missing, unnamed.
+  size_t missing_unnamed = 0;
   bool operator==(const RunInfo&) const = default;
 };
 

@@ -69,6 +69,20 @@ RunInfo run_info_from_json(const nlohmann::json& j, const std::string& file) {
     info.complete = j.at("complete").get<bool>();
     info.interrupted = j.at("interrupted").get<bool>();
     info.not_run = j.at("not_run").get<std::vector<std::string>>();
+    // Older summaries have no shard: a whole run, its size unknown (0).
+    if (j.contains("shard")) {
+      const std::string shard = j.at("shard").get<std::string>();
+      const auto slash = shard.find('/');
+      if (slash == std::string::npos) throw InputError(file, "$.shard", "expected I/N, found " + shard);
+      info.shard_index = uint32_t(std::stoul(shard.substr(0, slash)));
+      info.shard_count = uint32_t(std::stoul(shard.substr(slash + 1)));
+      if (info.shard_count == 0 || info.shard_index >= info.shard_count)
+        throw InputError(file, "$.shard", "expected I/N with I < N, found " + shard);
+    }
+    info.selected_cases = j.value("selected_cases", size_t(0));
+    info.missing_unnamed = j.value("missing_unnamed", size_t(0));
+  } catch (const std::logic_error& e) {  // std::stoul
+    throw InputError(file, "$.shard", std::string("expected I/N: ") + e.what());
   } catch (const nlohmann::json::exception& e) {
     throw InputError(file, "$", std::string("expected a rastercmp summary.json: ") + e.what());
   }
@@ -163,6 +177,9 @@ std::string summary_json(const RunInfo& info, const std::vector<CaseRecord>& rec
   j["complete"] = info.complete;
   j["interrupted"] = info.interrupted;
   j["not_run"] = info.not_run;
+  j["shard"] = fmt::format("{}/{}", info.shard_index, info.shard_count);
+  j["selected_cases"] = info.selected_cases;
+  if (info.missing_unnamed != 0) j["missing_unnamed"] = info.missing_unnamed;
   j["passed"] = run_passed(info, records);
   j["cases_run"] = records.size();
   nlohmann::ordered_json verdicts;
@@ -170,7 +187,8 @@ std::string summary_json(const RunInfo& info, const std::vector<CaseRecord>& rec
     verdicts[to_string(v)] = std::count_if(records.begin(), records.end(), [&](auto& c) { return c.verdict == v; });
   j["verdicts"] = verdicts;
   auto statuses = count_statuses(records);
-  if (!info.not_run.empty()) statuses["Missing"] += info.not_run.size();
+  if (!info.not_run.empty() || info.missing_unnamed != 0)
+    statuses["Missing"] += info.not_run.size() + info.missing_unnamed;
   j["statuses"] = statuses;
   nlohmann::ordered_json cases = nlohmann::ordered_json::array();
   for (const CaseRecord& c : records) cases.push_back(case_to_json(c, true));

@@ -245,6 +245,20 @@ TEST_F(ConformanceRun, ShardsMergeIntoTheWholeRun) {
                             {(test_root() / "shard0").string(), (test_root() / "shard1").string()});
   expect_same_outputs("shards_merged", "whole_for_shards");
   EXPECT_EQ(parse_results_csv(read_file(test_root() / "shards_merged/results.csv"), "results.csv").size(), 3u);
+  // One shard of two is no whole run: refused, or with --allow-missing merged as incomplete,
+  // the other shard's case Missing, and the run does not pass.
+  EXPECT_THROW(merge_conformance_outputs((test_root() / "half_merged").string(), {(test_root() / "shard0").string()}),
+               InputError);
+  const MergeResult half =
+      merge_conformance_outputs((test_root() / "half_merged").string(), {(test_root() / "shard0").string()}, true);
+  EXPECT_EQ(half.exit_code, 1);
+  EXPECT_FALSE(half.info.complete);
+  EXPECT_EQ(half.info.missing_unnamed, 1u);
+  const nlohmann::json summary = nlohmann::json::parse(read_file(test_root() / "half_merged/summary.json"));
+  EXPECT_EQ(summary.at("passed"), false);
+  EXPECT_EQ(summary.at("missing_unnamed"), 1);
+  EXPECT_EQ(summary.at("statuses").at("Missing"), 1);
+  EXPECT_EQ(nlohmann::json::parse(read_file(test_root() / "shard1/summary.json")).at("shard"), "1/2");
 }
 
 // Plans need no Vulkan device; their files go below the same per-process folder.
