@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "model/errors.hpp"
+#include "model/file_read.hpp"
 #include "model/image_io.hpp"
 
 namespace rastercmp {
@@ -120,11 +121,11 @@ CaseResult CaseRunner::run(const Scene& scene) {
 
 namespace {
 
+// not_supported.txt holds the device's one-line reason.
+constexpr uint64_t kMaxMessageFileBytes = uint64_t(64) << 10;
+
 std::string read_message_file(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  std::string message = text.str();
+  std::string message = read_bounded_file(path, kMaxMessageFileBytes, "a not_supported.txt message");
   while (!message.empty() && (message.back() == '\n' || message.back() == '\r')) message.pop_back();
   return message.empty() ? "not supported" : message;
 }
@@ -162,7 +163,11 @@ CaseResult CaseRunner::run_capture(const Scene& scene, const std::string& captur
   std::string device_not_supported, capture_error;
   const fs::path not_supported_file = fs::path(capture_dir) / kCaptureNotSupportedFile;
   if (fs::exists(not_supported_file)) {
-    device_not_supported = read_message_file(not_supported_file.string());
+    try {
+      device_not_supported = read_message_file(not_supported_file.string());
+    } catch (const InputError& e) {
+      capture_error = e.what();
+    }
   } else {
     try {
       capture = read_render_outputs(capture_dir);

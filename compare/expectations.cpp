@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "model/errors.hpp"
+#include "model/file_read.hpp"
 
 namespace rastercmp {
 namespace {
@@ -177,11 +178,7 @@ std::vector<Pattern> parse_patterns(std::string_view text, const std::string& fi
 }
 
 std::string read_text_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, "", "expected a readable file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
+  return read_bounded_file(path, kMaxListFileBytes, "a list file (baseline, flakes, skips, caselist, results)");
 }
 
 Expectations load_expectations(const std::string& baseline_file, const std::string& flakes_file,

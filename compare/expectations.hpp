@@ -20,6 +20,7 @@
 // status) and Missing (a case that gave no result) are set by the runner (compare/conformance.hpp).
 #pragma once
 
+#include <cstdint>
 #include <map>
 #include <optional>
 #include <regex>
@@ -83,7 +84,12 @@ Outcome judge_outcome(const std::string& name, Verdict result, const Expectation
 // with_baseline alone: `status` from runner_status(), `baseline` a RunnerStatus name ("" = not listed).
 std::string with_baseline(const std::string& status, const std::string& baseline);
 
-// Reads a whole text file. Throws InputError(path, "", ...) when it cannot.
+// The most a list file (--baseline, --flakes, --skips, --caselist) or a run's results.csv and
+// summary.json may hold: far above a suite of a million cases.
+inline constexpr uint64_t kMaxListFileBytes = uint64_t(256) << 20;
+
+// Reads a whole text file: a regular file of at most kMaxListFileBytes (model/file_read.hpp).
+// Throws InputError(path, "", ...) when it cannot.
 std::string read_text_file(const std::string& path);
 
 }  // namespace rastercmp

@@ -16,6 +16,7 @@
 
 #include "model/depth_format.hpp"
 #include "model/errors.hpp"
+#include "model/file_read.hpp"
 #include "model/image_codec.hpp"
 
 namespace rastercmp {
@@ -192,6 +193,9 @@ void write_render_outputs(const RenderResult& r, const std::string& dir) {
 namespace {
 
 // render.json alone; `depth` and the stated size come back apart (0: not stated).
+// render.json holds a few fields.
+constexpr uint64_t kMaxRenderJsonBytes = uint64_t(1) << 20;
+
 // The sample counts a render may record (Vulkan's VkSampleCountFlagBits reach 64).
 constexpr uint32_t kMaxRenderSamples = 64;
 
@@ -206,14 +210,22 @@ uint32_t size_field(const nlohmann::json& meta, const char* key, const std::stri
   return uint32_t(v.get<uint64_t>());
 }
 
+// How large an image file of w x h pixels of `samples` 32-bit channels may be: the raw pixels
+// twice over (TIFF's headers and strips, or a compression that does not pay) and 1 MiB. Without a
+// stated size (older outputs), a framebuffer of 4096 x 4096 x 4.
+uint64_t image_file_cap(uint32_t w, uint32_t h, uint32_t samples) {
+  if (w == 0 || h == 0 || samples == 0) w = h = 4096, samples = 4;
+  return 2 * uint64_t(w) * h * samples * 4 + (uint64_t(1) << 20);
+}
+
 RenderResult read_render_json(const std::string& dir, bool& depth, uint32_t& width, uint32_t& height,
                               uint32_t& samples) {
   const std::string meta_path = (fs::path(dir) / "render.json").string();
-  std::ifstream in(meta_path);
-  if (!in) throw InputError(meta_path, "", "expected render.json (rastercmp render or capture)");
+  if (!fs::exists(meta_path)) throw InputError(meta_path, "", "expected render.json (rastercmp render or capture)");
+  const std::string text = read_bounded_file(meta_path, kMaxRenderJsonBytes, "render.json");
   nlohmann::json meta;
   try {
-    meta = nlohmann::json::parse(in);
+    meta = nlohmann::json::parse(text);
   } catch (const nlohmann::json::exception& e) {
     throw InputError(meta_path, "", std::string("expected valid JSON: ") + e.what());
   }
@@ -263,6 +275,8 @@ RenderResult read_render_outputs(const std::string& dir) {
   RenderResult r = read_render_json(dir, depth, width, height, samples);
   uint32_t c = 0;
   const std::string owner_path = (fs::path(dir) / "owner.tif").string();
+  check_bounded_file(owner_path, image_file_cap(width, height, samples),
+                     "an owner image of the size render.json states");
   r.owner = read_uint_image(owner_path, r.width, r.height, c);
   r.samples = c;
   // Older outputs may lack the size; when render.json states it, the image must agree.
@@ -273,6 +287,8 @@ RenderResult read_render_outputs(const std::string& dir) {
   if (depth) {
     uint32_t w2 = 0, h2 = 0, c2 = 0;
     const std::string depth_path = (fs::path(dir) / "depth_raw.tif").string();
+    check_bounded_file(depth_path, image_file_cap(r.width, r.height, r.samples),
+                       "a depth image of the owner image's size");
     r.depth_raw = read_uint_image(depth_path, w2, h2, c2);
     if (w2 != r.width || h2 != r.height || c2 != r.samples)
       throw InputError(depth_path, "",

@@ -4,6 +4,8 @@
 // file, another size, sample count or depth format) are that case's ResourceError naming the file,
 // and a render.json without the device's limits (as older captures) still judges.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <fstream>
 
 #include <string>
 #include <vector>
@@ -129,6 +131,28 @@ TEST(CliCapture, BrokenCapturesAreResourceErrorsNamingTheFile) {
   EXPECT_NE(w.out.find(bad_limits.string() + ": $.width: expected an integer from 0 to 16384, found -48"),
             std::string::npos)
       << w.out;
+  // Tampered captures never hang or swallow the machine: a FIFO named render.json, an owner.tif
+  // that links to /dev/zero, and a sparse 2 GiB owner.tif for a small render are each refused,
+  // naming the file, before anything reads them.
+  const fs::path dir = bad_limits.parent_path();
+  write_file(bad_limits, "{\"backend\": \"vulkan\", \"width\": 16, \"height\": 16, \"samples\": 4}\n");
+  fs::remove(dir / "owner.tif");
+  fs::create_symlink("/dev/zero", dir / "owner.tif");
+  const std::string scene_file = (suite / "msaa" / "lines" / "mixed_modes.json").string();
+  const auto judged = [&] {
+    return run_ok({"compare", scene_file, "--profile", "spec", "--capture", dir.string()}, 1);
+  };
+  const RunResult z = judged();
+  EXPECT_NE(z.out.find("as a regular file, not a folder, pipe or device"), std::string::npos) << z.out;
+  fs::remove(dir / "owner.tif");
+  { std::ofstream(dir / "owner.tif") << "II*"; }
+  fs::resize_file(dir / "owner.tif", uintmax_t(2) << 30);
+  const RunResult sparse = judged();
+  EXPECT_NE(sparse.out.find("found 2147483648 bytes"), std::string::npos) << sparse.out;
+  fs::remove(bad_limits);
+  ASSERT_EQ(mkfifo(bad_limits.c_str(), 0600), 0);
+  const RunResult fifo = judged();
+  EXPECT_NE(fifo.out.find("render.json: $: expected render.json as a regular file"), std::string::npos) << fifo.out;
   // A capture root with nothing in it is a usage error of the whole run (exit 2).
   const fs::path empty = tmp / "empty";
   fs::create_directories(empty);

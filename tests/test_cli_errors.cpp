@@ -111,6 +111,8 @@ TEST(CliErrors, BadOrMissingOptionsExitTwoAndWriteNothing) {
       {"conformance", "--out", out, "--shard", "3/2"},                    // shard index beyond the count
       {"conformance", "--out", out, "--jobs", "1073741824"},              // was SIGFPE (4 x jobs wrapped to 0)
       {"conformance", "--out", out, "--jobs", "257"},                     // past kMaxConformanceJobs
+      {"conformance", "--out", out, "--baseline", "/dev/zero"},           // never ends (grew to 24 GB)
+      {"conformance", "--out", out, "--skips", "/dev/stdin"},             // not a regular file
       {"conformance", "--out", out, "--suite", (tmp / "none").string()},  // no such suite
       {"merge"},                                                          // nothing to merge
       {"bench", "--scene", "suite", "--suite", (tmp / "none").string()},  // no such suite (was exit 4)
