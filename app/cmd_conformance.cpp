@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -120,7 +121,17 @@ std::string resume_hint(const ConformanceArgs& args, const std::string& exe) {
 }
 
 int run_conformance_command(ConformanceArgs& args) {
+  // Signals first: a stop at any moment from here on is recorded as an interrupted run.
+  StopOnSignals stop_on_signals;
   ConformanceOptions& o = args.conformance;
+  // An earlier run's verdict goes before anything else is read, under the lock, so that this run,
+  // killed at any moment (kill -9 during the suite's load or the device probe), never reads as
+  // that run's pass. A fresh folder is left alone until the input has been checked.
+  std::optional<OutputLock> lock;
+  if (std::filesystem::exists(std::filesystem::path(o.out_dir) / "summary.json")) {
+    lock.emplace(o.out_dir);
+    remove_previous_verdict(o.out_dir);
+  }
   o.profile = args.options.profile == "spec" ? CompareProfile::Spec : CompareProfile::Lavapipe;
   make_cpu_options(args.options);  // a bad --method is a usage error before any work
   const RenderOptions render_options = args.options;
@@ -140,13 +151,12 @@ int run_conformance_command(ConformanceArgs& args) {
   for (const SuiteCase& c : plan.cases) check_scene_methods(c.scene, c.path);  // a bad "methods" is exit 2
   if (!o.captures_root.empty())  // the children judge the captures: where each case's lies
     o.worker_command.insert(o.worker_command.end(), {"--captures", o.captures_root, "--suite-dir", plan.suite_dir});
-  const OutputLock lock(o.out_dir);  // a second run into the same folder: exit 2 naming this one
+  if (!lock) lock.emplace(o.out_dir);  // a second run into the same folder: exit 2 naming this one
   if (const size_t stale = remove_stale_temporaries(o.out_dir); stale != 0)
     fmt::print(stderr, "note: removed {} temporary file(s) an earlier run left in {}\n", stale, o.out_dir);
   fmt::print("conformance: {} case(s) of {} in the suite (shard {}/{}) → {}\n", plan.cases.size(), plan.suite_size,
              plan.shard.index, plan.shard.count, o.out_dir);
   std::fflush(stdout);
-  StopOnSignals stop_on_signals;
   const ConformanceResult result = run_conformance(o, plan, g_stop_signal, [](const std::string& line) {
     std::fputs(line.c_str(), stdout);
     std::fflush(stdout);

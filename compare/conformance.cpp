@@ -192,6 +192,14 @@ OutputLock::~OutputLock() {
   close(fd_);
 }
 
+size_t remove_previous_verdict(const std::string& out_dir) {
+  size_t removed = 0;
+  std::error_code ec;
+  for (const char* name : {"summary.json", "results.csv", "failures.csv", "junit.xml", "not_run.txt"})
+    removed += fs::remove(fs::path(out_dir) / name, ec) ? 1 : 0;
+  return removed;
+}
+
 size_t remove_stale_temporaries(const std::string& out_dir) {
   // model/image_io.cpp and compare/report_images.cpp name them ".STEM.tmpPID.EXT", in the folders
   // a run writes: --out itself, report/ and each case's report/cases/<case>/. Only those folders,
@@ -329,7 +337,10 @@ ConformanceResult run_conformance(const ConformanceOptions& options, const Confo
   fs::remove_all(retry_dir, ec);
 
   RunInfo& final_info = state.info();
-  if (stop_signal.load() != 0) {
+  // A stop that came when every case already had its result (during the last case, which the
+  // child finishes, or during the re-runs) leaves nothing to resume: the run is complete, its
+  // failing cases keep failing (a re-run cut short makes no Flake), and its exit is the verdict's.
+  if (stop_signal.load() != 0 && !final_info.not_run.empty()) {
     final_info.interrupted = true;
     state.publish();
     write_text_file_atomic((out / "not_run.txt").string(), not_run_list(final_info.not_run));

@@ -85,6 +85,11 @@ class OutputLock {
   int fd_ = -1;
 };
 
+// Removes the verdict files an earlier run left in --out (summary.json, results.csv, failures.csv,
+// junit.xml, not_run.txt), so that a run killed before its first write never reads as that earlier
+// run's pass. Called under the lock, before the suite is read. Returns how many it removed.
+size_t remove_previous_verdict(const std::string& out_dir);
+
 // Removes what an earlier run killed mid-write left in --out: temporary files (".NAME.tmpPID.EXT")
 // and the re-run folder. Returns how many it removed.
 size_t remove_stale_temporaries(const std::string& out_dir);

@@ -75,6 +75,22 @@ TEST(CliErrors, ConformanceRejectsAnUnwritableOutputFolder) {
   }
 }
 
+// A run into a folder that holds an earlier run's verdict removes it before it reads anything
+// else, so that the new run, killed at any moment (even before its first write), never reads as
+// the earlier run's pass. Shown with input the run then refuses (exit 2): the old verdict is gone.
+TEST(CliErrors, ConformanceRemovesAnEarlierVerdictBeforeItReadsTheSuite) {
+  const TempDir tmp;
+  const fs::path out = tmp / "out";
+  fs::create_directories(out);
+  for (const char* name : {"summary.json", "results.csv", "failures.csv", "junit.xml"})
+    write_file(out / name, std::string(name) == "summary.json" ? "{\"complete\": true, \"passed\": true}\n" : "");
+  const std::vector<std::string> args = {"conformance", "--suite", (tmp / "none").string(), "--out", out.string()};
+  const RunResult r = run_cli(args, kNoVulkanDriver);
+  EXPECT_EQ(r.exit_code, 2) << describe(args, r);
+  for (const char* name : {"summary.json", "results.csv", "failures.csv", "junit.xml"})
+    EXPECT_FALSE(fs::exists(out / name)) << name;
+}
+
 TEST(CliErrors, CaptureRejectsAnUnwritableOutputFolder) {
   const TempDir tmp;
   const fs::path suite = one_scene_suite(tmp.path());

@@ -231,6 +231,27 @@ TEST_F(ConformanceRun, InterruptedRunWritesEverythingAndResumes) {
   expect_same_outputs("resume_merged", "whole");
 }
 
+// A stop that comes when every case has its result (the last case finishes after the signal, or
+// the re-runs are cut) leaves nothing to resume: the run is complete, with the verdicts' exit,
+// and no resume list (a resume of nothing failed, exit 2).
+TEST_F(ConformanceRun, AStopAfterTheLastCaseLeavesACompleteRun) {
+  std::atomic<int> stop{0};
+  const ConformanceOptions o = options("late_stop");
+  const ConformancePlan plan = plan_conformance(o);
+  size_t finished = 0;
+  const ConformanceResult r = run_conformance(o, plan, stop, [&](const std::string&) {
+    if (++finished == plan.cases.size()) stop.store(SIGTERM);
+  });
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_TRUE(r.info.complete);
+  EXPECT_FALSE(r.info.interrupted);
+  const fs::path out = test_root() / "late_stop";
+  const nlohmann::json summary = nlohmann::json::parse(read_file(out / "summary.json"));
+  EXPECT_EQ(summary["complete"], true);
+  EXPECT_EQ(summary["passed"], true);
+  EXPECT_FALSE(fs::exists(out / "not_run.txt"));
+}
+
 TEST_F(ConformanceRun, ShardsMergeIntoTheWholeRun) {
   ConformanceOptions first = options("shard0"), second = options("shard1");
   first.shard = Shard{0, 2};
