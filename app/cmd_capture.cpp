@@ -17,6 +17,7 @@
 #include "app/options.hpp"
 #include "compare/case_run.hpp"
 #include "compare/case_select.hpp"
+#include "compare/conformance.hpp"
 #include "model/errors.hpp"
 #include "model/image_io.hpp"
 #include "vk_reference/vk_reference.hpp"
@@ -86,8 +87,9 @@ int run_capture(const CaptureArgs& args) {
   const std::string suite_dir = args.suite_dir.empty() ? default_suite_dir() : args.suite_dir;
   std::vector<SuiteCase> cases = select_cases(load_suite(suite_dir), CaseFilter{{}, args.case_globs, {}}, "");
   if (cases.empty()) throw UsageError(fmt::format("no case of the suite {} matches --case", suite_dir));
-  ensure_output_dir(args.out_dir);  // before any work: an unwritable folder is a usage error
-  auto renderer = std::make_unique<VulkanRenderer>(vk);
+  ensure_output_dir(args.out_dir);      // before any work: an unwritable folder is a usage error
+  auto renderer = std::make_unique<VulkanRenderer>(vk);  // no device: exit 3 before any file is written
+  const OutputLock lock(args.out_dir);  // a conformance or capture writing there: exit 2 naming it
   const DeviceInfo device = renderer->device();
   fmt::print("capture: {} case(s) of {} on {} ({}) → {}\n", cases.size(), suite_dir, device.name, device.driver_info,
              args.out_dir);

@@ -36,7 +36,10 @@ extern "C" void request_stop(int signal) {
   g_stop_signal.compare_exchange_strong(none, signal);
 }
 
-// Installs the handler for SIGINT, SIGTERM and SIGHUP for the lifetime of the run.
+// Installs the handler for SIGINT, SIGTERM and SIGHUP for the lifetime of the run. A SIGHUP the
+// caller set to be ignored stays ignored: `nohup rastercmp conformance` survives the hang-up, as
+// nohup promises. (SIGINT is taken whatever it was: a shell's background job starts with it
+// ignored, and a run must still stop on it when sent.)
 class StopOnSignals {
  public:
   StopOnSignals() {
@@ -45,7 +48,10 @@ class StopOnSignals {
     action.sa_handler = request_stop;
     action.sa_flags = SA_RESTART;  // a wait inside the driver goes on; the flag is read between cases
     sigemptyset(&action.sa_mask);
-    for (size_t i = 0; i < kSignals.size(); ++i) sigaction(kSignals[i], &action, &previous_[i]);
+    for (size_t i = 0; i < kSignals.size(); ++i) {
+      sigaction(kSignals[i], nullptr, &previous_[i]);
+      if (kSignals[i] != SIGHUP || previous_[i].sa_handler != SIG_IGN) sigaction(kSignals[i], &action, nullptr);
+    }
   }
   ~StopOnSignals() {
     for (size_t i = 0; i < kSignals.size(); ++i) sigaction(kSignals[i], &previous_[i], nullptr);

@@ -173,10 +173,10 @@ OutputLock::OutputLock(const std::string& out_dir) {
     fd_ = -1;
     std::string holder(pid, size_t(std::max<ssize_t>(n, 0)));
     holder.erase(holder.find_last_not_of(" \n") + 1);
-    throw UsageError(
-        fmt::format("--out {}: another rastercmp conformance run (pid {}) is writing there; wait for it "
-                    "or choose another folder",
-                    out_dir, holder.empty() ? "unknown" : holder));
+    throw UsageError(fmt::format(
+        "--out {}: another rastercmp run (conformance, merge or capture; pid {}) is writing there; wait for it "
+        "or choose another folder",
+        out_dir, holder.empty() ? "unknown" : holder));
   }
   const std::string pid = std::to_string(getpid()) + "\n";
   if (ftruncate(fd_, 0) != 0 || pwrite(fd_, pid.data(), pid.size(), 0) != ssize_t(pid.size()))

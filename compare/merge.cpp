@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <map>
 
+#include "compare/conformance.hpp"
 #include "compare/expectations.hpp"
 #include "compare/report.hpp"
 #include "compare/run_outputs.hpp"
@@ -45,6 +46,7 @@ MergeResult merge_conformance_outputs(const std::string& out_dir, const std::vec
   if (shard_dirs.empty()) throw UsageError("merge: expected at least one shard folder");
   const fs::path out(out_dir);
   ensure_output_dir(out_dir);
+  const OutputLock lock(out_dir);  // a conformance or another merge writing there: exit 2 naming it
   ensure_output_dir((out / "report").string());
   MergeResult merged;
   std::map<std::string, std::string> case_origin;

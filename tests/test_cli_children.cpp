@@ -255,9 +255,14 @@ TEST(CliChildren, ASecondRunIntoALockedFolderExits2NamingTheHolder) {
   const TreeSnapshot before = files_of(snapshot_tree(out));
   const std::vector<std::string> args = {"conformance", "--suite", (tmp / "suite").string(), "--out", out.string()};
   const RunResult r = run_cli(args, kNoVulkanDriver);  // exit 2 before any Vulkan: the lock comes first
+  // merge into the same folder waits for no one either: exit 2 naming the holder.
+  const std::vector<std::string> merge = {"merge", out.string(), (tmp / "suite").string()};
+  const RunResult m = run_cli(merge);
   close(fd);
   EXPECT_EQ(r.exit_code, 2) << describe(args, r);
   EXPECT_NE(r.err.find("pid 31337"), std::string::npos) << describe(args, r);
+  EXPECT_EQ(m.exit_code, 2) << describe(merge, m);
+  EXPECT_NE(m.err.find("pid 31337"), std::string::npos) << describe(merge, m);
   EXPECT_EQ(files_of(snapshot_tree(out)), before);
 }
 

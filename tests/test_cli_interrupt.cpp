@@ -132,6 +132,32 @@ TEST(CliInterrupt, SigtermAndSighupStopTheRunHonestly) {
   }
 }
 
+// `nohup rastercmp conformance`: a SIGHUP the caller ignores stays ignored, so the hang-up does not
+// stop the run; it finishes complete (SIGHUP is ignored here before the child is spawned, as nohup
+// does before exec, and posix_spawn keeps it ignored).
+TEST(CliInterrupt, AnIgnoredSighupStaysIgnoredAsUnderNohup) {
+  RASTERCMP_SKIP_WITHOUT_VULKAN();
+  const TempDir tmp;
+  const fs::path out = tmp / "out";
+  const std::vector<std::string> args = {"conformance", "--case", kCases, "--out", out.string()};
+  struct sigaction ignore {
+  }, previous{};
+  ignore.sa_handler = SIG_IGN;
+  sigemptyset(&ignore.sa_mask);
+  sigaction(SIGHUP, &ignore, &previous);
+  Child child(args);
+  sigaction(SIGHUP, &previous, nullptr);
+  ASSERT_TRUE(wait_for_first_case(out / "results.csv", std::chrono::seconds(120))) << "no case finished";
+  child.send_signal(SIGHUP);
+  const RunResult r = child.wait();
+  const std::string what = describe(args, r);
+  ASSERT_EQ(r.signal, 0) << what;
+  EXPECT_EQ(r.exit_code, 0) << what;
+  const nlohmann::json summary = nlohmann::json::parse(read_file(out / "summary.json"));
+  EXPECT_EQ(summary.at("complete"), true) << what;
+  EXPECT_EQ(summary.at("interrupted"), false);
+}
+
 // kill -9 leaves no chance to write anything: what is there must already read as not passed.
 TEST(CliInterrupt, AKilledRunNeverReadsAsAPass) {
   RASTERCMP_SKIP_WITHOUT_VULKAN();
