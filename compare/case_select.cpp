@@ -51,8 +51,17 @@ std::vector<std::string> find_scene_files(const std::string& dir) {
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) throw InputError(dir, "", "expected a suite folder with scene files (*.json)");
   std::vector<std::string> files;
-  for (const auto& entry : fs::recursive_directory_iterator(dir, ec))
-    if (entry.is_regular_file() && entry.path().extension() == ".json") files.push_back(entry.path().string());
+  // A folder that holds the lock file of a run's output (conformance --out, merge, capture) is that
+  // output, never part of the suite: its summary.json and render.json files are no scenes, even
+  // when --out lies inside --suite.
+  for (auto it = fs::recursive_directory_iterator(dir, ec); !ec && it != fs::recursive_directory_iterator();
+       it.increment(ec)) {
+    if (it->is_directory() && fs::exists(it->path() / kOutputLockFile)) {
+      it.disable_recursion_pending();
+      continue;
+    }
+    if (it->is_regular_file() && it->path().extension() == ".json") files.push_back(it->path().string());
+  }
   if (ec) throw InputError(dir, "", "expected a readable folder: " + ec.message());
   std::sort(files.begin(), files.end());
   return files;

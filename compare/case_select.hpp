@@ -30,8 +30,11 @@ std::vector<std::string> suite_dir_candidates(const std::string& executable);
 // so a moved or installed binary finds its suite; throws InputError naming both places otherwise.
 std::string default_suite_dir();
 
-// Every regular file named *.json below `dir`, recursively, in path order.
-// Throws InputError when `dir` is not a folder.
+// The lock file a run's output folder holds (compare/conformance.hpp OutputLock).
+inline constexpr const char* kOutputLockFile = ".rastercmp.lock";
+
+// Every regular file named *.json below `dir`, recursively, in path order, except below a folder
+// that holds kOutputLockFile (a run's output). Throws InputError when `dir` is not a folder.
 std::vector<std::string> find_scene_files(const std::string& dir);
 
 // Loads every scene of the suite, ordered by case name. Throws InputError for a bad scene file,

@@ -28,8 +28,8 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-constexpr const char* kLockFile = ".rastercmp.lock";
-constexpr const char* kRetryDir = ".retry";  // below --out: the re-runs' report files, removed after
+constexpr const char* kLockFile = kOutputLockFile;  // compare/case_select.hpp
+constexpr const char* kRetryDir = ".retry";         // below --out: the re-runs' report files, removed after
 
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 

@@ -291,6 +291,21 @@ class PlanConformance : public ::testing::Test {
   }
 };
 
+// --out inside --suite: the run's output folder (it holds the lock file) is no part of the suite,
+// so a second run does not read the first one's summary.json as a scene.
+TEST_F(PlanConformance, AnOutputFolderInsideTheSuiteIsNoPartOfIt) {
+  const fs::path suite = test_root() / "suite_with_out";
+  fs::create_directories(suite);
+  fs::copy_file(fs::path(RASTERCMP_SOURCE_DIR) / "scenes" / "triangle" / "sliver" / "long_thin.json",
+                suite / "long_thin.json", fs::copy_options::overwrite_existing);
+  write_file(suite / "out" / ".rastercmp.lock", "");
+  write_file(suite / "out" / "summary.json", "{\"complete\": true}\n");
+  write_file(suite / "out" / "report" / "cases" / "x" / "render.json", "{}\n");
+  const std::vector<std::string> files = find_scene_files(suite.string());
+  ASSERT_EQ(files.size(), 1u);
+  EXPECT_EQ(fs::path(files[0]).filename(), "long_thin.json");
+}
+
 TEST_F(PlanConformance, UnwritableOutputIsAnInputErrorBeforeAnyWork) {
   const fs::path root = test_root() / "plan";
   fs::create_directories(root);
