@@ -3,8 +3,11 @@
 // verdicts and outputs of a live run. Captures that do not fit their scene (a missing or corrupt
 // file, another size, sample count or depth format) are that case's ResourceError naming the file,
 // and a render.json without the device's limits (as older captures) still judges.
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/file.h>
 #include <sys/stat.h>
+#include <unistd.h>
 #include <fstream>
 
 #include <string>
@@ -47,6 +50,27 @@ std::string conformance_summary(const fs::path& suite, const fs::path& out, cons
   if (!captures.empty()) args.insert(args.end(), {"--captures", captures});
   run_ok(args, 0, captures.empty() ? EnvEdits{} : kNoVulkanDriver);
   return read_file(out / "summary.json");
+}
+
+// capture takes the --out lock as conformance does: a folder another run is writing is exit 2
+// naming its pid, and nothing is recorded there.
+TEST(CliCapture, ACaptureIntoALockedFolderExits2NamingTheHolder) {
+  RASTERCMP_SKIP_WITHOUT_VULKAN();
+  const TempDir tmp;
+  const fs::path suite = make_suite(tmp);
+  const fs::path captures = tmp / "captures";
+  fs::create_directories(captures);
+  const int fd = open((captures / ".rastercmp.lock").c_str(), O_RDWR | O_CREAT, 0644);
+  ASSERT_GE(fd, 0);
+  ASSERT_EQ(flock(fd, LOCK_EX | LOCK_NB), 0);
+  const std::string pid = "31337\n";
+  ASSERT_EQ(write(fd, pid.data(), pid.size()), ssize_t(pid.size()));
+  const RunResult r = run_ok({"capture", "--suite", suite.string(), "--out", captures.string()}, 2);
+  close(fd);
+  EXPECT_NE(r.err.find("pid 31337"), std::string::npos) << r.err;
+  size_t entries = 0;
+  for ([[maybe_unused]] const auto& e : fs::directory_iterator(captures)) ++entries;
+  EXPECT_EQ(entries, 1u);  // the lock file alone
 }
 
 TEST(CliCapture, CapturedSuiteJudgesLikeALiveRun) {
