@@ -85,14 +85,14 @@ std::string observed_text(const RenderResult& expected, const RenderResult& actu
 }
 
 // Spec profile: the estimate's owner, the alternatives exact devices allow and what the judged
-// render left (docs/spec-profile.md "Owners"). Nothing without coverage classes.
+// render left (docs/spec-profile.md "Owners"); `open`: the pixel's owner is open
+// (SpecPixelRules::owner_open).
 std::string owners_text(const Scene& scene, const CpuOptions& cpu_options, const RenderResult& expected,
-                        const RenderResult& actual, CompareProfile profile, uint32_t x, uint32_t y, uint32_t sample) {
-  if (profile != CompareProfile::Spec || expected.coverage_class.empty()) return "";
+                        const RenderResult& actual, CompareProfile profile, uint32_t x, uint32_t y, uint32_t sample,
+                        bool open) {
   const size_t i = expected.index(x, y, sample);
   const std::vector<uint32_t> alternatives = alternatives_at(expected, i);
   std::vector<ExactDeviceOwner> devices;
-  const bool open = spec_pixel_rules(scene, cpu_options, expected, x, y).owner_open;
   if (!alternatives.empty() && !open) devices = exact_device_owners_at(scene, cpu_options, x, y, sample);
   std::string text =
       "spec owners (docs/spec-profile.md, Owners):\n  estimate:     " + owner_text(expected.owner[i]) + "\n";
@@ -108,10 +108,9 @@ std::string owners_text(const Scene& scene, const CpuOptions& cpu_options, const
 
 // Spec profile: the sample's class, the limits it was judged with, and what each primitive near it
 // may do there (docs/spec-profile.md), so that a driver developer can argue with a MustNot.
-std::string class_text(const Scene& scene, const CpuOptions& cpu_options, const RenderResult& expected, uint32_t x,
-                       uint32_t y, uint32_t sample) {
+std::string class_text(const SpecPixelRules& rules, const CpuOptions& cpu_options, const RenderResult& expected,
+                       uint32_t x, uint32_t y, uint32_t sample) {
   static constexpr std::array<const char*, 3> kClass = {"MustNot", "May", "Must"};
-  const SpecPixelRules rules = spec_pixel_rules(scene, cpu_options, expected, x, y);
   const CoverageClass c = expected.coverage_class[expected.index(x, y, sample)];
   std::string text = fmt::format(
       "spec class (docs/spec-profile.md): {}\n  limits:       subPixelPrecisionBits {}, viewportSubPixelBits {} ({} "
@@ -162,12 +161,12 @@ std::string explain_sample_text(const Scene& scene, const CpuOptions& cpu_option
     return header_text(scene, profile, x, y, sample, true) + explain_classic_pixel(scene, cpu_options, x, y, sample) +
            tail_text(expected, actual, cpu_method_label(cpu_options), profile, x, y, sample);
   const std::vector<FragmentRecord> history = explain_pixel(scene, cpu_options, x, y, sample);
-  return header_text(scene, profile, x, y, sample) + format_explanation(history) +
-         tail_text(expected, actual, cpu_method_label(cpu_options), profile, x, y, sample) +
-         (profile == CompareProfile::Spec && !expected.coverage_class.empty()
-              ? class_text(scene, cpu_options, expected, x, y, sample)
-              : "") +
-         owners_text(scene, cpu_options, expected, actual, profile, x, y, sample);
+  std::string text = header_text(scene, profile, x, y, sample) + format_explanation(history) +
+                     tail_text(expected, actual, cpu_method_label(cpu_options), profile, x, y, sample);
+  if (profile != CompareProfile::Spec || expected.coverage_class.empty()) return text;
+  const SpecPixelRules rules = spec_pixel_rules(scene, cpu_options, expected, x, y);
+  return text + class_text(rules, cpu_options, expected, x, y, sample) +
+         owners_text(scene, cpu_options, expected, actual, profile, x, y, sample, rules.owner_open);
 }
 
 std::vector<ExplainLink> write_case_explanations(const std::string& report_dir, const std::string& case_name,

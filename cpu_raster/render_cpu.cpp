@@ -69,9 +69,7 @@ SpecPixelRules spec_pixel_rules(const Scene& scene, const CpuOptions& options, c
   rules.undefined = primitives.undefined;
   for (const cpu::spec::PrimitiveAtPixel& p : cpu::spec::primitives_at(scene, primitives, bits, int32_t(x), int32_t(y)))
     rules.primitives.push_back({p.owner, p.line, kCoverage[size_t(p.coverage)], kGate[size_t(p.gate)]});
-  const Viewport own = scene.effective_viewport();
-  for (const Viewport& v : spec_viewport_representations(scene, options))
-    if (v.x != own.x || v.y != own.y || v.width != own.width || v.height != own.height) ++rules.viewports;
+  rules.viewports = spec_viewport_representations(scene, options).size();
   if (!expected.coverage_class.empty()) {
     const std::vector<uint32_t> open =
         cpu::spec::open_owner_pixels(scene, primitives, expected.coverage_class, expected.owner, bits);

@@ -19,6 +19,18 @@ std::string size_text(uint64_t bytes) {
 
 }  // namespace
 
+std::string read_at_most(std::istream& in, uint64_t max_bytes) {
+  std::string text;
+  constexpr size_t kChunk = size_t(1) << 20;
+  while (in && text.size() <= max_bytes) {
+    const size_t old_size = text.size();
+    text.resize(old_size + kChunk);
+    in.read(text.data() + old_size, std::streamsize(kChunk));
+    text.resize(old_size + size_t(in.gcount()));
+  }
+  return text;
+}
+
 void check_bounded_file(const std::string& path, uint64_t max_bytes, const std::string& what) {
   namespace fs = std::filesystem;
   std::error_code ec;
@@ -37,14 +49,7 @@ std::string read_bounded_file(const std::string& path, uint64_t max_bytes, const
   check_bounded_file(path, max_bytes, what);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, "", fmt::format("expected {} that can be read: {}", what, std::strerror(errno)));
-  std::string text;
-  constexpr size_t kChunk = size_t(1) << 20;
-  while (in && text.size() <= max_bytes) {
-    const size_t old_size = text.size();
-    text.resize(old_size + kChunk);
-    in.read(text.data() + old_size, std::streamsize(kChunk));
-    text.resize(old_size + size_t(in.gcount()));
-  }
+  std::string text = read_at_most(in, max_bytes);
   if (in.bad()) throw InputError(path, "", fmt::format("expected {} that can be read: {}", what, std::strerror(errno)));
   if (text.size() > max_bytes)
     throw InputError(path, "",

@@ -15,6 +15,7 @@
 #include "model/camera.hpp"
 #include "model/depth_format.hpp"
 #include "model/errors.hpp"
+#include "model/file_read.hpp"
 #include "model/scene_io_draw.hpp"
 #include "model/scene_json.hpp"
 
@@ -278,14 +279,7 @@ std::string read_file_text(const std::string& path) {
     throw too_large();  // a regular file's size is believed when it is too large; any file is read with the cap
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, "$", fmt::format("expected a readable scene file, found: {}", std::strerror(errno)));
-  std::string text;
-  constexpr size_t kChunk = size_t(1) << 20;
-  while (in && text.size() <= kMaxSceneFileBytes) {
-    const size_t old_size = text.size();
-    text.resize(old_size + kChunk);
-    in.read(text.data() + old_size, std::streamsize(kChunk));
-    text.resize(old_size + size_t(in.gcount()));
-  }
+  std::string text = read_at_most(in, kMaxSceneFileBytes);  // model/file_read.hpp
   if (in.bad()) {
     throw InputError(path, "$",
                      fmt::format("expected a readable scene file, found a read error: {}", std::strerror(errno)));

@@ -3,11 +3,8 @@
 // verdicts and outputs of a live run. Captures that do not fit their scene (a missing or corrupt
 // file, another size, sample count or depth format) are that case's ResourceError naming the file,
 // and a render.json without the device's limits (as older captures) still judges.
-#include <fcntl.h>
 #include <gtest/gtest.h>
-#include <sys/file.h>
 #include <sys/stat.h>
-#include <unistd.h>
 #include <fstream>
 
 #include <string>
@@ -59,14 +56,9 @@ TEST(CliCapture, ACaptureIntoALockedFolderExits2NamingTheHolder) {
   const TempDir tmp;
   const fs::path suite = make_suite(tmp);
   const fs::path captures = tmp / "captures";
-  fs::create_directories(captures);
-  const int fd = open((captures / ".rastercmp.lock").c_str(), O_RDWR | O_CREAT, 0644);
-  ASSERT_GE(fd, 0);
-  ASSERT_EQ(flock(fd, LOCK_EX | LOCK_NB), 0);
-  const std::string pid = "31337\n";
-  ASSERT_EQ(write(fd, pid.data(), pid.size()), ssize_t(pid.size()));
+  HeldOutputLock lock(captures);
   const RunResult r = run_ok({"capture", "--suite", suite.string(), "--out", captures.string()}, 2);
-  close(fd);
+  lock.release();
   EXPECT_NE(r.err.find("pid 31337"), std::string::npos) << r.err;
   size_t entries = 0;
   for ([[maybe_unused]] const auto& e : fs::directory_iterator(captures)) ++entries;

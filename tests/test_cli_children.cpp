@@ -4,7 +4,6 @@
 // earlier run left are removed. The faults come from the test-only hook RASTERCMP_TEST_CASE_FAULT
 // (compare/case_worker.hpp) on a suite of four tiny scenes.
 #include <gtest/gtest.h>
-#include <sys/file.h>
 #include <chrono>
 #include <csignal>
 #include <fstream>
@@ -102,6 +101,16 @@ TEST(CliChildren, ADriversExitCodeOrStrayOutputCostsItsCaseOnly) {
       << cases["t.stray"].dump(1);
 }
 
+// A suite of case `name` alone and the conformance command line that runs it into tmp/out with
+// --timeout 2 and no re-run: a case meant to time out, with no case meant to pass beside it that
+// a loaded machine could push past the deadline.
+std::vector<std::string> alone_with_a_short_timeout(const TempDir& tmp, const std::string& name) {
+  fs::create_directories(tmp / "suite");
+  write_file(tmp / "suite" / (name + ".json"), scene(name));
+  return {"conformance", "--suite", (tmp / "suite").string(), "--out", (tmp / "out").string(),
+          "--timeout",   "2",       "--flake-retries",        "0"};
+}
+
 // Whether process `pid` has ended (gone, or a zombie nobody reaps: a container's init may not).
 bool process_ended(pid_t pid) {
   std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
@@ -143,13 +152,8 @@ TEST(CliChildren, AHelperTheDriverForksNeitherHoldsTheRunNorOutlivesIt) {
 TEST(CliChildren, AChildThatClosesItsPipesAndHangsTimesOut) {
   RASTERCMP_SKIP_WITHOUT_VULKAN();
   const TempDir tmp;
-  fs::create_directories(tmp / "suite");
-  write_file(tmp / "suite" / "t.closer.json", scene("t.closer"));
-  const EnvEdits faults = {{"RASTERCMP_TEST_CASE_FAULT", "close_fds_hang:t.closer"}};
-  const std::vector<std::string> args = {
-      "conformance", "--suite", (tmp / "suite").string(), "--out", (tmp / "out").string(),
-      "--timeout",   "2",       "--flake-retries",        "0"};
-  const RunResult r = run_cli(args, faults);
+  const std::vector<std::string> args = alone_with_a_short_timeout(tmp, "t.closer");
+  const RunResult r = run_cli(args, {{"RASTERCMP_TEST_CASE_FAULT", "close_fds_hang:t.closer"}});
   ASSERT_EQ(r.exit_code, 1) << describe(args, r);
   auto cases = cases_by_name(nlohmann::json::parse(read_file(tmp / "out" / "summary.json")));
   EXPECT_EQ(cases["t.closer"]["status"], "Timeout") << cases["t.closer"].dump(1);
@@ -219,12 +223,8 @@ TEST(CliChildren, ARunSurvivesACrashAndTellsAFlakeFromAFailure) {
 TEST(CliChildren, AHangIsATimeoutWithTheChildsLastOutput) {
   RASTERCMP_SKIP_WITHOUT_VULKAN();
   const TempDir tmp;
-  fs::create_directories(tmp / "suite");
-  write_file(tmp / "suite" / "t.hang.json", scene("t.hang"));
   const EnvEdits faults = {{"RASTERCMP_TEST_CASE_FAULT", "hang:t.hang"}};
-  const std::vector<std::string> args = {
-      "conformance", "--suite", (tmp / "suite").string(), "--out", (tmp / "out").string(),
-      "--timeout",   "2",       "--flake-retries",        "0"};
+  const std::vector<std::string> args = alone_with_a_short_timeout(tmp, "t.hang");
   const RunResult r = run_cli(args, faults);
   ASSERT_EQ(r.exit_code, 1) << describe(args, r);
   auto cases = cases_by_name(nlohmann::json::parse(read_file(tmp / "out" / "summary.json")));
@@ -245,20 +245,14 @@ TEST(CliChildren, ASecondRunIntoALockedFolderExits2NamingTheHolder) {
   const TempDir tmp;
   write_suite(tmp / "suite");
   const fs::path out = tmp / "out";
-  fs::create_directories(out);
-  // Hold the lock as a running conformance would.
-  const int fd = open((out / ".rastercmp.lock").c_str(), O_RDWR | O_CREAT, 0644);
-  ASSERT_GE(fd, 0);
-  ASSERT_EQ(flock(fd, LOCK_EX | LOCK_NB), 0);
-  const std::string pid = "31337\n";
-  ASSERT_EQ(write(fd, pid.data(), pid.size()), ssize_t(pid.size()));
+  HeldOutputLock lock(out);  // as a running conformance would
   const TreeSnapshot before = files_of(snapshot_tree(out));
   const std::vector<std::string> args = {"conformance", "--suite", (tmp / "suite").string(), "--out", out.string()};
   const RunResult r = run_cli(args, kNoVulkanDriver);  // exit 2 before any Vulkan: the lock comes first
   // merge into the same folder waits for no one either: exit 2 naming the holder.
   const std::vector<std::string> merge = {"merge", out.string(), (tmp / "suite").string()};
   const RunResult m = run_cli(merge);
-  close(fd);
+  lock.release();
   EXPECT_EQ(r.exit_code, 2) << describe(args, r);
   EXPECT_NE(r.err.find("pid 31337"), std::string::npos) << describe(args, r);
   EXPECT_EQ(m.exit_code, 2) << describe(merge, m);

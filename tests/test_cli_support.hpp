@@ -6,6 +6,7 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
+#include <sys/file.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -73,6 +74,29 @@ class TempDir {
 
  private:
   fs::path path_;
+};
+
+// Holds the --out lock of `dir` (created if need be) as a running rastercmp would, its lock file
+// naming pid 31337, until release() or the end of the object.
+class HeldOutputLock {
+ public:
+  explicit HeldOutputLock(const fs::path& dir) {
+    fs::create_directories(dir);
+    fd_ = open((dir / ".rastercmp.lock").c_str(), O_RDWR | O_CREAT, 0644);
+    const std::string pid = "31337\n";
+    if (fd_ < 0 || flock(fd_, LOCK_EX | LOCK_NB) != 0 || write(fd_, pid.data(), pid.size()) != ssize_t(pid.size()))
+      throw std::runtime_error("could not hold the lock of " + dir.string());
+  }
+  ~HeldOutputLock() { release(); }
+  HeldOutputLock(const HeldOutputLock&) = delete;
+  HeldOutputLock& operator=(const HeldOutputLock&) = delete;
+  void release() {
+    if (fd_ >= 0) close(fd_);
+    fd_ = -1;
+  }
+
+ private:
+  int fd_ = -1;
 };
 
 // How a finished child ended: exit code, or the signal that killed it.

@@ -167,4 +167,18 @@ XExtent may_extent_in_band(const LineShape& shape, double y_lo, double y_hi) {
   return e;
 }
 
+IndexSpan line_rows(const LineShape& shape, double half_px, int32_t lo, int32_t hi) {
+  const PixelBounds b = may_bounds(shape);
+  return {int32_t(std::max(double(lo), std::ceil(b.y_min - half_px - 0.5))),
+          int32_t(std::min(double(hi), std::floor(b.y_max + half_px - 0.5)))};
+}
+
+IndexSpan line_columns(const LineShape& shape, double half_px, int32_t py, int32_t lo, int32_t hi) {
+  const double reach = half_px + kLineMarginPx;  // the grown square's half-size
+  const XExtent e = may_extent_in_band(shape, py + 0.5 - reach, py + 0.5 + reach);
+  if (e.x_min > e.x_max) return {};
+  return {int32_t(std::max(double(lo), std::ceil(e.x_min - reach - 0.5))),
+          int32_t(std::min(double(hi), std::floor(e.x_max + reach - 0.5)))};
+}
+
 }  // namespace rastercmp::cpu::spec

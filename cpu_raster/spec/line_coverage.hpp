@@ -68,4 +68,13 @@ struct XExtent {
 };
 XExtent may_extent_in_band(const LineShape& shape, double y_lo, double y_hi);
 
+// Where classify_line_box may answer other than NONE for boxes of half-size `half_px`: the rows
+// within [lo, hi], and per row the columns within [lo, hi] (from may_bounds and
+// may_extent_in_band). Empty spans have last < first.
+struct IndexSpan {
+  int32_t first = 0, last = -1;
+};
+IndexSpan line_rows(const LineShape& shape, double half_px, int32_t lo, int32_t hi);
+IndexSpan line_columns(const LineShape& shape, double half_px, int32_t py, int32_t lo, int32_t hi);
+
 }  // namespace rastercmp::cpu::spec

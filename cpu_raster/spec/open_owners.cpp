@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <utility>
 
 #include "cpu_raster/spec/coverage_map.hpp"
 #include "cpu_raster/spec/subpixel.hpp"
@@ -32,36 +31,22 @@ std::vector<PrimitiveRef> submission_order(const SpecPrimitives& primitives) {
   return refs;
 }
 
-// The pixels whose boxes may touch the primitive, within the framebuffer (may be empty).
+// The pixels whose boxes may touch the primitive, within the framebuffer (may be empty); a line's
+// columns, row by row, are line_columns.
 PixelRect reach(const Scene& scene, const PrimitiveRef& ref, uint32_t bits, bool multisample) {
-  int64_t x0 = 0, x1 = -1, y0 = 0, y1 = -1;
-  if (ref.triangle != nullptr) {
-    const SnappedTriangle& s = ref.triangle->snapped;
-    const PixelSpan xs = pixels_touching(s.x_min, s.x_max, bits, multisample);
-    const PixelSpan ys = pixels_touching(s.y_min, s.y_max, bits, multisample);
-    x0 = xs.first, x1 = xs.last, y0 = ys.first, y1 = ys.last;
-  } else {
-    const double half_px = std::ldexp(double(pixel_box(0, 0, bits, multisample).half), -int(bits));
+  const int32_t x_max = int32_t(scene.width) - 1, y_max = int32_t(scene.height) - 1;
+  if (ref.line != nullptr) {
+    const double half_px = pixel_box_half_px(bits, multisample);
     const PixelBounds b = may_bounds(ref.line->shape);
-    const auto clamp_px = [](double v) { return int64_t(std::clamp(v, -1.0, double(1 << 30))); };
-    x0 = clamp_px(std::ceil(b.x_min - half_px - 0.5)), x1 = clamp_px(std::floor(b.x_max + half_px - 0.5));
-    y0 = clamp_px(std::ceil(b.y_min - half_px - 0.5)), y1 = clamp_px(std::floor(b.y_max + half_px - 0.5));
+    const IndexSpan rows = line_rows(ref.line->shape, half_px, 0, y_max);
+    return PixelRect{int32_t(std::clamp(std::ceil(b.x_min - half_px - 0.5), 0.0, double(x_max) + 1)), rows.first,
+                     int32_t(std::clamp(std::floor(b.x_max + half_px - 0.5), -1.0, double(x_max))), rows.last};
   }
-  return PixelRect{int32_t(std::max<int64_t>(x0, 0)), int32_t(std::max<int64_t>(y0, 0)),
-                   int32_t(std::min<int64_t>(x1, int64_t(scene.width) - 1)),
-                   int32_t(std::min<int64_t>(y1, int64_t(scene.height) - 1))};
-}
-
-// The columns of row py whose boxes a line's May quads may touch (as the coverage map visits them),
-// within the reach `r`; empty when first > last.
-std::pair<int32_t, int32_t> line_columns(const SpecLine& line, int32_t py, const PixelRect& r, uint32_t bits,
-                                         bool multisample) {
-  const double half_px = std::ldexp(double(pixel_box(0, 0, bits, multisample).half), -int(bits));
-  const double band = half_px + kLineMarginPx;
-  const XExtent e = may_extent_in_band(line.shape, py + 0.5 - band, py + 0.5 + band);
-  if (e.x_min > e.x_max) return {1, 0};
-  return {int32_t(std::max(double(r.x0), std::ceil(e.x_min - band - 0.5))),
-          int32_t(std::min(double(r.x1), std::floor(e.x_max + band - 0.5)))};
+  const SnappedTriangle& s = ref.triangle->snapped;
+  const PixelSpan xs = pixels_touching(s.x_min, s.x_max, bits, multisample);
+  const PixelSpan ys = pixels_touching(s.y_min, s.y_max, bits, multisample);
+  return PixelRect{int32_t(std::max<int64_t>(xs.first, 0)), int32_t(std::max<int64_t>(ys.first, 0)),
+                   int32_t(std::min<int64_t>(xs.last, x_max)), int32_t(std::min<int64_t>(ys.last, y_max))};
 }
 
 Coverage coverage_at(const PrimitiveRef& ref, const ViewportRect& viewport, int32_t px, int32_t py, uint32_t bits,
@@ -175,6 +160,7 @@ std::vector<uint32_t> open_owner_pixels(const Scene& scene, const SpecPrimitives
   std::vector<uint32_t> out;
   if (primitives.undefined || classes.empty()) return out;
   const bool multisample = scene.samples > 1;
+  const double half_px = pixel_box_half_px(sub_pixel_bits, multisample);
   const ViewportRect viewport = viewport_rect(scene.effective_viewport());
   const std::vector<PrimitiveRef> refs = submission_order(primitives);
   std::vector<uint8_t> open(size_t(scene.width) * scene.height, 0);
@@ -183,8 +169,8 @@ std::vector<uint32_t> open_owner_pixels(const Scene& scene, const SpecPrimitives
     if (ref.line == nullptr) continue;
     const PixelRect r = reach(scene, ref, sub_pixel_bits, multisample);
     for (int32_t py = r.y0; py <= r.y1; ++py) {
-      const auto [x_first, x_last] = line_columns(*ref.line, py, r, sub_pixel_bits, multisample);
-      for (int32_t px = x_first; px <= x_last; ++px) {
+      const IndexSpan columns = line_columns(ref.line->shape, half_px, py, r.x0, r.x1);
+      for (int32_t px = columns.first; px <= columns.last; ++px) {
         const size_t pixel = size_t(py) * scene.width + size_t(px);
         if (open[pixel] == 0 && any_sample_must(classes, pixel, scene.samples) &&
             coverage_at(ref, viewport, px, py, sub_pixel_bits, multisample) != Coverage::None)
@@ -208,8 +194,8 @@ std::vector<uint32_t> open_owner_pixels(const Scene& scene, const SpecPrimitives
     const PixelRect r = reach(scene, ref, sub_pixel_bits, multisample);
     for (int32_t py = r.y0; py <= r.y1; ++py) {
       if (ref.triangle == nullptr) {
-        const auto [x_first, x_last] = line_columns(*ref.line, py, r, sub_pixel_bits, multisample);
-        for (int32_t px = x_first; px <= x_last; ++px) mark(ref, px, py, false);
+        const IndexSpan columns = line_columns(ref.line->shape, half_px, py, r.x0, r.x1);
+        for (int32_t px = columns.first; px <= columns.last; ++px) mark(ref, px, py, false);
         continue;
       }
       const RowSpans spans = row_spans(ref.triangle->snapped, py, sub_pixel_bits, multisample);

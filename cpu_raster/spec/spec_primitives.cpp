@@ -238,7 +238,7 @@ Coverage triangle_coverage_at(const SpecTriangle& t, const ViewportRect& viewpor
 }
 
 Coverage line_coverage_at(const SpecLine& line, int32_t px, int32_t py, uint32_t bits, bool multisample) {
-  const double half_px = std::ldexp(double(pixel_box(0, 0, bits, multisample).half), -int(bits));
+  const double half_px = pixel_box_half_px(bits, multisample);
   return classify_line_box(line.shape, PixelSquare{glm::dvec2(px + 0.5, py + 0.5), half_px});
 }
 
@@ -249,8 +249,7 @@ SpecPrimitives build_spec_primitives(const Scene& scene, bool fma, uint32_t sub_
   ctx.viewport = make_viewport_transform(scene.effective_viewport());
   ctx.fma = fma;
   ctx.bits = sub_pixel_bits;
-  const ToleranceBox box = pixel_box(0, 0, sub_pixel_bits, scene.samples > 1);
-  ctx.box_half_px = std::ldexp(double(box.half), -int(sub_pixel_bits));
+  ctx.box_half_px = pixel_box_half_px(sub_pixel_bits, scene.samples > 1);
   ctx.snap_px = std::ldexp(2.0, -int(sub_pixel_bits));  // floor/ceil: 1 unit, float slack: 1 unit
   for (uint32_t d = 0; d < scene.draws.size(); ++d) {
     const Draw& draw = scene.draws[d];

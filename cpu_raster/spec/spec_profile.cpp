@@ -91,18 +91,12 @@ void add_shared_edge(CoverageMap& map, const std::vector<SpecTriangle>& triangle
 
 // Row by row: only the columns where the May quads cross the band of the row's grown boxes.
 void add_line(CoverageMap& map, DepthIntervalMap* depths, const SpecLine& line, uint32_t bits, bool multisample) {
-  const double half_px = std::ldexp(double(pixel_box(0, 0, bits, multisample).half), -int(bits));
-  const double reach = half_px + kLineMarginPx;  // the grown square's half-size
-  const PixelBounds b = may_bounds(line.shape);
+  const double half_px = pixel_box_half_px(bits, multisample);
   const cpu::PixelRect& region = map.region();
-  const int32_t y_first = int32_t(std::max(double(region.y0), std::ceil(b.y_min - half_px - 0.5)));
-  const int32_t y_last = int32_t(std::min(double(region.y1), std::floor(b.y_max + half_px - 0.5)));
-  for (int32_t py = y_first; py <= y_last; ++py) {
-    const XExtent e = may_extent_in_band(line.shape, py + 0.5 - reach, py + 0.5 + reach);
-    if (e.x_min > e.x_max) continue;
-    const int32_t x_first = int32_t(std::max(double(region.x0), std::ceil(e.x_min - reach - 0.5)));
-    const int32_t x_last = int32_t(std::min(double(region.x1), std::floor(e.x_max + reach - 0.5)));
-    for (int32_t px = x_first; px <= x_last; ++px) {
+  const IndexSpan rows = line_rows(line.shape, half_px, region.y0, region.y1);
+  for (int32_t py = rows.first; py <= rows.last; ++py) {
+    const IndexSpan columns = line_columns(line.shape, half_px, py, region.x0, region.x1);
+    for (int32_t px = columns.first; px <= columns.last; ++px) {
       const PixelSquare box{glm::dvec2(px + 0.5, py + 0.5), half_px};
       const Coverage coverage = classify_line_box(line.shape, box);
       if (coverage == Coverage::None) continue;
@@ -260,15 +254,17 @@ std::vector<Viewport> spec_viewport_representations(const Scene& scene, const Cp
     return std::array<float, 2>{float(std::floor(scaled) * unit), float(std::ceil(scaled) * unit)};
   };
   const std::array<float, 2> xs = both(v.x), ys = both(v.y), ws = both(v.width), hs = both(v.height);
+  const auto same_bounds = [](const Viewport& a, const Viewport& b) {
+    return a.x == b.x && a.y == b.y && a.width == b.width && a.height == b.height;
+  };
   std::vector<Viewport> out;
   for (const float x : xs)
     for (const float y : ys)
       for (const float w : ws)
         for (const float h : hs) {
           const Viewport r{x, y, w, h, v.min_depth, v.max_depth};
-          const bool seen = std::any_of(out.begin(), out.end(), [&](const Viewport& o) {
-            return o.x == r.x && o.y == r.y && o.width == r.width && o.height == r.height;
-          });
+          const bool seen = same_bounds(r, v) ||
+                            std::any_of(out.begin(), out.end(), [&](const Viewport& o) { return same_bounds(o, r); });
           if (!seen && r.width != 0 && r.height != 0) out.push_back(r);
         }
   return out;
@@ -278,11 +274,8 @@ RenderResult render_spec_profile(const Scene& scene, const CpuOptions& options, 
   check_spec_profile_support(scene);
   RenderResult result = std::move(estimate);
   result.device = "cpu spec profile (subPixelPrecisionBits " + std::to_string(options.sub_pixel_bits) + ")";
-  const Viewport viewport = scene.effective_viewport();
-  const std::vector<Viewport> held = spec_viewport_representations(scene, options);
   Judgement j = judge(scene, options, result.owner);
-  for (const Viewport& v : held) {
-    if (v.x == viewport.x && v.y == viewport.y && v.width == viewport.width && v.height == viewport.height) continue;
+  for (const Viewport& v : spec_viewport_representations(scene, options)) {
     Scene represented = scene;
     represented.viewport = v;
     widen(j, judge(represented, options, result.owner), scene.depth_format);

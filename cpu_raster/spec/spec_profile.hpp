@@ -25,11 +25,11 @@ std::vector<CoverageClass> spec_coverage_classes(const Scene& scene, const CpuOp
 void check_spec_profile_support(const Scene& scene);
 
 // Vulkan "Controlling the Viewport": "The floating-point viewport bounds are represented with an
-// implementation-dependent precision", CpuOptions::viewport_sub_pixel_bits of it. The viewports a
-// device may hold for the scene's: x, y, width and height each on that grid, rounded either way
-// (the scene's own alone when its bounds lie on the grid). The profile judges a render by these and
-// the scene's own: Must and MustNot where every one says so, May elsewhere, the hull of the depth
-// intervals, every owner alternative.
+// implementation-dependent precision", CpuOptions::viewport_sub_pixel_bits of it. The viewports
+// other than the scene's own that a device may hold for it: x, y, width and height each on that
+// grid, rounded either way (none when its bounds lie on the grid). The profile judges a render by
+// these and the scene's own: Must and MustNot where every one says so, May elsewhere, the hull of
+// the depth intervals, every owner alternative.
 std::vector<Viewport> spec_viewport_representations(const Scene& scene, const CpuOptions& options);
 
 // backend "cpu", device "cpu spec profile (subPixelPrecisionBits N)", coverage_class from

@@ -40,6 +40,10 @@ ToleranceBox pixel_box(int32_t px, int32_t py, uint32_t bits, bool multisample) 
   return {px * one + one / 2, py * one + one / 2, half_size(bits, multisample)};
 }
 
+double pixel_box_half_px(uint32_t bits, bool multisample) {
+  return std::ldexp(double(half_size(bits, multisample)), -int(bits));
+}
+
 PixelSpan pixels_touching(int64_t lo, int64_t hi, uint32_t bits, bool multisample) {
   const int64_t one = int64_t(1) << bits, half = half_size(bits, multisample);
   return {ceil_div(lo - one / 2 - half, one), floor_div(hi - one / 2 + half, one)};

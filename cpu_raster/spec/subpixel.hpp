@@ -55,6 +55,9 @@ struct ToleranceBox {
 // keeps samples placed right at the pixel border inside the box).
 ToleranceBox pixel_box(int32_t px, int32_t py, uint32_t bits, bool multisample);
 
+// That box's half-size in pixels.
+double pixel_box_half_px(uint32_t bits, bool multisample);
+
 // Pixels [first, last] along one axis whose boxes can touch the grid interval [lo, hi].
 struct PixelSpan {
   int64_t first = 0, last = -1;
