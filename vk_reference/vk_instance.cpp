@@ -5,6 +5,7 @@
 #include "model/errors.hpp"
 #include "vk_reference/vk_check.hpp"
 #include "vk_reference/vk_loader.hpp"
+#include "vk_reference/vk_shader_cache.hpp"
 
 namespace rastercmp::vk {
 namespace {
@@ -62,6 +63,7 @@ uint32_t instance_api_version() {
 }  // namespace
 
 Instance::Instance(bool validate) {
+  key_shader_cache_by_vector_width();  // before the driver creates its screen and opens the cache
   if (validate && !layer_present(kValidationLayer)) {
     throw EnvironmentError(std::string(kValidationLayer) +
                            " is not installed: apt-get install vulkan-validationlayers");
