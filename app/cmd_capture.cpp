@@ -5,9 +5,16 @@
 // depth_raw.tif, render.json with the device's name, driver and limits), or not_supported.txt
 // with the device's message when it refuses the scene. Exit 0 when every scene was recorded or
 // refused, 1 when some failed (device loss, out of memory, validation messages, a scene the
-// device cannot take), 2 bad input, 3 no Vulkan.
+// device cannot take), 2 bad input or a file it cannot write (a full disk: each scene's folder is
+// written whole or left as it was), 3 no Vulkan.
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -33,44 +40,60 @@ struct CaptureArgs {
   RenderOptions options;
 };
 
-// Removes what an earlier capture left that the new one does not replace.
-void remove_stale(const std::string& dir, bool not_supported) {
+// A scene's capture appears whole or not at all: its files are written into a sibling temporary
+// folder ".LEAF.tmpPID" and swapped in (renameat2 RENAME_EXCHANGE, or two renames where the file
+// system cannot exchange), so a full disk or a kill leaves the earlier capture or none, never a
+// new image beside an old render.json. A temporary folder a killed capture left is removed first.
+void write_capture_folder(const std::string& dir, const std::function<void(const std::string&)>& write) {
+  const fs::path final_dir = fs::path(dir).lexically_normal();
+  const fs::path parent = final_dir.parent_path();
+  const std::string leaf = final_dir.filename().string();
+  ensure_output_dir(parent.string());
   std::error_code ec;
-  if (not_supported) {
-    for (const char* name : {"owner.tif", "owner.png", "depth_raw.tif", "depth.exr", "render.json"})
-      fs::remove(fs::path(dir) / name, ec);
-  } else {
-    fs::remove(fs::path(dir) / kCaptureNotSupportedFile, ec);
-    fs::remove(fs::path(dir) / "depth_raw.tif", ec);
-    fs::remove(fs::path(dir) / "depth.exr", ec);
+  const std::string stale_prefix = "." + leaf + ".tmp";
+  for (auto it = fs::directory_iterator(parent, ec); !ec && it != fs::directory_iterator(); it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    const std::string pid = name.rfind(stale_prefix, 0) == 0 ? name.substr(stale_prefix.size()) : "";
+    if (!pid.empty() && pid.size() <= 10 && pid.find_first_not_of("0123456789") == std::string::npos &&
+        writer_gone(std::stoll(pid))) {
+      std::error_code removed;
+      fs::remove_all(it->path(), removed);
+    }
   }
+  const fs::path temp = parent / fmt::format("{}{}", stale_prefix, getpid());
+  fs::remove_all(temp, ec);
+  try {
+    write(temp.string());
+  } catch (...) {
+    fs::remove_all(temp, ec);
+    throw;
+  }
+  if (!fs::exists(final_dir, ec)) {
+    fs::rename(temp, final_dir);
+    return;
+  }
+  if (renameat2(AT_FDCWD, temp.c_str(), AT_FDCWD, final_dir.c_str(), RENAME_EXCHANGE) != 0) {
+    const fs::path earlier = parent / fmt::format(".{}.old{}", leaf, getpid());
+    fs::rename(final_dir, earlier);
+    fs::rename(temp, final_dir);
+    fs::remove_all(earlier, ec);
+    return;
+  }
+  fs::remove_all(temp, ec);  // the earlier capture, exchanged into the temporary name
 }
 
-// Records one scene; returns whether it was recorded or refused (not a failure).
+// Records one scene; returns whether it was recorded or refused (not a failure). A file it cannot
+// write (a full disk) ends the capture: exit 2 naming it, the scene's folder as it was before.
 bool capture_one(std::unique_ptr<VulkanRenderer>& renderer, const VkOptions& vk, const SuiteCase& c,
                  const std::string& dir) {
   if (!renderer) renderer = std::make_unique<VulkanRenderer>(vk);  // after a device loss
   const size_t messages_before = renderer->validation_messages().size();
+  std::optional<RenderResult> result;
+  std::string refusal;
   try {
-    const RenderResult result = renderer->render(c.scene);
-    const auto& messages = renderer->validation_messages();
-    if (messages.size() != messages_before) {
-      for (size_t i = messages_before; i < messages.size(); ++i) fmt::print(stderr, "validation: {}\n", messages[i]);
-      fmt::print("{}: failed: {} validation message(s); not recorded\n", c.name, messages.size() - messages_before);
-      return false;
-    }
-    ensure_output_dir(dir);
-    remove_stale(dir, false);
-    write_render_outputs(result, dir);
-    fmt::print("{}: {}x{}, {} sample(s), depth {} → {}\n", c.name, result.width, result.height, result.samples,
-               result.has_depth() ? to_string(result.depth_format) : "none", dir);
-    return true;
+    result = renderer->render(c.scene);
   } catch (const NotSupportedError& e) {
-    ensure_output_dir(dir);
-    remove_stale(dir, true);
-    write_text_file_atomic((fs::path(dir) / kCaptureNotSupportedFile).string(), std::string(e.what()) + "\n");
-    fmt::print("{}: not supported: {} → {}\n", c.name, e.what(), dir);
-    return true;
+    refusal = e.what();
   } catch (const DeviceError& e) {
     fmt::print("{}: failed: device: {}\n", c.name, e.what());
     if (!e.out_of_memory()) renderer.reset();
@@ -80,6 +103,24 @@ bool capture_one(std::unique_ptr<VulkanRenderer>& renderer, const VkOptions& vk,
     fmt::print("{}: failed: {}\n", c.name, e.what());
     return false;
   }
+  if (result) {
+    const auto& messages = renderer->validation_messages();
+    if (messages.size() != messages_before) {
+      for (size_t i = messages_before; i < messages.size(); ++i) fmt::print(stderr, "validation: {}\n", messages[i]);
+      fmt::print("{}: failed: {} validation message(s); not recorded\n", c.name, messages.size() - messages_before);
+      return false;
+    }
+    write_capture_folder(dir, [&](const std::string& temp) { write_render_outputs(*result, temp); });
+    fmt::print("{}: {}x{}, {} sample(s), depth {} → {}\n", c.name, result->width, result->height, result->samples,
+               result->has_depth() ? to_string(result->depth_format) : "none", dir);
+    return true;
+  }
+  write_capture_folder(dir, [&](const std::string& temp) {
+    ensure_output_dir(temp);
+    write_text_file_atomic((fs::path(temp) / kCaptureNotSupportedFile).string(), refusal + "\n");
+  });
+  fmt::print("{}: not supported: {} → {}\n", c.name, refusal, dir);
+  return true;
 }
 
 int run_capture(const CaptureArgs& args) {

@@ -200,17 +200,17 @@ size_t remove_previous_verdict(const std::string& out_dir) {
   return removed;
 }
 
+bool writer_gone(long long pid) {
+  if (pid <= 0 || pid > std::numeric_limits<pid_t>::max()) return true;
+  return ::kill(pid_t(pid), 0) != 0 && errno == ESRCH;
+}
+
 size_t remove_stale_temporaries(const std::string& out_dir) {
   // model/image_io.cpp and compare/report_images.cpp name them ".STEM.tmpPID.EXT", in the folders
   // a run writes: --out itself, report/ and each case's report/cases/<case>/. Only those folders,
   // and only a temporary whose writer is gone: a file of that shape elsewhere below --out is
   // someone else's, and a live process (a render into the same folder) still writes its own.
   static const std::regex temporary(R"(\..*\.tmp([0-9]{1,10})(\.[A-Za-z0-9]+)?)");
-  const auto writer_gone = [](const std::string& pid_text) {
-    const long long pid = std::stoll(pid_text);
-    if (pid <= 0 || pid > std::numeric_limits<pid_t>::max()) return true;
-    return ::kill(pid_t(pid), 0) != 0 && errno == ESRCH;
-  };
   size_t removed = 0;
   std::error_code ec;
   removed += fs::remove_all(fs::path(out_dir) / kRetryDir, ec) > 0 ? 1 : 0;
@@ -225,7 +225,7 @@ size_t remove_stale_temporaries(const std::string& out_dir) {
       std::smatch m;
       const std::string name = it->path().filename().string();
       if (it->is_regular_file(walk) && !it->is_symlink(walk) && std::regex_match(name, m, temporary) &&
-          writer_gone(m[1].str()))
+          writer_gone(std::stoll(m[1].str())))
         stale.push_back(it->path());
     }
   }

@@ -90,6 +90,10 @@ class OutputLock {
 // run's pass. Called under the lock, before the suite is read. Returns how many it removed.
 size_t remove_previous_verdict(const std::string& out_dir);
 
+// Whether the process that named a temporary by its pid is gone (no such process; a pid out of
+// range is no process either).
+bool writer_gone(long long pid);
+
 // Removes what an earlier run killed mid-write left in --out: temporary files (".NAME.tmpPID.EXT")
 // and the re-run folder. Returns how many it removed.
 size_t remove_stale_temporaries(const std::string& out_dir);

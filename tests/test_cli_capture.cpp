@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 #include <fstream>
+#include <map>
 
 #include <string>
 #include <vector>
@@ -47,6 +48,47 @@ std::string conformance_summary(const fs::path& suite, const fs::path& out, cons
   if (!captures.empty()) args.insert(args.end(), {"--captures", captures});
   run_ok(args, 0, captures.empty() ? EnvEdits{} : kNoVulkanDriver);
   return read_file(out / "summary.json");
+}
+
+// Every file below `dir`, relative path -> bytes.
+std::map<std::string, std::string> contents_below(const fs::path& dir) {
+  std::map<std::string, std::string> files;
+  for (const auto& e : fs::recursive_directory_iterator(dir))
+    if (e.is_regular_file()) files[fs::relative(e.path(), dir).string()] = read_file(e.path());
+  return files;
+}
+
+// A full disk (ulimit -f) in the middle of a scene's files: exit 2 naming the file it could not
+// write, and the scene's folder is the earlier capture byte for byte, with no temporary beside it
+// (it used to hold new images beside the earlier render.json).
+TEST(CliCapture, AFullDiskLeavesEachScenesFolderAsItWas) {
+  RASTERCMP_SKIP_WITHOUT_VULKAN();
+  const TempDir tmp;
+  const fs::path suite = tmp / "suite", out = tmp / "out";
+  fs::create_directories(suite);
+  const std::string head = R"({"name": "t.big", "width": 256, "height": 256, "depth_format": "d32_sfloat",
+    "draws": [{"positions": [[-0.9, -0.9, 0.2], [0.9, -0.8, 0.6], )";
+  write_file(suite / "big.json", head + R"([-0.1, 0.9, 0.9]]}]})");
+  run_ok({"capture", "--suite", suite.string(), "--out", out.string()});
+  const std::map<std::string, std::string> earlier = contents_below(out / "big");
+  ASSERT_TRUE(earlier.count("render.json") && earlier.count("depth_raw.tif"));
+  write_file(suite / "big.json", head + R"([-0.1, 0.5, 0.4]]}]})");  // other images now
+  for (const int kib : {1, 8, 40}) {  // depth_raw.tif is 75 KiB: none of them fits it
+    const std::string command = "ulimit -f " + std::to_string(kib) + "; exec " + kBinary.string() +
+                                " capture --suite " + suite.string() + " --out " + out.string() + " >" +
+                                (tmp / "log").string() + " 2>&1";
+    const int status = std::system(("sh -c \"" + command + "\"").c_str());
+    ASSERT_TRUE(WIFEXITED(status)) << command;
+    const std::string log = read_file(tmp / "log");
+    EXPECT_EQ(WEXITSTATUS(status), 2) << command << "\n" << log;
+    EXPECT_NE(log.find("could not write"), std::string::npos) << log;
+    EXPECT_EQ(contents_below(out / "big"), earlier) << "limit " << kib << " KiB left another capture\n" << log;
+    for (const auto& e : fs::directory_iterator(out))
+      EXPECT_TRUE(e.path().filename() == "big" || e.path().filename() == ".rastercmp.lock") << e.path();
+  }
+  // Without the limit the new capture replaces the earlier one whole.
+  run_ok({"capture", "--suite", suite.string(), "--out", out.string()});
+  EXPECT_NE(contents_below(out / "big").at("depth_raw.tif"), earlier.at("depth_raw.tif"));
 }
 
 // capture takes the --out lock as conformance does: a folder another run is writing is exit 2
