@@ -212,10 +212,12 @@ ParsedSummary parse_summary_json(std::string_view text, const std::string& file)
 
 void write_run_files(const std::string& out_dir, const RunInfo& info, const std::vector<CaseRecord>& records) {
   const fs::path out(out_dir);
-  write_text_file_atomic((out / "results.csv").string(), results_csv(info, records));
-  write_text_file_atomic((out / "failures.csv").string(), failures_csv(info, records));
-  write_text_file_atomic((out / "junit.xml").string(), junit_xml(info, records));
-  write_text_file_atomic((out / "summary.json").string(), summary_json(info, records));
+  // Written together: a full disk leaves the earlier four, never a summary.json of one case fewer
+  // than results.csv. summary.json, the verdict, is renamed last.
+  write_text_files_together({{(out / "results.csv").string(), results_csv(info, records)},
+                             {(out / "failures.csv").string(), failures_csv(info, records)},
+                             {(out / "junit.xml").string(), junit_xml(info, records)},
+                             {(out / "summary.json").string(), summary_json(info, records)}});
 }
 
 }  // namespace rastercmp

@@ -104,8 +104,10 @@ void ensure_output_dir(const std::string& dir) {
   if (access(dir.c_str(), W_OK) != 0) throw InputError(dir, "", "expected a writable folder");
 }
 
-void write_text_file_atomic(const std::string& path, const std::string& text) {
-  const std::string tmp = temp_name_for(path);
+namespace {
+
+// Writes `text` to the temporary name of `path`; throws InputError naming `path` (nothing left).
+void write_temp_text(const std::string& tmp, const std::string& path, const std::string& text) {
   // Plain write(2) and close(2), each checked: a full disk (ENOSPC, EFBIG, EIO) leaves no file
   // under the final name.
   const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
@@ -127,7 +129,29 @@ void write_text_file_atomic(const std::string& path, const std::string& text) {
     fs::remove(tmp, ec);
     throw InputError(path, "", std::string("could not write the file: ") + std::strerror(error));
   }
+}
+
+}  // namespace
+
+void write_text_file_atomic(const std::string& path, const std::string& text) {
+  const std::string tmp = temp_name_for(path);
+  write_temp_text(tmp, path, text);
   commit_temp(tmp, path);
+}
+
+void write_text_files_together(const std::vector<std::pair<std::string, std::string>>& files) {
+  std::vector<std::string> temps;
+  try {
+    for (const auto& [path, text] : files) {
+      temps.push_back(temp_name_for(path));
+      write_temp_text(temps.back(), path, text);
+    }
+  } catch (...) {
+    std::error_code ec;
+    for (const std::string& tmp : temps) fs::remove(tmp, ec);
+    throw;
+  }
+  for (size_t i = 0; i < files.size(); ++i) commit_temp(temps[i], files[i].first);
 }
 
 void owner_false_colour(uint32_t owner, unsigned char rgb[3]) {

@@ -11,6 +11,8 @@
 #pragma once
 
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "model/render_result.hpp"
 
@@ -30,6 +32,12 @@ RenderResult read_render_info(const std::string& dir);
 
 // Atomic text write: temp file + rename.
 void write_text_file_atomic(const std::string& path, const std::string& text);
+
+// Files that must agree (a run's results.csv and summary.json): every one is written to its
+// temporary name first, and only when all are written are they renamed, in the order given. A
+// write that fails (a full disk) removes the temporaries and leaves the earlier set as it was;
+// renames need no space, so only a kill between two renames can leave them apart.
+void write_text_files_together(const std::vector<std::pair<std::string, std::string>>& files);
 
 // Stable false colour of an owner id (background: black).
 void owner_false_colour(uint32_t owner, unsigned char rgb[3]);
