@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
   app::add_devices_command(app, exit_code);
   app::add_methods_command(app, exit_code);
   app::add_render_command(app, exit_code);
+  app::add_import_command(app, exit_code);
   app::add_capture_command(app, exit_code);
   app::add_compare_command(app, exit_code);
   app::add_explain_command(app, exit_code);

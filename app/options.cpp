@@ -7,6 +7,7 @@
 #include "model/errors.hpp"
 #include "model/host.hpp"
 #include "model/image_io.hpp"
+#include "model/mesh_import.hpp"
 #include "model/scene_io.hpp"
 
 namespace rastercmp::app {
@@ -114,7 +115,7 @@ std::string output_file_folder(const std::string& file) {
 }
 
 Scene load_checked_scene(const std::string& path) {
-  Scene scene = load_scene_file(path);
+  Scene scene = load_scene_or_model(path);
   check_scene_methods(scene, path);
   return scene;
 }

@@ -10,6 +10,7 @@
 #include <set>
 
 #include "model/errors.hpp"
+#include "model/mesh_import.hpp"
 #include "model/scene_io.hpp"
 
 namespace rastercmp {
@@ -60,7 +61,9 @@ std::vector<std::string> find_scene_files(const std::string& dir) {
       it.disable_recursion_pending();
       continue;
     }
-    if (it->is_regular_file() && it->path().extension() == ".json") files.push_back(it->path().string());
+    // Scene files, and model files (model/mesh_import.hpp), imported with the defaults.
+    if (it->is_regular_file() && (it->path().extension() == ".json" || is_model_file(it->path().string())))
+      files.push_back(it->path().string());
   }
   if (ec) throw InputError(dir, "", "expected a readable folder: " + ec.message());
   std::sort(files.begin(), files.end());
@@ -70,7 +73,7 @@ std::vector<std::string> find_scene_files(const std::string& dir) {
 std::vector<SuiteCase> load_suite(const std::string& dir) {
   std::vector<SuiteCase> suite;
   for (const std::string& path : find_scene_files(dir)) {
-    Scene scene = load_scene_file(path);
+    Scene scene = load_scene_or_model(path);
     std::string name = scene.name;
     suite.push_back({std::move(name), path, std::move(scene)});
   }

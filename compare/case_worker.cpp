@@ -17,6 +17,7 @@
 #include "compare/explain_text.hpp"
 #include "compare/report.hpp"
 #include "model/errors.hpp"
+#include "model/mesh_import.hpp"
 #include "model/scene_io.hpp"
 
 namespace rastercmp {
@@ -93,7 +94,7 @@ int run_case_worker(const WorkerOptions& o, const std::atomic<int>& stop) {
                     : std::make_unique<CaseRunner>(o.profile, o.cpu_options, o.vk);
   CaseRunner& runner = *runner_ptr;
   for (size_t i = 0; i < o.scene_files.size() && stop.load() == 0; ++i) {
-    const Scene scene = load_scene_file(o.scene_files[i]);
+    const Scene scene = load_scene_or_model(o.scene_files[i]);
     write_all(o.result_fd, fmt::format("begin\t{}\n", i));
     const auto start = std::chrono::steady_clock::now();
     const std::string fault = injected_fault(scene.name);

@@ -12,6 +12,7 @@ packages=(
   libopenimageio-dev openimageio-tools
   nlohmann-json3-dev libcli11-dev libfmt-dev
   libkainjow-mustache-dev gnuplot-nox
+  libassimp-dev assimp-testmodels
   chromium fonts-dejavu-core
 )
 
