@@ -25,11 +25,12 @@ build: setup
 # The command-line tool alone (no tests, no benchmarks): what the main job needs.
 build-app: setup
 	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release >/dev/null
-	@cmake --build $(BUILD) -j $(JOBS) --target rastercmp
+	@cmake --build $(BUILD) -j $(JOBS) --target rastercmp real_model_suite
 
-# The main job: the built-in suite, CPU against lavapipe, with its report.
+# The main job: the built-in suite and the real models (build/suite: scenes/ and the models
+# imported from assimp-testmodels), CPU against lavapipe, with its report.
 conformance: build-app
-	@$(BUILD)/app/rastercmp conformance --suite scenes --baseline scenes/methods/expected-failures.txt \
+	@$(BUILD)/app/rastercmp conformance --suite $(BUILD)/suite --baseline scenes/methods/expected-failures.txt \
 	  --out $(OUT)/conformance
 
 # What CI runs (.ci/run): the test suite (Release), the same suite under ASan + UBSan + LSan,

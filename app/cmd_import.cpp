@@ -1,5 +1,5 @@
-// rastercmp import MODEL --out SCENE.json [--camera ...] [--orbit AZ,EL[,DIST]] [--size WxH]
-//                 [--depth-format F] [--samples N]
+// rastercmp import MODEL --out SCENE.json [--name NAME] [--camera ...] [--orbit AZ,EL[,DIST]]
+//                 [--size WxH] [--depth-format F] [--samples N]
 // Writes a model file (glTF, OBJ, PLY, STL, COLLADA, FBX, ...: what the Open Asset Import Library
 // reads) as an ordinary scene file: world positions and indices per mesh, a camera framing the model
 // (model/mesh_import.hpp, docs/scene-format.md "Models"). Exit 0, or 2 for a model it cannot read
@@ -25,6 +25,7 @@ namespace {
 struct ImportArgs {
   std::string model_path;
   std::string out_file;
+  std::string name;
   std::string camera;
   std::vector<double> orbit;
   std::string size;
@@ -101,6 +102,7 @@ int run_import(const ImportArgs& args) {
   options.samples = args.samples;
   if (!args.camera.empty()) options.camera = parse_camera(args.camera);
   if (!args.orbit.empty()) {
+    if (options.camera.eye) throw UsageError("--orbit: places the eye, which --camera eye= gives too; give one of them");
     if (args.orbit.size() > 3 || args.orbit.size() < 2)
       throw UsageError("--orbit: expected AZIMUTH,ELEVATION[,DISTANCE] in degrees and world units");
     options.orbit.azimuth_degrees = args.orbit[0];
@@ -108,6 +110,7 @@ int run_import(const ImportArgs& args) {
     if (args.orbit.size() == 3) options.orbit.distance = args.orbit[2];
   }
   const std::string folder = output_file_folder(args.out_file);  // a folder in its place: exit 2
+  options.name = args.name;
   const std::string text = import_model_json(args.model_path, options);
   if (text.size() > kMaxSceneFileBytes)
     throw InputError(args.model_path, "",
@@ -128,12 +131,12 @@ void add_import_command(CLI::App& app, int& exit_code) {
   CLI::App* cmd = app.add_subcommand("import", "write a model file (glTF, OBJ, PLY, STL, COLLADA, FBX, ...) as a scene");
   cmd->add_option("model", args->model_path, "model file")->required();
   cmd->add_option("--out", args->out_file, "scene file to write (JSON)")->required();
-  auto* camera = cmd->add_option("--camera", args->camera,
+  cmd->add_option("--name", args->name, "the scene's case name (default model.STEM.EXT)");
+  cmd->add_option("--camera", args->camera,
                                  "eye=X,Y,Z,target=X,Y,Z,up=X,Y,Z,fov=DEGREES,near=N,far=F (any of them; the rest "
                                  "frames the model)");
   cmd->add_option("--orbit", args->orbit, "AZIMUTH,ELEVATION[,DISTANCE]: where the framing camera looks from")
-      ->delimiter(',')
-      ->excludes(camera);
+      ->delimiter(',');
   cmd->add_option("--size", args->size, "framebuffer WIDTHxHEIGHT (default 512x512)");
   cmd->add_option("--depth-format", args->depth_format, "depth attachment")
       ->check(CLI::IsMember({"d16_unorm", "x8_d24_unorm", "d32_sfloat", "none"}));

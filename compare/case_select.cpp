@@ -52,17 +52,23 @@ std::vector<std::string> find_scene_files(const std::string& dir) {
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) throw InputError(dir, "", "expected a suite folder with scene files (*.json)");
   std::vector<std::string> files;
-  // A folder that holds the lock file of a run's output (conformance --out, merge, capture) is that
-  // output, never part of the suite: its summary.json and render.json files are no scenes, even
-  // when --out lies inside --suite.
-  for (auto it = fs::recursive_directory_iterator(dir, ec); !ec && it != fs::recursive_directory_iterator();
+  // Links to folders are followed (a suite made of other suites: the build's suite/ links the
+  // built-in scenes beside the imported models), each real folder once, so a link cycle ends.
+  std::set<fs::path> visited = {fs::canonical(dir, ec)};
+  const auto options = fs::directory_options::follow_directory_symlink;
+  for (auto it = fs::recursive_directory_iterator(dir, options, ec); !ec && it != fs::recursive_directory_iterator();
        it.increment(ec)) {
-    if (it->is_directory() && fs::exists(it->path() / kOutputLockFile)) {
-      it.disable_recursion_pending();
+    if (it->is_directory()) {
+      std::error_code canonical_error;
+      const bool first_visit = visited.insert(fs::canonical(it->path(), canonical_error)).second;
+      // A folder that holds the lock file of a run's output (conformance --out, merge, capture) is
+      // that output, never part of the suite: its summary.json and render.json files are no
+      // scenes, even when --out lies inside --suite.
+      if (!first_visit || canonical_error || fs::exists(it->path() / kOutputLockFile)) it.disable_recursion_pending();
       continue;
     }
     // Scene files, and model files (model/mesh_import.hpp), imported with the defaults.
-    if (it->is_regular_file() && (it->path().extension() == ".json" || is_model_file(it->path().string())))
+    if (it->is_regular_file() && (it->path().extension() == ".json" || is_suite_model_file(it->path().string())))
       files.push_back(it->path().string());
   }
   if (ec) throw InputError(dir, "", "expected a readable folder: " + ec.message());

@@ -214,7 +214,7 @@ std::string scene_text(const std::string& path, const std::vector<ImportedDraw>&
   description += fmt::format(", {} vertices", vertices);
   if (dropped > 0) description += fmt::format("; {} primitive(s) with a non-finite vertex left out", dropped);
   std::string text = "{\n";
-  text += "  \"name\": " + nlohmann::json(case_name(path)).dump() + ",\n";
+  text += "  \"name\": " + nlohmann::json(o.name.empty() ? case_name(path) : o.name).dump() + ",\n";
   text += "  \"description\": " + nlohmann::json(description).dump(-1, ' ', true) + ",\n";
   text += fmt::format("  \"width\": {}, \"height\": {},\n", o.width, o.height);
   if (o.depth_format != DepthFormat::D32Sfloat) text += fmt::format("  \"depth_format\": \"{}\",\n", to_string(o.depth_format));
@@ -241,6 +241,11 @@ std::string scene_text(const std::string& path, const std::vector<ImportedDraw>&
 }
 
 }  // namespace
+
+bool is_suite_model_file(const std::string& path) {
+  const std::string ext = std::filesystem::path(path).extension().string();
+  return ext != ".xml" && ext != ".raw" && is_model_file(path);
+}
 
 bool is_model_file(const std::string& path) {
   const std::string ext = std::filesystem::path(path).extension().string();

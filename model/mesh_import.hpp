@@ -35,6 +35,7 @@ struct CameraChoice {
 };
 
 struct ImportOptions {
+  std::string name;  // the case name; empty: model.STEM.EXT
   uint32_t width = 512, height = 512;
   DepthFormat depth_format = DepthFormat::D32Sfloat;
   uint32_t samples = 1;
@@ -44,6 +45,10 @@ struct ImportOptions {
 
 // Whether `path` names a model file: not .json, and an extension the importer reads.
 bool is_model_file(const std::string& path);
+
+// A model file a suite folder counts as a case: is_model_file, less the importer's two extensions
+// that name generic data (.xml, .raw), which a folder holds for other reasons (a junit.xml).
+bool is_suite_model_file(const std::string& path);
 
 // The model as scene JSON text (what `rastercmp import` writes). Throws InputError naming the file
 // and the importer's reason, or the limit the model exceeds.

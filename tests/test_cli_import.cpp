@@ -68,10 +68,13 @@ TEST(CliImport, OptionsReachTheSceneAndBadOnesWriteNothing) {
   EXPECT_EQ(scene.at("camera"), nlohmann::json::parse(R"({"eye": [0, 0, 30], "target": [5, 0, 0], "up": [0, 1, 0],
                                                           "fov_y": 30, "near": 1, "far": 100})"));
   fs::remove(out);
-  r = run_cli({"import", model, "--out", out, "--orbit", "90,0,40"});
+  r = run_cli({"import", model, "--out", out, "--orbit", "90,0,40", "--camera", "near=1,far=100", "--name", "m.x"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const nlohmann::json orbit = nlohmann::json::parse(read_file(out));
+  EXPECT_EQ(orbit.at("name"), "m.x");
   EXPECT_EQ(orbit.at("camera").at("eye"), nlohmann::json::parse("[45.5, 0.5, 1]"));  // target + 40 along +x
+  EXPECT_EQ(orbit.at("camera").at("near"), 1);
+  EXPECT_EQ(orbit.at("camera").at("far"), 100);
   fs::remove(out);
   for (const std::vector<std::string>& bad : std::vector<std::vector<std::string>>{
            {"--size", "0x10"},
@@ -80,6 +83,8 @@ TEST(CliImport, OptionsReachTheSceneAndBadOnesWriteNothing) {
            {"--camera", "position=1,2,3"},
            {"--camera", "eye=0,0,0,target=0,0,0"},  // the scene loader's own check
            {"--orbit", "10"},
+           {"--orbit", "10,20", "--camera", "eye=1,2,3"},  // two eyes
+           {"--name", "Not A Case Name"},
            {"--samples", "2"},
            {"--depth-format", "d24"},
        }) {

@@ -306,6 +306,27 @@ TEST_F(PlanConformance, AnOutputFolderInsideTheSuiteIsNoPartOfIt) {
   EXPECT_EQ(fs::path(files[0]).filename(), "long_thin.json");
 }
 
+// A suite of suites: a link to another folder is followed (the build's suite/ links the built-in
+// scenes beside the imported models), each real folder once, so a link cycle ends; model files
+// count as scenes, except the importer's generic .xml and .raw (a junit.xml is no model).
+TEST_F(PlanConformance, LinkedFoldersAreFollowedOnceAndModelFilesCount) {
+  const fs::path root = test_root() / "linked_suites";
+  fs::remove_all(root);
+  fs::create_directories(root / "other");
+  fs::create_directories(root / "suite");
+  fs::copy_file(fs::path(RASTERCMP_SOURCE_DIR) / "scenes" / "triangle" / "sliver" / "long_thin.json",
+                root / "other" / "long_thin.json");
+  write_file(root / "other" / "tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  write_file(root / "other" / "junit.xml", "<testsuites/>\n");
+  write_file(root / "other" / "notes.raw", "1 2 3\n");
+  fs::create_directory_symlink(root / "other", root / "suite" / "linked");
+  fs::create_directory_symlink(root / "suite", root / "suite" / "loop");  // a cycle
+  const std::vector<std::string> files = find_scene_files((root / "suite").string());
+  ASSERT_EQ(files.size(), 2u);
+  EXPECT_EQ(fs::path(files[0]).filename(), "long_thin.json");
+  EXPECT_EQ(fs::path(files[1]).filename(), "tri.obj");
+}
+
 TEST_F(PlanConformance, UnwritableOutputIsAnInputErrorBeforeAnyWork) {
   const fs::path root = test_root() / "plan";
   fs::create_directories(root);
