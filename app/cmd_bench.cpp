@@ -34,6 +34,7 @@
 #include "experiments/gnuplot.hpp"
 #include "model/errors.hpp"
 #include "model/host.hpp"
+#include "model/mesh_import.hpp"
 #include "model/scene_io.hpp"
 #include "vk_reference/vk_reference.hpp"
 
@@ -140,7 +141,7 @@ std::vector<BenchCase> make_cases(const BenchArgs& args) {
       cases.push_back({name, bench::load_scene_suite(args.suite_dir.empty() ? default_suite_dir() : args.suite_dir)});
     else if (std::find(standard.begin(), standard.end(), name) == standard.end() &&
              (name.ends_with(".json") || std::filesystem::is_regular_file(name)))  // a scene file, named by its stem
-      cases.push_back({std::filesystem::path(name).stem().string(), {load_scene_file(name)}});
+      cases.push_back({std::filesystem::path(name).stem().string(), {load_scene_or_model(name)}});
     else
       cases.push_back({name, {bench::standard_bench_scene(name).scene}});
   }
@@ -423,7 +424,8 @@ void add_bench_command(CLI::App& app, int& exit_code) {
       ->check(CLI::Range(1, 1000));
   cmd->add_option("--exact-reps", args->exact_reps, "timed repetitions of the exact path (at most --reps)");
   cmd->add_option("--scene", args->scenes,
-                  "fill_b2f, fill_f2b, grid_180k, tiny_1m, perspective, lines_20k, msaa4_grid, suite or a scene file "
+                  "fill_b2f, fill_f2b, grid_180k, tiny_1m, perspective, lines_20k, msaa4_grid, engine_1080p, suite or a scene "
+                  "or model file "
                   "(repeatable)");
   cmd->add_option("--suite", args->suite_dir, "suite folder for the suite row (default: the built-in scenes/)");
   cmd->add_option("--threads", args->threads, "threads of the fast CPU path")->check(CLI::Range(1, 64));

@@ -10,6 +10,7 @@
 #include "cpu_raster/exact/rasterize.hpp"
 #include "model/camera.hpp"
 #include "model/errors.hpp"
+#include "model/mesh_import.hpp"
 #include "model/scene_io.hpp"
 
 namespace rastercmp::bench {
@@ -141,8 +142,19 @@ Scene msaa_grid_scene(uint32_t cells, uint32_t size) {
   return scene;
 }
 
+Scene engine_scene(uint32_t width, uint32_t height) {
+  ImportOptions options;
+  options.name = "bench.engine";
+  options.width = width;
+  options.height = height;
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(kEngineModel, ec))
+    throw InputError(kEngineModel, "", "expected the model of Debian's assimp-testmodels (scripts/setup.sh installs it)");
+  return parse_scene(import_model_json(kEngineModel, options), kEngineModel);
+}
+
 std::vector<std::string> standard_bench_scene_names() {
-  return {"fill_b2f", "fill_f2b", "grid_180k", "tiny_1m", "perspective", "lines_20k", "msaa4_grid"};
+  return {"fill_b2f", "fill_f2b", "grid_180k", "tiny_1m", "perspective", "lines_20k", "msaa4_grid", "engine_1080p"};
 }
 
 BenchScene standard_bench_scene(const std::string& name) {
@@ -153,8 +165,9 @@ BenchScene standard_bench_scene(const std::string& name) {
   if (name == "perspective") return {name, perspective_scene()};
   if (name == "lines_20k") return {name, lines_scene(20000)};
   if (name == "msaa4_grid") return {name, msaa_grid_scene(100, 512)};
+  if (name == "engine_1080p") return {name, engine_scene()};
   throw UsageError("unknown bench scene \"" + name +
-                   "\"; known: fill_b2f, fill_f2b, grid_180k, tiny_1m, perspective, lines_20k, msaa4_grid");
+                   "\"; known: fill_b2f, fill_f2b, grid_180k, tiny_1m, perspective, lines_20k, msaa4_grid, engine_1080p");
 }
 
 std::vector<BenchScene> standard_bench_scenes() {
@@ -173,7 +186,7 @@ std::vector<Scene> load_scene_suite(const std::string& root) {
   if (ec) throw InputError(root, "", "expected a readable folder: " + ec.message());
   std::sort(paths.begin(), paths.end());
   std::vector<Scene> scenes;
-  for (const std::string& path : paths) scenes.push_back(load_scene_file(path));
+  for (const std::string& path : paths) scenes.push_back(load_scene_file(path));  // the suite row: scene files only
   return scenes;
 }
 

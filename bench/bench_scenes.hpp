@@ -8,7 +8,9 @@
 //  - perspective: a rolling terrain seen by a perspective camera, cut by the near, far and side
 //    planes of the view volume;
 //  - lines: random line segments (1 px wide, up to 1/8 of the width long), D32, LESS;
-//  - msaa4_grid: a grid (as above) rendered with 4 samples per pixel.
+//  - msaa4_grid: a grid (as above) rendered with 4 samples per pixel;
+//  - engine_1080p: a real model, the Khronos 2CylinderEngine (glTF binary, 115 meshes, 121,496
+//    triangles) from Debian's assimp-testmodels, imported with the framing camera at 1920x1080.
 #pragma once
 
 #include <cstdint>
@@ -24,13 +26,19 @@ Scene grid_scene(uint32_t cells, uint32_t size = 1024, uint64_t seed = 1);
 Scene perspective_scene(uint32_t cells = 200, uint32_t size = 1024);
 Scene lines_scene(uint32_t count, uint32_t size = 1024, uint64_t seed = 1);
 Scene msaa_grid_scene(uint32_t cells, uint32_t size = 512);
+// The 2CylinderEngine model (kEngineModel) imported at width x height; InputError naming the file
+// when assimp-testmodels is not installed.
+Scene engine_scene(uint32_t width = 1920, uint32_t height = 1080);
+inline constexpr const char* kEngineModel =
+    "/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb";
 
 struct BenchScene {
   std::string name;  // short id for tables and --scene
   Scene scene;
 };
 
-// fill_b2f, fill_f2b, grid_180k, tiny_1m, perspective, lines_20k, msaa4_grid (docs/performance.md).
+// fill_b2f, fill_f2b, grid_180k, tiny_1m, perspective, lines_20k, msaa4_grid, engine_1080p
+// (docs/performance.md).
 std::vector<BenchScene> standard_bench_scenes();
 std::vector<std::string> standard_bench_scene_names();
 // One of the standard scenes by name; throws UsageError naming the known ones.

@@ -289,6 +289,7 @@ TEST(FastBenchScenes, SmallVersionsMatchExactPath) {
   expect_fast_matches(bench::perspective_scene(120, 256), true);  // triangles of 8-16 px, clipped ones
   expect_fast_matches(bench::lines_scene(300, 160), true);
   expect_fast_matches(bench::msaa_grid_scene(24, 96), true);
+  expect_fast_matches(bench::engine_scene(480, 270), true);  // a real model: 115 draws, 121,496 triangles
 }
 
 // Triangles that need clipping, set up once by the block-row phase and drawn from its table by
