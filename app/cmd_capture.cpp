@@ -1,9 +1,9 @@
 // rastercmp capture [--suite DIR] [--case GLOB] --out ROOT [--device D] [--validate]
 // Records every scene of a suite on a Vulkan device, for `compare --capture` and
 // `conformance --captures` to judge later, elsewhere (docs/compare.md "Captures"):
-// ROOT/<scene path relative to the suite, without .json>/ gets what `render` writes (owner.tif,
-// depth_raw.tif, render.json with the device's name, driver and limits), or not_supported.txt
-// with the device's message when it refuses the scene. Exit 0 when every scene was recorded or
+// ROOT/<scene path relative to the suite, without .json; a model file keeps its extension>/ gets
+// what `render` writes (owner.tif, depth_raw.tif, render.json with the device's name, driver and
+// limits), or not_supported.txt with the device's message when it refuses the scene. Exit 0 when every scene was recorded or
 // refused, 1 when some failed (device loss, out of memory, validation messages, a scene the
 // device cannot take), 2 bad input or a file it cannot write (a full disk: each scene's folder is
 // written whole or left as it was), 3 no Vulkan.

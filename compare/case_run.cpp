@@ -38,7 +38,9 @@ DeviceInfo capture_device(const std::string& capture_dir) {
 std::string capture_dir_for(const std::string& root, const std::string& suite_dir, const std::string& scene_path) {
   namespace fs = std::filesystem;
   fs::path relative = fs::path(scene_path).lexically_proximate(suite_dir);
-  relative.replace_extension();
+  // A scene file's folder drops ".json"; a model file keeps its extension, so duck.dae, duck.obj
+  // and duck.json of one folder get three folders.
+  if (relative.extension() == ".json") relative.replace_extension();
   return (fs::path(root) / relative).string();
 }
 

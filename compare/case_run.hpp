@@ -76,7 +76,8 @@ class CaseRunner {
 // it records none). Throws InputError when render.json is missing or unreadable.
 DeviceInfo capture_device(const std::string& capture_dir);
 
-// Where a suite case's capture lies: ROOT/<scene path relative to the suite, without .json>.
+// Where a suite case's capture lies: ROOT/<scene path relative to the suite, without .json; a
+// model file with its extension>.
 std::string capture_dir_for(const std::string& root, const std::string& suite_dir, const std::string& scene_path);
 
 // What `rastercmp capture` writes into a capture folder in place of a render the device refused

@@ -151,6 +151,18 @@ TEST(CliImport, RealModelsCompareBitExactWhereScenesWould) {
   const nlohmann::json summary = nlohmann::json::parse(read_file(tmp / "out" / "summary.json"));
   EXPECT_EQ(summary.at("cases").size(), 3u);
   EXPECT_EQ(summary.at("statuses").at("Pass"), 3);
+  // Captured and judged later: a model's capture folder keeps its extension, so duck.dae and a
+  // duck.obj beside it could not share one.
+  const std::vector<std::string> capture = {"capture", "--suite", (tmp / "suite").string(), "--out",
+                                            (tmp / "caps").string()};
+  const RunResult c = run_cli(capture);
+  ASSERT_EQ(c.exit_code, 0) << describe(capture, c);
+  EXPECT_TRUE(fs::exists(tmp / "caps" / "duck.dae" / "render.json"));
+  EXPECT_TRUE(fs::exists(tmp / "caps" / "one" / "render.json"));
+  const std::vector<std::string> judge = {"conformance", "--suite", (tmp / "suite").string(), "--captures",
+                                          (tmp / "caps").string(), "--out", (tmp / "judged").string()};
+  const RunResult j = run_cli(judge, kNoVulkanDriver);
+  EXPECT_EQ(j.exit_code, 0) << describe(judge, j);
 }
 
 }  // namespace
