@@ -1,4 +1,4 @@
-// rastercmp sweep polygon-offset|stability [--out DIR] [--quick] [--resume]
+// rastercmp sweep polygon-offset|stability|zfight [--model M] [--out DIR] [--quick] [--resume]
 #include <memory>
 #include <string>
 
@@ -6,6 +6,7 @@
 
 #include "app/commands.hpp"
 #include "experiments/polygon_offset.hpp"
+#include "experiments/model_zfight.hpp"
 #include "experiments/stability.hpp"
 #include "model/errors.hpp"
 
@@ -22,7 +23,7 @@ void add_sweep_options(CLI::App& cmd, experiments::SweepOptions& options, const 
 }  // namespace
 
 void add_sweep_command(CLI::App& app, int& exit_code) {
-  CLI::App* sweep = app.add_subcommand("sweep", "long parameter sweeps: polygon-offset, stability");
+  CLI::App* sweep = app.add_subcommand("sweep", "long parameter sweeps: polygon-offset, stability, zfight");
   sweep->require_subcommand(1);
 
   auto offset = std::make_shared<experiments::SweepOptions>();
@@ -42,6 +43,18 @@ void add_sweep_command(CLI::App& app, int& exit_code) {
   stability_cmd->callback([stability, &exit_code] {
     experiments::run_stability_sweep(*stability);
     fmt::print("stability sweep → {}/index.html\n", stability->out_dir);
+    exit_code = kExitOk;
+  });
+
+  auto zfight = std::make_shared<experiments::ModelZfightOptions>();
+  CLI::App* zfight_cmd = sweep->add_subcommand(
+      "zfight", "z-fighting on a model: owners that move against far/near, per depth format, standard and reversed Z");
+  add_sweep_options(*zfight_cmd, zfight->sweep, "sweep-zfight");
+  zfight_cmd->add_option("--model", zfight->model, "model file (a format rastercmp import reads)")
+      ->required();
+  zfight_cmd->callback([zfight, &exit_code] {
+    experiments::run_model_zfight_sweep(*zfight);
+    fmt::print("zfight sweep → {}/index.html\n", zfight->sweep.out_dir);
     exit_code = kExitOk;
   });
 }

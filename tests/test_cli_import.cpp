@@ -165,5 +165,27 @@ TEST(CliImport, RealModelsCompareBitExactWhereScenesWould) {
   EXPECT_EQ(j.exit_code, 0) << describe(judge, j);
 }
 
+// sweep zfight on a real model (--quick): the D16 standard onset calibrates the surfaces' gap, and
+// every other series' measured onset lies where the depth-step formula puts it: D24 and D32
+// standard 2^8 later than D16, reversed integer Z where standard is, D32 reversed with none.
+TEST(CliImport, ZfightSweepOnAModelMeetsItsPrediction) {
+  ASSERT_TRUE(fs::is_directory(kTestModels)) << kTestModels << " is missing: scripts/setup.sh installs assimp-testmodels";
+  const TempDir tmp;
+  const std::vector<std::string> args = {"sweep", "zfight", "--model", (kTestModels / "Collada/duck.dae").string(),
+                                         "--quick", "--out", (tmp / "zfight").string()};
+  const RunResult r = run_cli(args);
+  ASSERT_EQ(r.exit_code, 0) << describe(args, r);
+  const nlohmann::json report = nlohmann::json::parse(read_file(tmp / "zfight" / "zfight.json"));
+  ASSERT_FALSE(report.at("calibrated_gap").is_null()) << report.dump(1);
+  ASSERT_EQ(report.at("series").size(), 6u);
+  for (const nlohmann::json& series : report.at("series")) {
+    EXPECT_EQ(series.at("agrees"), true) << series.dump();
+    const bool float_reversed = series.at("format") == "d32_sfloat" && series.at("mapping") == "reversed";
+    EXPECT_EQ(series.at("measured_onset_at_most").is_null(), float_reversed) << series.dump();
+  }
+  EXPECT_TRUE(fs::exists(tmp / "zfight" / "zfight_far_near.svg"));
+  EXPECT_TRUE(fs::exists(tmp / "zfight" / "index.html"));
+}
+
 }  // namespace
 }  // namespace rastercmp::cli_test
