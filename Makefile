@@ -11,9 +11,9 @@ FUZZ_SECONDS ?= 30
 SAN_EXITCODE := 86
 # intercept_tls_get_addr=0: up to LLVM 16 the runtime's __tls_get_addr interceptor takes a dynamic
 # TLS block that happens to start 16 bytes past a page boundary for a pre-2.25 glibc header and
-# reads garbage; LeakSanitizer's tracer then dies at exit ("Tracer caught signal 11") in perhaps one
-# run of several hundred processes with lavapipe's, LLVM's and the validation layer's dynamic TLS
-# (Debian 12's clang is 14). The blocks it then leaves unscanned belong to the driver stack, whose
+# reads garbage; LeakSanitizer's tracer then died at exit ("Tracer caught signal 11") twice in about
+# fifteen sanitizer runs of the suite, whose processes hold lavapipe's, LLVM's and the validation
+# layer's dynamic TLS (Debian 12's clang is 14). The blocks it then leaves unscanned belong to the driver stack, whose
 # leaks are suppressed by name anyway.
 SAN_ENV := ASAN_OPTIONS=detect_leaks=1:halt_on_error=1:abort_on_error=0:exitcode=$(SAN_EXITCODE):intercept_tls_get_addr=0 \
   UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1:exitcode=$(SAN_EXITCODE) \

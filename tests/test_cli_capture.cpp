@@ -86,8 +86,12 @@ TEST(CliCapture, AFullDiskLeavesEachScenesFolderAsItWas) {
     for (const auto& e : fs::directory_iterator(out))
       EXPECT_TRUE(e.path().filename() == "big" || e.path().filename() == ".rastercmp.lock") << e.path();
   }
-  // Without the limit the new capture replaces the earlier one whole.
+  // Without the limit the new capture replaces the earlier one whole, and removes the temporary
+  // folder a killed capture left (pid 2147483647: no such process).
+  fs::create_directories(out / ".big.tmp2147483647");
+  write_file(out / ".big.tmp2147483647" / "owner.tif", "half");
   run_ok({"capture", "--suite", suite.string(), "--out", out.string()});
+  EXPECT_FALSE(fs::exists(out / ".big.tmp2147483647"));
   EXPECT_NE(contents_below(out / "big").at("depth_raw.tif"), earlier.at("depth_raw.tif"));
 }
 

@@ -33,12 +33,6 @@ void write_suite(const fs::path& dir) {
     write_file(dir / (std::string(name) + ".json"), scene(name));
 }
 
-std::map<std::string, nlohmann::json> cases_by_name(const nlohmann::json& summary) {
-  std::map<std::string, nlohmann::json> cases;
-  for (const nlohmann::json& c : summary.at("cases")) cases[c.at("scene").get<std::string>()] = c;
-  return cases;
-}
-
 // Files an interrupted write would leave: ".STEM.tmpPID.EXT".
 std::vector<std::string> temporaries_below(const fs::path& dir) {
   static const std::regex temporary(R"(\..*\.tmp[0-9]+(\.[A-Za-z0-9]+)?)");
@@ -113,15 +107,6 @@ std::vector<std::string> alone_with_a_short_timeout(const TempDir& tmp, const st
           "--timeout",   "2",       "--flake-retries",        "0"};
 }
 
-// Whether process `pid` has ended (gone, or a zombie nobody reaps: a container's init may not).
-bool process_ended(pid_t pid) {
-  std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
-  std::string text;
-  if (!std::getline(stat, text)) return true;
-  const auto paren = text.rfind(')');
-  return paren != std::string::npos && paren + 2 < text.size() && text[paren + 2] == 'Z';
-}
-
 // A driver that forks a helper which inherits the pipes and never exits: each child is its own
 // process group, so the end of the child ends the helper too, and the run does not wait for the
 // helper's end of file. Without that the run never ended.
@@ -138,13 +123,7 @@ TEST(CliChildren, AHelperTheDriverForksNeitherHoldsTheRunNorOutlivesIt) {
   const RunResult r = run_cli(args, faults);
   ASSERT_EQ(r.exit_code, 0) << describe(args, r);
   const pid_t helper = pid_t(std::stol(read_file(tmp / "faults" / "t.helper.helper")));
-  bool ended = false;
-  for (int k = 0; k < 100 && !ended; ++k) {  // SIGKILL is delivered at once; allow a busy machine
-    ended = process_ended(helper);
-    if (!ended) std::this_thread::sleep_for(std::chrono::milliseconds(100));
-  }
-  if (!ended) kill(helper, SIGKILL);
-  EXPECT_TRUE(ended) << "helper " << helper << " outlived the run";
+  EXPECT_TRUE(process_ends_soon(helper)) << "helper " << helper << " outlived the run";
 }
 
 // A driver that closes every descriptor and hangs: both pipes reach end of file while the process

@@ -35,13 +35,6 @@ EnvEdits hostile(const std::string& fault, const fs::path& dir) {
           {"RASTERCMP_HOSTILE_DIR", dir.string()}};
 }
 
-std::map<std::string, nlohmann::json> cases_by_name(const fs::path& out) {
-  std::map<std::string, nlohmann::json> cases;
-  const nlohmann::json summary = nlohmann::json::parse(read_file(out / "summary.json"));
-  for (const nlohmann::json& c : summary.at("cases")) cases[c.at("scene").get<std::string>()] = c;
-  return cases;
-}
-
 // Suite t.a, t.fault (the layer's scene), t.z, run with the default --timeout and one re-run: no
 // case meant to pass can meet a deadline on a loaded machine.
 struct Outcome {
@@ -63,7 +56,7 @@ Outcome run_beside_two_good_cases(const TempDir& tmp, const std::string& fault) 
   o.what = describe(args, o.run);
   if (fs::exists(out / "summary.json")) {
     o.summary = nlohmann::json::parse(read_file(out / "summary.json"));
-    o.cases = cases_by_name(out);
+    o.cases = cases_by_name(o.summary);
   }
   return o;
 }
@@ -107,15 +100,6 @@ TEST(CliHostileDriver, ALostDeviceFailsItsCaseAndTheNextCaseGetsANewOne) {
   EXPECT_EQ(o.cases.at("t.z").at("status"), "Pass") << o.what;
 }
 
-// Whether process `pid` has ended (gone, or a zombie nobody reaps).
-bool process_ended(pid_t pid) {
-  std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
-  std::string text;
-  if (!std::getline(stat, text)) return true;
-  const auto paren = text.rfind(')');
-  return paren != std::string::npos && paren + 2 < text.size() && text[paren + 2] == 'Z';
-}
-
 // A helper that inherits every descriptor and sleeps for ever, and 32 MiB on stderr: the cases pass,
 // the run ends, and the helper ends with its case's process group.
 TEST(CliHostileDriver, AHelperOrAFloodOfStderrLeavesEveryCasePassing) {
@@ -132,13 +116,7 @@ TEST(CliHostileDriver, AHelperOrAFloodOfStderrLeavesEveryCasePassing) {
   const fs::path pid_file = tmp / "helper.pid";
   ASSERT_TRUE(fs::exists(pid_file)) << "the layer started no helper";
   const pid_t helper = pid_t(std::stol(read_file(pid_file)));
-  bool ended = false;
-  for (int k = 0; k < 100 && !ended; ++k) {  // SIGKILL is delivered at once; allow a busy machine
-    ended = process_ended(helper);
-    if (!ended) std::this_thread::sleep_for(std::chrono::milliseconds(100));
-  }
-  if (!ended) kill(helper, SIGKILL);
-  EXPECT_TRUE(ended) << "helper " << helper << " outlived the run";
+  EXPECT_TRUE(process_ends_soon(helper)) << "helper " << helper << " outlived the run";
 }
 
 // A driver that hangs, stops itself, or closes every descriptor and hangs: the deadline holds and
@@ -156,7 +134,7 @@ TEST(CliHostileDriver, AHangingStoppedOrDeafDriverTimesOut) {
                                            out.string(),  "--timeout", "2",   "--flake-retries", "0"};
     const RunResult r = run_cli(args, hostile(fault, tmp.path()));
     ASSERT_EQ(r.exit_code, 1) << describe(args, r);
-    const nlohmann::json bad = cases_by_name(out).at("t.fault");
+    const nlohmann::json bad = cases_by_name(nlohmann::json::parse(read_file(out / "summary.json"))).at("t.fault");
     EXPECT_EQ(bad.at("status"), "Timeout") << bad.dump(1);
   }
 }

@@ -122,6 +122,16 @@ TEST(CliImport, AMalformedModelOfEachFormatIsExit2WithTheReason) {
     EXPECT_TRUE(r.out.empty()) << describe(args, r);
     EXPECT_FALSE(fs::exists(out)) << describe(args, r);
   }
+  // A model the importer reads with vertices near FLT_MAX (assimp-testmodels' PLY pond): no camera
+  // in float frames it, and the message names the bounding box.
+  if (fs::exists(kTestModels / "PLY/pond.0.ply")) {
+    const std::vector<std::string> args = {"import", (kTestModels / "PLY/pond.0.ply").string(), "--out",
+                                           (tmp / "pond.json").string()};
+    const RunResult r = run_cli(args);
+    EXPECT_EQ(r.exit_code, 2) << describe(args, r);
+    EXPECT_NE(r.err.find("bounding box spans"), std::string::npos) << describe(args, r);
+    EXPECT_FALSE(fs::exists(tmp / "pond.json"));
+  }
 }
 
 // The real models of Debian's assimp-testmodels, given to compare and conformance as they are:

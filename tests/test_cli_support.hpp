@@ -23,6 +23,8 @@
 #include <utility>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 extern char** environ;
 
 namespace rastercmp::cli_test {
@@ -223,6 +225,33 @@ inline TreeSnapshot files_of(const TreeSnapshot& tree) {
   for (const auto& [path, content] : tree)
     if (content != "<dir>") files[path] = content;
   return files;
+}
+
+// summary.json's cases by scene name.
+inline std::map<std::string, nlohmann::json> cases_by_name(const nlohmann::json& summary) {
+  std::map<std::string, nlohmann::json> cases;
+  for (const nlohmann::json& c : summary.at("cases")) cases[c.at("scene").get<std::string>()] = c;
+  return cases;
+}
+
+// Whether process `pid` has ended (gone, or a zombie nobody reaps: a container's init may not).
+inline bool process_ended(pid_t pid) {
+  std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+  std::string text;
+  if (!std::getline(stat, text)) return true;
+  const auto paren = text.rfind(')');
+  return paren != std::string::npos && paren + 2 < text.size() && text[paren + 2] == 'Z';
+}
+
+// Whether process `pid` ends within 10 s (a SIGKILL is delivered at once; the time allows a busy
+// machine). One that does not is killed, so no test leaves it behind.
+inline bool process_ends_soon(pid_t pid) {
+  for (int k = 0; k < 100; ++k) {
+    if (process_ended(pid)) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  kill(pid, SIGKILL);
+  return false;
 }
 
 // Skips the current test when `rastercmp devices` finds no Vulkan device (exit 3, the

@@ -161,12 +161,29 @@ VKAPI_ATTR VkResult VKAPI_CALL hostile_QueueSubmit(VkQueue queue, uint32_t count
   return next(queue, count, submits, fence);
 }
 
+// The loader's link in a create info's chain (VkLayerInstanceCreateInfo or VkLayerDeviceCreateInfo
+// of sType `type` and function VK_LAYER_LINK_INFO), or null.
+template <typename LinkInfo>
+LinkInfo* layer_link(const void* next, VkStructureType type) {
+  auto* link = static_cast<LinkInfo*>(const_cast<void*>(next));
+  while (link != nullptr && !(link->sType == type && link->function == VK_LAYER_LINK_INFO))
+    link = static_cast<LinkInfo*>(const_cast<void*>(link->pNext));
+  return link;
+}
+
+// Removes the table of `handle` and returns its destroy function.
+template <typename Table, typename Handle>
+auto take_destroy(std::unordered_map<void*, Table>& tables, Handle handle) {
+  const std::lock_guard<std::mutex> lock(tables_mutex);
+  const auto it = tables.find(key_of(handle));
+  const auto destroy = it->second.destroy;
+  tables.erase(it);
+  return destroy;
+}
+
 VKAPI_ATTR VkResult VKAPI_CALL hostile_CreateInstance(const VkInstanceCreateInfo* info,
                                                       const VkAllocationCallbacks* allocator, VkInstance* instance) {
-  auto* link = static_cast<VkLayerInstanceCreateInfo*>(const_cast<void*>(info->pNext));
-  while (link != nullptr &&
-         !(link->sType == VK_STRUCTURE_TYPE_LOADER_INSTANCE_CREATE_INFO && link->function == VK_LAYER_LINK_INFO))
-    link = static_cast<VkLayerInstanceCreateInfo*>(const_cast<void*>(link->pNext));
+  auto* link = layer_link<VkLayerInstanceCreateInfo>(info->pNext, VK_STRUCTURE_TYPE_LOADER_INSTANCE_CREATE_INFO);
   if (link == nullptr) return VK_ERROR_INITIALIZATION_FAILED;
   const PFN_vkGetInstanceProcAddr next_gipa = link->u.pLayerInfo->pfnNextGetInstanceProcAddr;
   link->u.pLayerInfo = link->u.pLayerInfo->pNext;
@@ -182,22 +199,12 @@ VKAPI_ATTR VkResult VKAPI_CALL hostile_CreateInstance(const VkInstanceCreateInfo
 }
 
 VKAPI_ATTR void VKAPI_CALL hostile_DestroyInstance(VkInstance instance, const VkAllocationCallbacks* allocator) {
-  PFN_vkDestroyInstance destroy = nullptr;
-  {
-    const std::lock_guard<std::mutex> lock(tables_mutex);
-    const auto it = instances.find(key_of(instance));
-    destroy = it->second.destroy;
-    instances.erase(it);
-  }
-  destroy(instance, allocator);
+  take_destroy(instances, instance)(instance, allocator);
 }
 
 VKAPI_ATTR VkResult VKAPI_CALL hostile_CreateDevice(VkPhysicalDevice physical, const VkDeviceCreateInfo* info,
                                                     const VkAllocationCallbacks* allocator, VkDevice* device) {
-  auto* link = static_cast<VkLayerDeviceCreateInfo*>(const_cast<void*>(info->pNext));
-  while (link != nullptr &&
-         !(link->sType == VK_STRUCTURE_TYPE_LOADER_DEVICE_CREATE_INFO && link->function == VK_LAYER_LINK_INFO))
-    link = static_cast<VkLayerDeviceCreateInfo*>(const_cast<void*>(link->pNext));
+  auto* link = layer_link<VkLayerDeviceCreateInfo>(info->pNext, VK_STRUCTURE_TYPE_LOADER_DEVICE_CREATE_INFO);
   if (link == nullptr) return VK_ERROR_INITIALIZATION_FAILED;
   const PFN_vkGetInstanceProcAddr next_gipa = link->u.pLayerInfo->pfnNextGetInstanceProcAddr;
   const PFN_vkGetDeviceProcAddr next_gdpa = link->u.pLayerInfo->pfnNextGetDeviceProcAddr;
@@ -216,14 +223,7 @@ VKAPI_ATTR VkResult VKAPI_CALL hostile_CreateDevice(VkPhysicalDevice physical, c
 }
 
 VKAPI_ATTR void VKAPI_CALL hostile_DestroyDevice(VkDevice device, const VkAllocationCallbacks* allocator) {
-  PFN_vkDestroyDevice destroy = nullptr;
-  {
-    const std::lock_guard<std::mutex> lock(tables_mutex);
-    const auto it = devices.find(key_of(device));
-    destroy = it->second.destroy;
-    devices.erase(it);
-  }
-  destroy(device, allocator);
+  take_destroy(devices, device)(device, allocator);
 }
 
 PFN_vkVoidFunction own_device_function(const char* name) {
