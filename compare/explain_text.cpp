@@ -39,9 +39,14 @@ std::string tail_text(const RenderResult& expected, const RenderResult& actual, 
   const std::string cpu = cpu_judged ? fmt::format("CPU {} (judged):", cpu_method) : "CPU exact model (reference):";
   const std::string vulkan = cpu_judged ? "Vulkan device (reference):" : "Vulkan device (judged):";
   const size_t width = std::max(cpu.size(), vulkan.size()) + 1;
+  // The diff names a coverage difference from the device's side (expected = CPU, actual = Vulkan);
+  // here it is named from the judged renderer's side, so that the word and what follows it agree:
+  // "missing" when the judged renderer lacks the fragment the reference has, "unexpected" when it
+  // adds one the reference lacks (report.hpp judged_kind).
   std::string classification = describe_sample(expected, actual, profile, x, y, sample);
   const std::string judged = judged_kind(classification, cpu_judged);
-  if (judged != classification) classification += " (the judged renderer " + judged.substr(7) + " it)";
+  if (judged == "judged lacks") classification = "missing (the judged renderer lacks it)";
+  if (judged == "judged adds") classification = "unexpected (the judged renderer adds it)";
   return fmt::format("{:<{}}{}\n{:<{}}{}\n{:<{}}{}\n", cpu, width, value_text(expected, i), vulkan, width,
                      value_text(actual, i), "classification:", width, classification);
 }
@@ -147,9 +152,10 @@ std::string class_text(const SpecPixelRules& rules, const CpuOptions& cpu_option
 
 std::string header_text(const Scene& scene, CompareProfile profile, uint32_t x, uint32_t y, uint32_t sample,
                         bool classic = false) {
-  return fmt::format(
-      "{}: pixel ({}, {}) sample {}, {} profile\nCPU history ({}):\n", scene.name, x, y, sample, to_string(profile),
-      classic ? "the classic methods' own decisions" : "every primitive that reached the pixel, in submission order");
+  return fmt::format("{}: pixel ({}, {}) sample {}, {} profile\nCPU history ({}):\n", scene.name, x, y, sample,
+                     to_string(profile),
+                     classic ? "the classic methods' own decisions, then the exact path's at the same sample"
+                             : "every primitive that reached the pixel, in submission order");
 }
 
 }  // namespace

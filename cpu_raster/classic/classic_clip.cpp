@@ -65,10 +65,16 @@ ClassicClippedLine liang_barsky_homogeneous(const std::array<ClipVertex, 2>& lin
   const methods::Vec4 p0 = to_vec4(line[0].pos_clip), p1 = to_vec4(line[1].pos_clip);
   ClassicClippedLine result;
   result.passes = 1;
-  double t_in = 0, t_out = 1;
+  result.trace.trivial = false;
+  double& t_in = result.trace.t_in;
+  double& t_out = result.trace.t_out;
   for (methods::ClipPlane plane : methods::kClipPlanes) {
     const double d0 = methods::plane_distance(volume, plane, p0), d1 = methods::plane_distance(volume, plane, p1);
+    LiangBarskyPlane& row = result.trace.liang_barsky.emplace_back();
+    row.plane = plane, row.d0 = d0, row.d1 = d1;
     if (d0 < 0 && d1 < 0) return result;
+    if (d0 < 0 || d1 < 0) row.t = d0 / (d0 - d1);
+    row.entering = d0 < 0, row.leaving = d1 < 0;
     if (d0 < 0) t_in = std::max(t_in, d0 / (d0 - d1));
     if (d1 < 0) t_out = std::min(t_out, d0 / (d0 - d1));
     if (t_in > t_out) return result;
@@ -140,18 +146,23 @@ ClassicClippedLine clip_line_2d(const std::array<ClipVertex, 2>& line, const Vie
   const methods::Rect2 rect = viewport_rect(viewport);
   const methods::Segment2 segment{window_xy(line[0]), window_xy(line[1])};
   ClassicClippedLine result;
+  result.trace.trivial = false;
+  result.trace.window = rect;
   methods::Segment2 visible;
   if (clipper == LineClipper::CohenSutherland) {
-    const methods::CohenSutherlandResult cs = methods::clip_line_cohen_sutherland(segment, rect);
+    methods::CohenSutherlandResult cs = methods::clip_line_cohen_sutherland(segment, rect);
     result.passes = cs.passes;
     result.clips = cs.clips;
+    result.trace.passes_2d = std::move(cs.trace);
     if (!cs.accepted) return result;
     visible = cs.segment;
   } else {
     const methods::Polygon2 window{
         {rect.x_min, rect.y_min}, {rect.x_max, rect.y_min}, {rect.x_max, rect.y_max}, {rect.x_min, rect.y_max}};
-    const methods::CyrusBeckResult cb = methods::clip_line_cyrus_beck(segment, window);
+    methods::CyrusBeckResult cb = methods::clip_line_cyrus_beck(segment, window);
     result.passes = 1;
+    result.trace.t_in = cb.t_in, result.trace.t_out = cb.t_out;
+    result.trace.cyrus_beck = std::move(cb.trace);
     if (!cb.accepted) return result;
     result.clips = int(cb.t_in != 0) + int(cb.t_out != 1);
     visible = cb.segment;
@@ -225,27 +236,39 @@ std::vector<std::array<ClipVertex, 3>> clip_triangle_sutherland_hodgman(const st
   return fan;
 }
 
+uint8_t clip_space_outcode(const ClipVertex& vertex, bool depth_clip) {
+  return methods::outcode(vulkan_volume(depth_clip), to_vec4(vertex.pos_clip));
+}
+
 ClassicClippedLine clip_line_classic(const std::array<ClipVertex, 2>& line, const ViewportTransform& viewport,
                                      bool depth_clip, LineClipper clipper) {
   ClassicClippedLine result;
   if (!finite(line[0].pos_clip) || !finite(line[1].pos_clip)) return result;
   const methods::ClipVolume volume = vulkan_volume(depth_clip);
   const auto [any, all] = outcodes(line, volume);
-  if (all != 0) return result;
+  const auto with_codes = [&](ClassicClippedLine r) {
+    r.trace.code_p0 = methods::outcode(volume, to_vec4(line[0].pos_clip));
+    r.trace.code_p1 = methods::outcode(volume, to_vec4(line[1].pos_clip));
+    return r;
+  };
+  if (all != 0) return with_codes(result);
   if (any == 0) {
     result.visible = true;
     result.line = line;
-    return result;
+    return with_codes(result);
   }
-  if (clipper == LineClipper::LiangBarsky) return liang_barsky_homogeneous(line, volume, viewport);
+  if (clipper == LineClipper::LiangBarsky) return with_codes(liang_barsky_homogeneous(line, volume, viewport));
   if (clipper == LineClipper::CohenSutherland || clipper == LineClipper::CyrusBeck) {
     require_2d(line, depth_clip);
-    return clip_line_2d(line, viewport, clipper);
+    return with_codes(clip_line_2d(line, viewport, clipper));
   }
-  const methods::CohenSutherland3dResult cs =
+  methods::CohenSutherland3dResult cs =
       methods::clip_line_cohen_sutherland_3d(to_vec4(line[0].pos_clip), to_vec4(line[1].pos_clip), volume);
   result.passes = cs.passes;
   result.clips = cs.clips;
+  result.trace.trivial = false;
+  result.trace.passes_3d = std::move(cs.trace);
+  result = with_codes(std::move(result));
   if (!cs.accepted) return result;
   result.visible = true;
   result.line = {vertex_from(cs.p0, line, viewport), vertex_from(cs.p1, line, viewport)};

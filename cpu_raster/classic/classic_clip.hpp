@@ -17,6 +17,10 @@
 #include <vector>
 
 #include "cpu_raster/exact/clip_vertex.hpp"
+#include "cpu_raster/methods/clip_line_cohen_sutherland.hpp"
+#include "cpu_raster/methods/clip_line_cohen_sutherland_3d.hpp"
+#include "cpu_raster/methods/clip_line_cyrus_beck.hpp"
+#include "cpu_raster/methods/clip_volume.hpp"
 
 namespace rastercmp::cpu::classic {
 
@@ -36,12 +40,40 @@ std::vector<std::array<ClipVertex, 3>> clip_triangle_weiler_atherton(const std::
 // (2-D, after the divide; NotSupportedError as Weiler–Atherton); the others in clip space.
 enum class LineClipper { CohenSutherland3d, LiangBarsky, CohenSutherland, CyrusBeck };
 
+// Liang–Barsky on one homogeneous plane: the signed distances of the ends (>= 0 inside) and the
+// crossing t = d0 / (d0 - d1) when one end is outside.
+struct LiangBarskyPlane {
+  methods::ClipPlane plane = methods::ClipPlane::XLow;
+  double d0 = 0, d1 = 0;
+  double t = 0;           // meaningful when entering or leaving
+  bool entering = false;  // d0 < 0: raises t_in
+  bool leaving = false;   // d1 < 0: lowers t_out
+};
+
+// What the line clipper decided on, for explain: the 6-bit clip-space outcodes of the ends before
+// clipping (clip_volume.hpp: 1 x low, 2 x high, 4 y low, 8 y high, 16 z low, 32 z high) and the
+// clipper's own variables.
+struct LineClipTrace {
+  uint8_t code_p0 = 0, code_p1 = 0;
+  bool trivial = true;         // decided by the outcodes (OR == 0 accept, AND != 0 reject) or a non-finite end
+  double t_in = 0, t_out = 1;  // Liang–Barsky (clip space) and Cyrus–Beck (window space)
+  std::vector<LiangBarskyPlane> liang_barsky;             // the planes examined, in order
+  std::vector<methods::CohenSutherland3dPass> passes_3d;  // cohen_sutherland_3d
+  std::vector<methods::CohenSutherlandPass> passes_2d;    // cohen_sutherland, 4-bit Notes layout (window y)
+  std::vector<methods::CyrusBeckStep> cyrus_beck;         // one row per viewport edge
+  methods::Rect2 window{};                                // the 2-D clippers' viewport rectangle
+};
+
 struct ClassicClippedLine {
   bool visible = false;
   std::array<ClipVertex, 2> line{};
   int passes = 0;  // outcode evaluations (Cohen–Sutherland) or 1 (Liang–Barsky); 0: trivially decided
   int clips = 0;   // endpoints replaced
+  LineClipTrace trace;
 };
+
+// The 6-bit outcode of a vertex against Vulkan's clip volume (z planes only with depth clip).
+uint8_t clip_space_outcode(const ClipVertex& vertex, bool depth_clip);
 
 ClassicClippedLine clip_line_classic(const std::array<ClipVertex, 2>& line, const ViewportTransform& viewport,
                                      bool depth_clip, LineClipper clipper);

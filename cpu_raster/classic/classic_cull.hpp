@@ -12,11 +12,24 @@
 
 #include <glm/vec4.hpp>
 
+#include "cpu_raster/methods/geometry.hpp"
 #include "model/scene.hpp"
 
 namespace rastercmp::cpu::classic {
 
+// The test's decision variables: N (turned for a clockwise front face), V = eye - v0, N·V, and
+// what the cull mode makes of them.
+struct NormalDotView {
+  methods::Vec3 normal{}, view{};
+  double n_dot_v = 0;
+  bool back = false;    // N·V <= 0
+  bool culled = false;  // by the cull mode (None: never, FrontAndBack: always)
+};
+NormalDotView normal_dot_view(const std::array<glm::vec4, 3>& pos_clip, CullMode cull, FrontFace front_face);
+
 // True when the cull mode removes the triangle by the N·V test (edge-on faces count as back).
-bool normal_dot_view_culls(const std::array<glm::vec4, 3>& pos_clip, CullMode cull, FrontFace front_face);
+inline bool normal_dot_view_culls(const std::array<glm::vec4, 3>& pos_clip, CullMode cull, FrontFace front_face) {
+  return normal_dot_view(pos_clip, cull, front_face).culled;
+}
 
 }  // namespace rastercmp::cpu::classic

@@ -124,7 +124,7 @@ std::vector<methods::Span> coverage_spans(const ClassicPrimitive& p, FillMethod 
 }
 
 std::vector<methods::PixelXY> line_pixels(const ClassicPrimitive& p, LineMethod line) {
-  const methods::PixelXY p0 = pixel_of(p.window[0]), p1 = pixel_of(p.window[1]);
+  const auto [p0, p1] = line_method_endpoints(p);
   return line == LineMethod::Dda ? methods::line_dda(p0, p1) : methods::line_bresenham(p0, p1);
 }
 
@@ -159,6 +159,27 @@ double eye_distance_at(const ClassicPrimitive& p, methods::Vec2 centre) {
 
 }  // namespace
 
+std::array<methods::PixelXY, 2> line_method_endpoints(const ClassicPrimitive& p) {
+  return {pixel_of(p.window[0]), pixel_of(p.window[1])};
+}
+
+PerspectiveTrace perspective_trace(const ClassicPrimitive& p, int32_t px, int32_t py) {
+  const std::array<methods::Vec2, 3> pos_window{methods::Vec2{p.window[0].x, p.window[0].y},
+                                                methods::Vec2{p.window[1].x, p.window[1].y},
+                                                methods::Vec2{p.window[2].x, p.window[2].y}};
+  const std::array<double, 3> z_window{p.window[0].z, p.window[1].z, p.window[2].z};
+  const std::array<double, 3> w_clip{p.w_clip[0], p.w_clip[1], p.w_clip[2]};
+  PerspectiveTrace trace;
+  trace.lambda = methods::barycentric_window(pos_window, {px + 0.5, py + 0.5});
+  for (size_t k = 0; k < 3; ++k) {
+    trace.inv_w[k] = 1 / w_clip[k];
+    trace.inv_w_at += trace.lambda[k] / w_clip[k];
+  }
+  trace.z_linear = methods::interpolate_linear(trace.lambda, z_window);
+  trace.z_perspective = methods::interpolate_perspective(trace.lambda, z_window, w_clip);
+  return trace;
+}
+
 double pseudo_depth_value(const ClassicPrimitive& p, double far_distance, int32_t px, int32_t py) {
   const double w = eye_distance_at(p, {px + 0.5, py + 0.5});
   // Eye z is -w (camera looking down -z); pz = 1 at near, -1 at far; stored as (1 - pz) / 2.
@@ -180,13 +201,7 @@ uint32_t fragment_depth_raw(const ClassicPrimitive& p, const ClassicMethods& cho
     // no bilinear value; it takes the plane's.
     return z ? finish_depth(p, float(*z)) : plane_depth_raw(p, px, py, p.depth.fma);
   }
-  const std::array<methods::Vec2, 3> pos_window{methods::Vec2{p.window[0].x, p.window[0].y},
-                                                methods::Vec2{p.window[1].x, p.window[1].y},
-                                                methods::Vec2{p.window[2].x, p.window[2].y}};
-  const std::array<double, 3> z_window{p.window[0].z, p.window[1].z, p.window[2].z};
-  const std::array<double, 3> w_clip{p.w_clip[0], p.w_clip[1], p.w_clip[2]};
-  const double z = methods::interpolate_perspective(methods::barycentric_window(pos_window, centre), z_window, w_clip);
-  return finish_depth(p, float(z));
+  return finish_depth(p, float(perspective_trace(p, px, py).z_perspective));
 }
 
 void for_each_fragment(const ClassicPrimitive& p, const ClassicMethods& chosen, const PixelRect& region,

@@ -20,6 +20,7 @@
 // Classic fills cover only pixels of the draw region (framebuffer ∩ scissor ∩ viewport).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -42,6 +43,22 @@ void for_each_fragment(const ClassicPrimitive& primitive, const ClassicMethods& 
 
 // The stored depth of the primitive at pixel (px, py) by the depth method.
 uint32_t fragment_depth_raw(const ClassicPrimitive& primitive, const ClassicMethods& chosen, int32_t px, int32_t py);
+
+// line=dda / bresenham: the pixels holding the two window endpoints, between which the line
+// method runs (methods::line_dda_trace / line_bresenham_trace give its steps).
+std::array<methods::PixelXY, 2> line_method_endpoints(const ClassicPrimitive& primitive);
+
+// depth=perspective_correct at the pixel centre: the window-space barycentrics, 1/w per vertex and
+// at the sample, and window z interpolated linearly and with the 1/w correction (the latter is
+// what the method stores, before bias, clamp and format conversion).
+struct PerspectiveTrace {
+  std::array<double, 3> lambda{};  // methods::barycentric_window of the pixel centre
+  std::array<double, 3> inv_w{};   // 1 / w_clip of each vertex
+  double inv_w_at = 0;             // sum lambda_i / w_i
+  double z_linear = 0;             // sum lambda_i z_i
+  double z_perspective = 0;        // (sum lambda_i z_i / w_i) / (sum lambda_i / w_i)
+};
+PerspectiveTrace perspective_trace(const ClassicPrimitive& primitive, int32_t px, int32_t py);
 
 // depth=pseudo_depth_*: (1 - pz) / 2 of the eye distance w at the pixel centre (near 25), before
 // bias, clamp and format conversion.

@@ -23,6 +23,7 @@ struct DrawContext {
   const Draw* draw = nullptr;
   SetupContext setup;
   DepthTestState depth;
+  std::vector<CulledTriangle>* culled = nullptr;  // explain: the triangles normal_dot_view removes
   std::vector<bool> pipelined;  // per draw chunk: some vertex needs clipping (§1.5): the float cull runs (§2.6)
   uint32_t per_chunk = 1;
   TrailingPipelineRun trailing;  // set-up outside the denormal mode (front_end.hpp, §7.11)
@@ -67,9 +68,19 @@ void run_triangle(const DrawContext& dc, const AssembledPrimitive& prim, std::ve
   const std::array<ClipVertex, 3> triangle = clip_vertices<3>(dc, prim);
   const RasterState& state = dc.draw->state;
   const bool nv_cull = dc.methods->cull == CullMethod::NormalDotView;
-  if (nv_cull && normal_dot_view_culls({triangle[0].pos_clip, triangle[1].pos_clip, triangle[2].pos_clip},
-                                       state.cull_mode, state.front_face))
-    return;
+  if (nv_cull) {
+    const std::array<glm::vec4, 3> pos_clip{triangle[0].pos_clip, triangle[1].pos_clip, triangle[2].pos_clip};
+    const NormalDotView test = normal_dot_view(pos_clip, state.cull_mode, state.front_face);
+    if (test.culled) {
+      if (dc.culled)
+        dc.culled->push_back({dc.setup.draw_index,
+                              prim.primitive_index,
+                              pos_clip,
+                              {triangle[0].window, triangle[1].window, triangle[2].window},
+                              test});
+      return;
+    }
+  }
   const bool depth_clip = state.depth_clip_enabled();
   const auto exact_pieces = [&] {
     const ClippedTriangles clipped = clip_triangle(triangle, dc.frame->viewport);
@@ -98,6 +109,10 @@ void run_triangle(const DrawContext& dc, const AssembledPrimitive& prim, std::ve
     primitive.window = window;
     primitive.w_clip = {piece[0].pos_clip.w, piece[1].pos_clip.w, piece[2].pos_clip.w};
     primitive.raster = setup.raster;
+    if (dc.methods->clip == ClipMethod::SutherlandHodgman || dc.methods->clip == ClipMethod::WeilerAtherton) {
+      primitive.vertex_codes_traced = true;
+      for (size_t v = 0; v < 3; ++v) primitive.vertex_codes[v] = clip_space_outcode(triangle[v], depth_clip);
+    }
     out.push_back(primitive);
   }
 }
@@ -116,11 +131,13 @@ void run_line(const DrawContext& dc, const AssembledPrimitive& prim, std::vector
   const std::array<ClipVertex, 2> line = clip_vertices<2>(dc, prim);
   std::array<ClipVertex, 2> clipped;
   const std::optional<LineClipper> clipper = line_clipper(dc.methods->clip);
+  LineClipTrace trace;
   if (clipper) {
-    const ClassicClippedLine result =
+    ClassicClippedLine result =
         clip_line_classic(line, dc.frame->viewport, dc.draw->state.depth_clip_enabled(), *clipper);
     if (!result.visible) return;
     clipped = result.line;
+    trace = std::move(result.trace);
   } else {
     const LineXyClip xy =
         dc.frame->rules.has(LavapipeRule::LineGuardBand) ? LineXyClip::GuardBand : LineXyClip::Clip;  // §8.2
@@ -137,13 +154,15 @@ void run_line(const DrawContext& dc, const AssembledPrimitive& prim, std::vector
   primitive.window = {clipped[0].window, clipped[1].window, WindowVertex{}};
   primitive.w_clip = {clipped[0].pos_clip.w, clipped[1].pos_clip.w, 1};
   primitive.raster = setup.raster;
-  out.push_back(primitive);
+  primitive.line_clip_traced = clipper.has_value();
+  primitive.line_clip = std::move(trace);
+  out.push_back(std::move(primitive));
 }
 
 }  // namespace
 
 void collect_primitives(const FrameContext& frame, uint32_t draw_index, const ClassicMethods& methods,
-                        std::vector<ClassicPrimitive>& out) {
+                        std::vector<ClassicPrimitive>& out, std::vector<CulledTriangle>* culled) {
   const Draw& draw = frame.scene->draws[draw_index];
   // normal_dot_view has culled before clipping; the set-up then culls nothing.
   RasterState state = draw.state;
@@ -155,6 +174,7 @@ void collect_primitives(const FrameContext& frame, uint32_t draw_index, const Cl
   dc.setup = make_setup_context(frame, draw_index);
   dc.setup.state = &state;
   dc.depth = make_depth_test_state(*frame.scene, draw, frame.viewport, frame.fma);
+  dc.culled = culled;
   dc.pipelined = pipelined_chunks(draw, draw.state.depth_clip_enabled());
   dc.per_chunk = primitives_per_chunk(draw);
   dc.trailing = trailing_pipeline_run(draw, dc.pipelined);

@@ -79,21 +79,36 @@ std::vector<PaintedFragment> painter_fragments(const std::vector<ClassicPrimitiv
   return ordered;
 }
 
+// The tree of the window-space triangles and its back-to-front order for the viewer: the pieces'
+// outlines by rank, each primitive's ranks and each rank's node.
+struct BspOrder {
+  methods::BspTree tree;
+  std::vector<methods::Polygon2> outlines;
+  std::vector<std::vector<size_t>> ranks_of;
+  std::vector<int32_t> node_of_rank;
+};
+
+BspOrder bsp_order(const std::vector<ClassicPrimitive>& primitives) {
+  BspOrder order{
+      methods::build_bsp(window_polygons(primitives)), {}, std::vector<std::vector<size_t>>(primitives.size()), {}};
+  // methods::bsp_back_to_front's order: the nodes' polygons in bsp_node_order.
+  for (int32_t node : methods::bsp_node_order(order.tree, kViewerAlongPlusZ))
+    for (const methods::Polygon3& piece : order.tree.nodes[size_t(node)].polygons) {
+      order.ranks_of[piece.id].push_back(order.outlines.size());
+      order.outlines.push_back(outline_2d(piece));
+      order.node_of_rank.push_back(node);
+    }
+  return order;
+}
+
 std::vector<PaintedFragment> bsp_fragments(const std::vector<ClassicPrimitive>& primitives,
                                            const ClassicMethods& chosen, const PixelRect& region) {
-  const std::vector<methods::Polygon3> order =
-      methods::bsp_back_to_front(methods::build_bsp(window_polygons(primitives)), kViewerAlongPlusZ);
-  std::vector<methods::Polygon2> outlines;
-  std::vector<std::vector<size_t>> ranks_of(primitives.size());
-  for (size_t r = 0; r < order.size(); ++r) {
-    outlines.push_back(outline_2d(order[r]));
-    ranks_of[order[r].id].push_back(r);
-  }
+  const BspOrder order = bsp_order(primitives);
   std::vector<RankedFragment> ranked;
   for (size_t i = 0; i < primitives.size(); ++i) {
-    if (ranks_of[i].empty()) continue;  // no area in window space: build_bsp dropped it
+    if (order.ranks_of[i].empty()) continue;  // no area in window space: build_bsp dropped it
     for_each_fragment(primitives[i], chosen, region, [&](const Fragment& f) {
-      ranked.push_back({piece_rank_at(outlines, ranks_of[i], {f.x + 0.5, f.y + 0.5}), {f, i}});
+      ranked.push_back({piece_rank_at(order.outlines, order.ranks_of[i], {f.x + 0.5, f.y + 0.5}), {f, i}});
     });
   }
   return in_rank_order(ranked);
@@ -105,6 +120,51 @@ std::vector<PaintedFragment> back_to_front_fragments(const std::vector<ClassicPr
                                                      const ClassicMethods& chosen, const PixelRect& region) {
   return chosen.visibility == VisibilityMethod::Bsp ? bsp_fragments(primitives, chosen, region)
                                                     : painter_fragments(primitives, chosen, region);
+}
+
+std::vector<PainterKeyed> painter_keys(const std::vector<ClassicPrimitive>& primitives) {
+  const std::vector<methods::Polygon3> polygons = window_polygons(primitives);
+  std::vector<PainterKeyed> keyed;
+  for (size_t i : methods::painter_order(polygons, methods::PainterKey::FarthestVertex))
+    keyed.push_back({i, methods::painter_key(polygons[i], methods::PainterKey::FarthestVertex)});
+  return keyed;
+}
+
+BspPixelTrace bsp_pixel_trace(const std::vector<ClassicPrimitive>& primitives, const std::vector<size_t>& at_pixel,
+                              int32_t x, int32_t y) {
+  const BspOrder order = bsp_order(primitives);
+  BspPixelTrace trace;
+  trace.nodes = order.tree.nodes.size();
+  trace.splits = order.tree.splits;
+  trace.polygons = order.outlines.size();
+  // Each node's parent and the side of it the node hangs on.
+  std::vector<std::pair<int32_t, int>> parent(order.tree.nodes.size(), {-1, 0});
+  for (size_t n = 0; n < order.tree.nodes.size(); ++n) {
+    const methods::BspNode& node = order.tree.nodes[n];
+    if (node.behind >= 0) parent[size_t(node.behind)] = {int32_t(n), -1};
+    if (node.in_front >= 0) parent[size_t(node.in_front)] = {int32_t(n), +1};
+  }
+  const auto test_at = [&](int32_t n, int path) {
+    const methods::BspNode& node = order.tree.nodes[size_t(n)];
+    return BspNodeTest{n, node.polygons.front().id, node.plane, methods::viewer_side(node.plane, kViewerAlongPlusZ),
+                       path};
+  };
+  for (size_t i : at_pixel) {
+    BspPieceTrace piece;
+    piece.primitive = i;
+    piece.pieces = order.ranks_of[i].size();
+    if (order.ranks_of[i].empty()) {  // no area in window space: not in the tree
+      trace.pieces.push_back(piece);
+      continue;
+    }
+    piece.rank = piece_rank_at(order.outlines, order.ranks_of[i], {x + 0.5, y + 0.5});
+    int32_t node = order.node_of_rank[piece.rank];
+    piece.path.push_back(test_at(node, 0));
+    for (auto up = parent[size_t(node)]; up.first >= 0; up = parent[size_t(up.first)])
+      piece.path.insert(piece.path.begin(), test_at(up.first, up.second));
+    trace.pieces.push_back(piece);
+  }
+  return trace;
 }
 
 }  // namespace rastercmp::cpu::classic

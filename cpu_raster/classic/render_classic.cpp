@@ -58,14 +58,15 @@ bool uses_classic_methods(const CpuOptions& options) { return names_classic_stag
 
 namespace cpu::classic {
 
-ClassicFrame prepare_classic_frame(const Scene& scene, const CpuOptions& options) {
-  ClassicFrame prepared{parse_classic_methods(options.methods), {}, {}};
+ClassicFrame prepare_classic_frame(const Scene& scene, const CpuOptions& options, bool keep_culled) {
+  ClassicFrame prepared{parse_classic_methods(options.methods), {}, {}, {}};
   cpu::check_lavapipe_profile_support(scene);
   check_classic_support(scene, options);
-  prepared.frame = cpu::make_frame_context(scene, options.fma, prepared.chosen.setup, cpu::WorkSkips{},
-                                            options.lavapipe->rules());
+  prepared.frame =
+      cpu::make_frame_context(scene, options.fma, prepared.chosen.setup, cpu::WorkSkips{}, options.lavapipe->rules());
   for (uint32_t d = 0; d < scene.draws.size(); ++d)
-    collect_primitives(prepared.frame, d, prepared.chosen, prepared.primitives);
+    collect_primitives(prepared.frame, d, prepared.chosen, prepared.primitives,
+                       keep_culled ? &prepared.culled : nullptr);
   return prepared;
 }
 

@@ -17,13 +17,15 @@ namespace rastercmp {
 namespace cpu::classic {
 
 // What render_classic draws: the parsed methods, the frame and the primitives that reach the
-// fill, line, depth and visibility stages. Throws as render_classic.
+// fill, line, depth and visibility stages; with `keep_culled` (explain) also the triangles
+// cull=normal_dot_view removed. Throws as render_classic.
 struct ClassicFrame {
   ClassicMethods chosen;
   FrameContext frame;
   std::vector<ClassicPrimitive> primitives;
+  std::vector<CulledTriangle> culled;
 };
-ClassicFrame prepare_classic_frame(const Scene& scene, const CpuOptions& options);
+ClassicFrame prepare_classic_frame(const Scene& scene, const CpuOptions& options, bool keep_culled = false);
 
 }  // namespace cpu::classic
 

@@ -66,6 +66,8 @@ CohenSutherlandResult clip_line_cohen_sutherland(Segment2 segment, const Rect2& 
     ++result.passes;                                   // ClipOnce
     const uint8_t code_p = outcode(p, window, options.layout);
     const uint8_t code_q = outcode(q, window, options.layout);
+    CohenSutherlandPass& pass = result.trace.emplace_back();
+    pass.code_p0 = code_p, pass.code_p1 = code_q;
     if ((code_p | code_q) == 0) {  // trivial accept
       result.accepted = true;
       result.segment = {p, q};
@@ -73,10 +75,13 @@ CohenSutherlandResult clip_line_cohen_sutherland(Segment2 segment, const Rect2& 
     }
     if ((code_p & code_q) != 0) return result;  // trivial reject
     ++result.clips;
+    pass.clipped = true;
+    pass.clipped_p0 = code_p != 0;
+    pass.side = first_set_side(code_p != 0 ? code_p : code_q, options);
     if (code_p != 0) {  // p is outside, clip it
-      p = intersect_side(p, q, first_set_side(code_p, options), window);
+      p = intersect_side(p, q, pass.side, window);
     } else {  // q is outside, clip it
-      q = intersect_side(q, p, first_set_side(code_q, options), window);
+      q = intersect_side(q, p, pass.side, window);
     }
   }
   return result;

@@ -14,6 +14,7 @@
 
 #include <array>
 #include <cstdint>
+#include <vector>
 
 #include "cpu_raster/methods/geometry.hpp"
 
@@ -42,11 +43,20 @@ struct CohenSutherlandOptions {
   std::array<RectSide, 4> side_order{RectSide::YMax, RectSide::YMin, RectSide::XMax, RectSide::XMin};
 };
 
+// One ClipOnce: the outcodes of the current endpoints and what the pass did with them.
+struct CohenSutherlandPass {
+  uint8_t code_p0 = 0, code_p1 = 0;
+  bool clipped = false;            // false: this pass accepted (OR == 0) or rejected (AND != 0)
+  bool clipped_p0 = false;         // the p0 end was replaced (else p1)
+  RectSide side = RectSide::XMin;  // the side it was cut at, when clipped
+};
+
 struct CohenSutherlandResult {
   bool accepted = false;
   Segment2 segment;  // the visible part, p0 side first; meaningful only when accepted
   int passes = 0;    // ClipOnce calls (outcode evaluations of the pair), including the final accept/reject
   int clips = 0;     // endpoint replacements (intersections computed)
+  std::vector<CohenSutherlandPass> trace;  // one row per pass
 };
 
 // Passes are bounded: a segment that grazes a window corner can make rounding alternate between

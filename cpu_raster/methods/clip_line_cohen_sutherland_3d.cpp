@@ -18,6 +18,8 @@ CohenSutherland3dResult clip_line_cohen_sutherland_3d(Vec4 p0, Vec4 p1, const Cl
   while (result.passes < kCohenSutherland3dMaxPasses) {
     ++result.passes;
     const uint8_t code0 = outcode(volume, p0), code1 = outcode(volume, p1);
+    CohenSutherland3dPass& pass = result.trace.emplace_back();
+    pass.code_p0 = code0, pass.code_p1 = code1;
     if ((code0 | code1) == 0) {
       result.accepted = true;
       result.p0 = p0;
@@ -26,10 +28,13 @@ CohenSutherland3dResult clip_line_cohen_sutherland_3d(Vec4 p0, Vec4 p1, const Cl
     }
     if ((code0 & code1) != 0) return result;
     ++result.clips;
+    pass.clipped = true;
+    pass.clipped_p0 = code0 != 0;
+    pass.plane = lowest_set_plane(code0 != 0 ? code0 : code1);
     if (code0 != 0)
-      p0 = intersect_plane(volume, lowest_set_plane(code0), p0, p1);
+      p0 = intersect_plane(volume, pass.plane, p0, p1);
     else
-      p1 = intersect_plane(volume, lowest_set_plane(code1), p1, p0);
+      p1 = intersect_plane(volume, pass.plane, p1, p0);
   }
   return result;
 }

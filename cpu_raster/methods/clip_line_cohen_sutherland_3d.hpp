@@ -11,15 +11,26 @@
 //       grazes an edge of the volume within rounding (rejected after the pass bound).
 #pragma once
 
+#include <vector>
+
 #include "cpu_raster/methods/clip_volume.hpp"
 
 namespace rastercmp::methods {
 
+// One pass: the 6-bit outcodes of the current endpoints and what the pass did with them.
+struct CohenSutherland3dPass {
+  uint8_t code_p0 = 0, code_p1 = 0;
+  bool clipped = false;               // false: this pass accepted (OR == 0) or rejected (AND != 0)
+  bool clipped_p0 = false;            // the p0 end was replaced (else p1)
+  ClipPlane plane = ClipPlane::XLow;  // the plane it was cut at, when clipped
+};
+
 struct CohenSutherland3dResult {
   bool accepted = false;
-  Vec4 p0, p1;     // the visible part (w = 1 for the box form); meaningful only when accepted
-  int passes = 0;  // outcode evaluations of the pair, including the final accept/reject
-  int clips = 0;   // endpoint replacements
+  Vec4 p0, p1;                               // the visible part (w = 1 for the box form); meaningful only when accepted
+  int passes = 0;                            // outcode evaluations of the pair, including the final accept/reject
+  int clips = 0;                             // endpoint replacements
+  std::vector<CohenSutherland3dPass> trace;  // one row per pass
 };
 
 inline constexpr int kCohenSutherland3dMaxPasses = 24;  // grazing a box edge: see the 2D header

@@ -21,6 +21,15 @@ enum class EdgeOnFace {
   Keep,  // lecture-graphics-pipeline-cyrus-beck.txt: culled only if N.(point - eye) > 0
 };
 
+// V: from the point towards the viewer; viewer (x, y, z, 1) an eye point, or (x, y, z, 0) the
+// direction towards a viewer at infinity.
+Vec3 view_vector(Vec3 point_on_face, Vec4 viewer);
+
+// N.V, the number is_back_face decides on.
+inline double normal_dot_view(Vec3 outward_normal, Vec3 point_on_face, Vec4 viewer) {
+  return dot(outward_normal, view_vector(point_on_face, viewer));
+}
+
 // viewer: (x, y, z, 1) an eye point, or (x, y, z, 0) the direction towards a viewer at infinity.
 bool is_back_face(Vec3 outward_normal, Vec3 point_on_face, Vec4 viewer, EdgeOnFace edge_on = EdgeOnFace::Cull);
 

@@ -22,4 +22,20 @@ namespace rastercmp::methods {
 
 std::vector<PixelXY> line_bresenham(PixelXY p0, PixelXY p1);
 
+// The decision variables of line_bresenham, step by step (in its pixel order): the error term
+// after `error += deltay`, whether 2 * error >= deltax stepped the minor axis, and the error after.
+struct BresenhamStep {
+  PixelXY pixel;
+  int64_t error_added = 0;  // error + deltay, compared as 2 * error_added >= delta_x
+  bool minor_step = false;  // the minor axis stepped after this pixel
+  int64_t error_after = 0;  // error_added, less delta_x when it stepped
+};
+struct BresenhamTrace {
+  bool steep = false;    // x and y swapped
+  bool swapped = false;  // the endpoints swapped (x0 > x1 after the steep swap): pixels run p1 -> p0
+  int64_t delta_x = 0, delta_y = 0, y_step = 1;  // after the swaps
+  std::vector<BresenhamStep> steps;
+};
+BresenhamTrace line_bresenham_trace(PixelXY p0, PixelXY p1);
+
 }  // namespace rastercmp::methods

@@ -18,4 +18,18 @@ namespace rastercmp::methods {
 
 std::vector<PixelXY> line_dda(PixelXY p0, PixelXY p1);
 
+// The decision variables of line_dda, step by step: the accumulated minor coordinate before
+// rounding (the x of a steep line, else the y) and the pixel it rounds to.
+struct DdaStep {
+  PixelXY pixel;
+  double minor = 0;  // accumulated by repeated addition of the slope; pixel = floor(minor + 0.5)
+};
+struct DdaTrace {
+  bool steep = false;          // |dy| > |dx|: steps along y, x is the minor axis
+  int32_t major_step = 1;      // +1 or -1 per step along the major axis
+  double slope = 0;            // minor change per major step
+  std::vector<DdaStep> steps;  // p0 -> p1, the pixels of line_dda
+};
+DdaTrace line_dda_trace(PixelXY p0, PixelXY p1);
+
 }  // namespace rastercmp::methods

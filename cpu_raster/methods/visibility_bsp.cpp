@@ -40,12 +40,12 @@ int32_t build_node(BspTree& tree, std::vector<Polygon3> polygons, double epsilon
 }
 
 // RitaBSP.
-void draw_node(const BspTree& tree, int32_t index, Vec4 viewer, std::vector<Polygon3>& out) {
+void draw_node(const BspTree& tree, int32_t index, Vec4 viewer, std::vector<int32_t>& out) {
   if (index < 0) return;
   const BspNode& node = tree.nodes[size_t(index)];
   const bool viewer_in_front = viewer_side(node.plane, viewer) > 0;
   draw_node(tree, viewer_in_front ? node.behind : node.in_front, viewer, out);
-  out.insert(out.end(), node.polygons.begin(), node.polygons.end());
+  out.push_back(index);
   draw_node(tree, viewer_in_front ? node.in_front : node.behind, viewer, out);
 }
 
@@ -61,9 +61,19 @@ BspTree build_bsp(const std::vector<Polygon3>& polygons, double epsilon) {
   return tree;
 }
 
+std::vector<int32_t> bsp_node_order(const BspTree& tree, Vec4 viewer) {
+  std::vector<int32_t> order;
+  order.reserve(tree.nodes.size());
+  draw_node(tree, tree.root, viewer, order);
+  return order;
+}
+
 std::vector<Polygon3> bsp_back_to_front(const BspTree& tree, Vec4 viewer) {
   std::vector<Polygon3> out;
-  draw_node(tree, tree.root, viewer, out);
+  for (int32_t index : bsp_node_order(tree, viewer)) {
+    const BspNode& node = tree.nodes[size_t(index)];
+    out.insert(out.end(), node.polygons.begin(), node.polygons.end());
+  }
   return out;
 }
 

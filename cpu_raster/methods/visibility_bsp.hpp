@@ -36,7 +36,12 @@ struct BspTree {
 // counts as on a partition plane.
 BspTree build_bsp(const std::vector<Polygon3>& polygons, double epsilon = 1e-9);
 
-// All polygons (split pieces included) in back-to-front order for `viewer`.
+// The nodes in RitaBSP's drawing order for `viewer`: at each node the subtree on the far side of its
+// plane (viewer_side > 0: behind), then the node's polygons, then the near side.
+std::vector<int32_t> bsp_node_order(const BspTree& tree, Vec4 viewer);
+
+// All polygons (split pieces included) in back-to-front order for `viewer`: the polygons of the
+// nodes of bsp_node_order, each node's in its own order.
 std::vector<Polygon3> bsp_back_to_front(const BspTree& tree, Vec4 viewer);
 
 }  // namespace rastercmp::methods

@@ -5,9 +5,7 @@
 
 namespace rastercmp::methods {
 
-namespace {
-
-double depth_key(const Polygon3& polygon, PainterKey key) {
+double painter_key(const Polygon3& polygon, PainterKey key) {
   if (key == PainterKey::FarthestVertex) {
     double z = -std::numeric_limits<double>::infinity();
     for (const Vec3& v : polygon.vertices) z = std::max(z, v.z);
@@ -18,13 +16,11 @@ double depth_key(const Polygon3& polygon, PainterKey key) {
   return polygon.vertices.empty() ? 0 : sum / double(polygon.vertices.size());
 }
 
-}  // namespace
-
 std::vector<size_t> painter_order(const std::vector<Polygon3>& polygons, PainterKey key) {
   std::vector<double> keys(polygons.size());
   std::vector<size_t> order(polygons.size());
   for (size_t i = 0; i < polygons.size(); ++i) {
-    keys[i] = depth_key(polygons[i], key);
+    keys[i] = painter_key(polygons[i], key);
     order[i] = i;
   }
   std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return keys[a] > keys[b]; });

@@ -22,7 +22,10 @@ enum class PainterKey {
   Centroid,        // the mean z of its vertices
 };
 
-// Indices into `polygons`, farthest first; ties keep input order.
+// The depth a polygon is sorted by (the largest or the mean z of its vertices).
+double painter_key(const Polygon3& polygon, PainterKey key);
+
+// Indices into `polygons`, farthest first (larger painter_key first); ties keep input order.
 std::vector<size_t> painter_order(const std::vector<Polygon3>& polygons, PainterKey key = PainterKey::FarthestVertex);
 
 }  // namespace rastercmp::methods
