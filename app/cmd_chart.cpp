@@ -1,4 +1,4 @@
-// rastercmp chart speed-accuracy [--out DIR] [--quick]
+// rastercmp chart speed-accuracy [--out DIR] [--quick] [--reps N] [--clock cpu|wall]
 // rastercmp chart scene-needs [--out DIR] [--quick]
 #include <memory>
 #include <string>
@@ -19,11 +19,21 @@ void add_chart_command(CLI::App& app, int& exit_code) {
   auto options = std::make_shared<experiments::SweepOptions>();
   options->out_dir = "chart-speed-accuracy";
   CLI::App* cmd = chart->add_subcommand(
-      "speed-accuracy", "time per frame against mismatch with lavapipe for every CPU method, Pareto front marked");
+      "speed-accuracy",
+      "time per frame against mismatch with lavapipe for every CPU method; scalar-tier Pareto front per family");
   cmd->add_option("--out", options->out_dir, "output folder (CSV, JSON, charts, index.html)")->capture_default_str();
   cmd->add_flag("--quick", options->quick, "fewer repetitions (seconds), as the tests run it");
-  cmd->callback([options, &exit_code] {
-    experiments::run_speed_accuracy(*options);
+  auto reps = std::make_shared<int>(0);
+  cmd->add_option("--reps", *reps, "interleaved repetitions (default 21, 5 with --quick)")->check(CLI::Range(1, 1000));
+  auto clock = std::make_shared<std::string>("cpu");
+  cmd->add_option("--clock", *clock,
+                  "the time that ranks the fronts: cpu (thread CPU time of a scalar render; process CPU time of the "
+                  "fast path and lavapipe) or wall; both are recorded")
+      ->check(CLI::IsMember({"cpu", "wall"}))
+      ->capture_default_str();
+  cmd->callback([options, reps, clock, &exit_code] {
+    experiments::run_speed_accuracy(*options, *reps,
+                                    *clock == "wall" ? experiments::FrontClock::Wall : experiments::FrontClock::Cpu);
     fmt::print("speed-accuracy chart → {}/index.html\n", options->out_dir);
     exit_code = kExitOk;
   });
