@@ -6,7 +6,7 @@
 // glibc starts every large block at the same offset in its page, so the owner and depth rows of
 // a band shared those sets too. The fast path gives the depth buffer the other half of the page:
 // at 1024x1024 and 2 threads perspective took 6.5% less time and fill_b2f 0.52 ms instead of 0.80
-// (docs/performance.md, session 15). The colour changes no value, only where the bytes live.
+// (docs/performance-log.md, 17ad48f). The colour changes no value, only where the bytes live.
 #pragma once
 
 #include <cstddef>

@@ -8,7 +8,7 @@
 namespace rastercmp::cpu {
 namespace {
 
-// A polygon of at most kMaxClippedVertices vertices, held in place (session 15).
+// A polygon of at most kMaxClippedVertices vertices, held in place (docs/performance-log.md, 4ec5763).
 using Polygon = InPlaceList<ClipVertex, kMaxClippedVertices>;
 
 // The intersection of edge (prev -> vert) with the plane, from the vertex nearer the plane (§1.6).

@@ -21,7 +21,7 @@ inline constexpr size_t kMaxClippedVertices = 2 * (6 + 8) + 1;
 // At most N values held in place, for the clipper's polygons and fans: a std::vector cost
 // allocations for every triangle through the clipper (several per plane for the polygon, session
 // 15; one for the fan: every triangle of the exact path, each clipped one of the fast path, whose
-// perspective render made 762 allocations and now 152; docs/performance.md, session 16). The
+// perspective render made 762 allocations and now 152; docs/performance-log.md, 608f032). The
 // values past size() are left unformed (a default-constructed array would be cleared first); the
 // clipper keeps to N.
 template <class T, size_t N>

@@ -337,7 +337,7 @@ bool BandWorker::may_hide(const PixelRect& tile, const uint8_t* list, size_t cou
 // ranges), with depth writes on. Wherever an earlier triangle writes, the tile then holds one of
 // those fragments when this triangle comes, so it writes there too and replaces what the earlier
 // one left; wherever no earlier triangle writes, leaving them out changes nothing. Drawing from it
-// therefore gives the same bytes ("occluded batch triangles", docs/performance.md, log 54); it is
+// therefore gives the same bytes ("occluded batch triangles", docs/performance-log.md, 62f382b); it is
 // itself drawn as always, against what the tile holds. 0 when there is none or nothing can be
 // proven. Fills prepared_[i] with list[i]'s edges and range in the tile (prepare_in_tile), which
 // flush then draws from.

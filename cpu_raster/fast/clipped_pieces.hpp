@@ -2,10 +2,10 @@
 // triangle's corners give no tile row (their window positions say nothing before clipping), so
 // its block is set up by every worker, and each ran the exact clipper and set-up on it
 // (perspective's 614 clipped triangles at the screen's sides and far plane: about 10% of each
-// worker's profile, session 13). With several workers the block-row phase, which already visits
+// worker's profile, 25d649c). With several workers the block-row phase, which already visits
 // those blocks, now clips each once (the task that measures its block) into a ClippedTable per
 // draw, and from the pieces' rectangles gives the block the rows it reaches (set up only by their
-// workers since session 16); the walk then draws the stored pieces in its rows. The pieces are the exact path's
+// workers since 53be80d); the walk then draws the stored pieces in its rows. The pieces are the exact path's
 // (clip_triangle, pipeline cull, setup_triangle, or setup_piece, its lean twin for the pieces the kernels draw),
 // computed by the same function either way (for_each_piece).
 #pragma once
@@ -30,7 +30,7 @@ FastTriangle fast_triangle_of(const RasterPrimitive& p, const PixelRect& region)
 
 // setup_triangle then fast_triangle_of for a piece, without the parts of the RasterPrimitive the
 // fast kernels never read (edge and scissor planes, visit rectangle; perspective's 614 clipped
-// triangles took 194 ns of set-up each for their 1.5 pieces, session 14): the same snap (§2.2),
+// triangles took 194 ns of set-up each for their 1.5 pieces, d98ee19): the same snap (§2.2),
 // area, cull and swap (§2.3), bounding box and region test (§2.5), depth plane and offset (§3.2,
 // §4.3), in the same operations. Full: the piece needs what only setup_triangle does (a corner
 // that fails to snap, or an edge past llvmpipe's direct range: its wrapping set-up, §7.5), so

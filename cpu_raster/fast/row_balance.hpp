@@ -1,4 +1,4 @@
-// Which worker draws each tile row (issue #23): an estimate of each row's work, then a greedy
+// Which worker draws each tile row: an estimate of each row's work, then a greedy
 // assignment of whole rows. Any assignment gives the same bytes (each row is drawn by exactly one
 // worker, in submission order); the estimate only decides how evenly the band phase splits.
 #pragma once
@@ -9,15 +9,15 @@
 namespace rastercmp::cpu::fast {
 
 // The estimate of a tile row's work, in units of about 1,500 instructions (callgrind, Zen 5,
-// AVX-512 kernels; perspective at 1024x1024, session 12): each block of eight small triangles that
-// reaches the row costs about 8 (its set-up and drawing there: 12,000 instructions, session 12);
+// AVX-512 kernels; perspective at 1024x1024; docs/performance-log.md, d4a504f): each block of eight small triangles that
+// reaches the row costs about 8 (its set-up and drawing there: 12,000 instructions);
 // each tile of the row about 4 for its clear, and more where any block reaches the row (a
 // reached row is mostly a covered row: perspective's near tile rows hold 1-6 blocks of big
-// triangles each and cost about 1M instructions to fill; 40 until session 16). The weights move
-// with the paths' costs: session 15 tried 4 and 6 as its changes shifted work between blocks and
+// triangles each and cost about 1M instructions to fill; 40 before 134c834). The weights move
+// with the paths' costs: 30c5ae9 to 77da606 tried 4 and 6 as its changes shifted work between blocks and
 // filled tiles, and at its end perspective's two workers split 426/430 us with 8 (7 and 9 alike),
 // 438/394 with 6.
-// Session 16 (blocks with clipped lanes now counted in their rows) measured each of perspective's
+// 134c834 (blocks with clipped lanes counted in their rows) measured each of perspective's
 // rows alone: its near rows (a few big triangles' blocks each) cost 46-54 us, its horizon row (818
 // blocks of tiny triangles) 184 us. A filled tile now weighs 100: after a lavapipe render the two
 // workers split 532/498 us, against 467/587 with 40 (and 0.75-0.76 ms against 0.79-0.80 a render).

@@ -8,7 +8,7 @@
 // its rows are cut once per job (flat_edge_rows); all-in edges (0, 0, 0) cover everything.
 //
 // Exactness. Four consecutive rows sit in the lanes of double vectors, one vector per bounding
-// edge (rows in the lanes, session 13: one edge's operations serve four rows). n_i is an
+// edge (rows in the lanes, 68726c2: one edge's operations serve four rows). n_i is an
 // integer with |n_i| < 2^31 (a pixel of the tile, tile_edges.hpp), so q = n_i * (-1/gx_i), rounded
 // twice, is within 2^-19 of the quotient, and the candidate c (ceil(q) for L, floor(q) for U) is
 // within one of the bound. c is clamped to [u_first - 1, u_last + 1] (|c| <= 73: every value below is

@@ -87,7 +87,7 @@ struct SmallBlockOutput {
 };
 
 // A block in the 4x4 layout goes to the window when its union holds at least this many pixels
-// (about 4 per lane): below it, the packed scatter costs less (docs/performance.md, log 34, 56).
+// (about 4 per lane): below it, the packed scatter costs less (docs/performance-log.md: d95728d, a8e02a1).
 inline constexpr int32_t kWindowMinUnion = 32;
 
 // Whether a set-up block goes to the window compositor (small_window.hpp, AVX-512 set-ups): grid

@@ -424,13 +424,13 @@ RASTERCMP_AVX2 void measure_bounds_avx2(const uint32_t* depth, int32_t width, co
   hi = shi;
 }
 
-// No streaming stores: those session 12 used for runs of 256 KiB and more were slower once tile
+// No streaming stores: those f1351bf used for runs of 256 KiB and more were slower once tile
 // rows were cleared whole (clear_tile_row: the rows a draw goes on to write were sent to memory;
-// docs/performance.md, session 15). Runs of kRepStosWords and more (whole rows of tiles) take
+// docs/performance-log.md, 96b2e7d). Runs of kRepStosWords and more (whole rows of tiles) take
 // `rep stosl` (ERMS/FSRM microcode): as fast as the vector stores when the lines are cached, and
 // 10-25% faster when they are not, the usual case in a render that follows other work (a throw-away
 // driver on 8 MiB after an eviction: 173 against 208-228 us; perspective after a lavapipe render
-// -1 to -6%; docs/performance.md, session 16). Below it the vector stores (its start-up costs more).
+// -1 to -6%; docs/performance-log.md, d5199fc). Below it the vector stores (its start-up costs more).
 constexpr size_t kRepStosWords = 4096;
 
 RASTERCMP_AVX2 void fill_words_avx2(uint32_t* p, size_t count, uint32_t value) {

@@ -65,7 +65,7 @@ RASTERCMP_AVX512 inline __mmask16 step16(const Plane16& plane, __m512 inner, __m
 // columns for a narrow triangle: a few operations per row instead of a division per edge and
 // four rows. Each row takes its steps whether or not a pixel is covered (an empty mask loads and
 // stores nothing): a branch on the mask cost more in mispredictions than the steps it saved
-// (perspective -4%, docs/performance.md, session 16).
+// (perspective -4%, docs/performance-log.md, 4ada090).
 template <DepthFormat F, CompareOp Op>
 RASTERCMP_AVX512 bool narrow16(const KernelJob& j, const KernelDepth& d, const TileTarget& t) {
   const Plane16 plane = plane16(j, d);

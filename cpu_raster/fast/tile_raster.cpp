@@ -132,7 +132,7 @@ BoundsUse raster_prepared(const FastTriangle& t, const TileTriangle& prepared, i
 // A run of neighbouring tiles is filled one pixel row at a time (the whole run at once where it
 // spans the width): long runs of stores, which the hardware prefetcher keeps ahead of. Tile by
 // tile, in the order a draw reaches them, the same 8 MiB took 0.23-0.27 ms instead of 0.09-0.10
-// (docs/performance.md, session 15).
+// (docs/performance-log.md, 96b2e7d).
 void clear_tile_row(int32_t tile_y, const FrameRaster& frame) {
   for (int32_t tx = 0; tx < frame.tiles_x; ++tx) {
     if (frame.tile(tx, tile_y).cleared) continue;

@@ -13,7 +13,7 @@
 // the atomic counters before it sleeps, and the caller waiting for the others for up to
 // kCallerSpinMicros: it has nothing else to do, and once asleep it woke 0.1-0.2 ms after the last
 // worker finished (perspective after a lavapipe render, a worker 120 us behind the caller: 0.86-0.93
-// ms a render with 100 us, 0.73 with 1 ms; session 16).
+// ms a render with 100 us, 0.73 with 1 ms; docs/performance-log.md, 134c834).
 #pragma once
 
 #include <atomic>
