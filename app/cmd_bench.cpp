@@ -51,6 +51,7 @@ struct BenchArgs {
   std::vector<std::string> scenes;  // empty: all standard scenes and the suite
   std::string suite_dir;            // empty: the built-in suite (default_suite_dir)
   bool scaling = false;             // the fast path alone at 1, 2, 4, ... threads
+  bool model = false;               // with scaling: N workers' phase times projected to N cores
   std::string chart_dir = "bench-scaling";
 };
 
@@ -390,7 +391,161 @@ int run_scaling(const BenchArgs& args) {
   return kExitOk;
 }
 
+// --scaling --model: a model of the fast path on N cores, measured on the cores there are. Each
+// render runs with N threads (as render_cpu_fast does: a small scene takes one worker) and records
+// each worker's thread CPU time per phase (RenderProfile); on N free cores a phase would take its busiest worker's time,
+// so the projected render time is the calling thread's serial time plus the busiest worker's per
+// phase, and the projected speed-up at N is projected(1) / projected(N). What it leaves out:
+// waking the workers, memory bandwidth and caches shared by N cores (a core's time here is
+// measured with its working set alone in its cache only when N <= cores). Checked against the
+// measured wall time where N <= hardware threads. Median over --reps per N.
+struct ModelPoint {
+  double projected = 0, wall = 0;  // seconds per render of the case, medians over the reps
+  std::vector<std::pair<std::string, double>> phases;  // per phase: the busiest worker, summed over scenes
+  double worker_spread = 0;        // bands phase: busiest / mean worker time (1 = even)
+};
+
+ModelPoint model_point(std::vector<Scene>& scenes, std::vector<RenderResult>& results, CpuOptions options,
+                       uint32_t workers, unsigned reps) {
+  options.threads = workers;
+  cpu::fast::RenderProfile profile;
+  cpu::fast::FastConfig config;
+  config.profile = &profile;
+  std::vector<double> projected, wall;
+  std::vector<std::vector<std::pair<std::string, double>>> phases;
+  std::vector<double> spreads;
+  for (unsigned rep = 0; rep < reps; ++rep) {
+    double rep_projected = 0, rep_wall = 0, busiest_bands = 0, mean_bands = 0;
+    std::vector<std::pair<std::string, double>> rep_phases;
+    for (size_t i = 0; i < scenes.size(); ++i) {
+      rep_wall += seconds_of([&] { cpu::fast::render_fast_into(scenes[i], options, config, results[i]); });
+      rep_projected += profile.serial_seconds;
+      for (const cpu::fast::PhaseTimes& phase : profile.phases) {
+        const double busiest = *std::max_element(phase.worker_seconds.begin(), phase.worker_seconds.end());
+        rep_projected += busiest;
+        auto it = std::find_if(rep_phases.begin(), rep_phases.end(), [&](const auto& p) { return p.first == phase.phase; });
+        if (it == rep_phases.end()) it = rep_phases.insert(rep_phases.end(), {phase.phase, 0.0});
+        it->second += busiest;
+        if (phase.phase == "bands") {
+          busiest_bands += busiest;
+          double sum = 0;
+          for (double t : phase.worker_seconds) sum += t;
+          mean_bands += sum / double(phase.worker_seconds.size());
+        }
+      }
+      rep_phases.insert(rep_phases.begin(), {"serial", 0.0});
+      rep_phases.front().second += profile.serial_seconds;
+      // fold a repeated "serial" entry of later scenes into the first
+      for (size_t k = 1; k < rep_phases.size(); ++k)
+        if (rep_phases[k].first == "serial") {
+          rep_phases.front().second += rep_phases[k].second;
+          rep_phases.erase(rep_phases.begin() + long(k));
+          break;
+        }
+    }
+    projected.push_back(rep_projected);
+    wall.push_back(rep_wall);
+    phases.push_back(std::move(rep_phases));
+    spreads.push_back(mean_bands > 0 ? busiest_bands / mean_bands : 1.0);
+  }
+  ModelPoint point;
+  point.projected = bench::summarize(projected).median;
+  point.wall = bench::summarize(wall).median;
+  point.worker_spread = bench::summarize(spreads).median;
+  // the phases of the rep whose projection is the median's (its breakdown sums to it)
+  const size_t median_rep = size_t(std::min_element(projected.begin(), projected.end(),
+                                                    [&](double a, double b) {
+                                                      return std::abs(a - point.projected) < std::abs(b - point.projected);
+                                                    }) -
+                                   projected.begin());
+  point.phases = phases[median_rep];
+  return point;
+}
+
+int run_scaling_model(const BenchArgs& args) {
+  std::vector<BenchCase> cases = make_cases(args);
+  const std::vector<uint32_t> counts = {1, 2, 4, 8, 16, 32, 64};
+  const uint32_t cores = std::max(1u, std::thread::hardware_concurrency());
+  CpuOptions options;
+  options.fma = lavapipe_fuses_on_this_host();
+  bench::LoadMonitor load;
+  load.start();
+  fmt::print("CPU: {} ({} hardware threads), fast path kernels: {}\n", cpu_model(), cores, fast_kernels());
+  fmt::print("fast path on N workers, projected from each worker's thread CPU time per phase; median of {} reps\n",
+             args.reps);
+  fmt::print("projected = serial + busiest worker per phase; measured: wall time, where N <= {} hardware threads\n\n",
+             cores);
+  fmt::print("| scene | N | projected ms | speed-up | measured ms | bands busiest/mean | largest phase |\n");
+  fmt::print("|---|---:|---:|---:|---:|---:|---|\n");
+  nlohmann::ordered_json j;
+  j["cpu_model"] = cpu_model();
+  j["hardware_threads"] = cores;
+  j["fast_kernels"] = fast_kernels();
+  j["reps"] = args.reps;
+  std::vector<experiments::DataBlock> blocks;
+  std::string plot = "plot ";
+  for (BenchCase& c : cases) {
+    std::vector<Scene> kept;
+    std::vector<RenderResult> results;
+    for (Scene& scene : c.scenes) {
+      try {
+        results.push_back(render_cpu_fast(scene, options));
+        kept.push_back(std::move(scene));
+      } catch (const NotSupportedError&) {
+      }
+    }
+    experiments::DataBlock block{c.name, {{"workers", "speedup", experiments::gp_quote(c.name)}}};
+    nlohmann::ordered_json row{{"name", c.name}};
+    double one = 0;
+    for (const uint32_t n : counts) {
+      const ModelPoint point = model_point(kept, results, options, n, args.reps);
+      if (n == 1) one = point.projected;
+      const double speedup = point.projected > 0 ? one / point.projected : 0;
+      const auto largest = std::max_element(point.phases.begin(), point.phases.end(),
+                                            [](const auto& a, const auto& b) { return a.second < b.second; });
+      fmt::print("| {} | {} | {:.2f} | {:.2f}x | {} | {:.2f} | {} {:.0f}% |\n", c.name, n, point.projected * 1e3, speedup,
+                 n <= cores ? fmt::format("{:.2f}", point.wall * 1e3) : std::string("-"), point.worker_spread,
+                 largest->first, point.projected > 0 ? 100.0 * largest->second / point.projected : 0.0);
+      std::fflush(stdout);
+      block.rows.push_back({fmt::format("{}", n), fmt::format("{}", speedup), "x"});
+      nlohmann::ordered_json phases;
+      for (const auto& [name, seconds] : point.phases) phases[name] = seconds;
+      row["workers"].push_back({{"workers", n},
+                                {"projected_seconds", point.projected},
+                                {"projected_speedup", speedup},
+                                {"measured_wall_seconds", n <= cores ? nlohmann::json(point.wall) : nlohmann::json()},
+                                {"bands_busiest_over_mean", point.worker_spread},
+                                {"phases_busiest_seconds", phases}});
+    }
+    plot += fmt::format("DATA index {} using 1:2 title columnheader(3) with linespoints lw 2 pt 7, ", blocks.size());
+    blocks.push_back(std::move(block));
+    j["scenes"].push_back(std::move(row));
+  }
+  load.stop();
+  j["load"] = {{"other_processes_cores", load.other_cores()},
+               {"this_run_cores", load.own_cores()},
+               {"load_average_1min", load.load_average_1min()},
+               {"seconds", load.wall_seconds()}};
+  fmt::print("\nload: other processes kept {:.2f} of the cores busy on average, this run {:.2f}, over {:.1f} s\n",
+             load.other_cores(), load.own_cores(), load.wall_seconds());
+  if (!args.json_path.empty()) {
+    std::ofstream out(args.json_path);
+    if (!out) throw UsageError("--json " + args.json_path + ": cannot write the file");
+    out << j.dump(2) << "\n";
+  }
+  const std::string body =
+      "set title " + experiments::gp_quote("fast path: projected speed-up on N cores (" + cpu_model() + ")") +
+      " noenhanced\nset logscale xy 2\nset xlabel 'workers N'\nset ylabel 'projected speed-up over 1 worker'\n"
+      "set key outside right top\nset grid\n" +
+      plot + "x title 'ideal' with lines dt 2 lc rgb 'gray'\n";
+  std::filesystem::create_directories(args.chart_dir);
+  experiments::render_chart(args.chart_dir, "bench_scaling_model", blocks, body);
+  fmt::print("\nchart: {}/bench_scaling_model.svg and .png\n", args.chart_dir);
+  return kExitOk;
+}
+
 int run_bench(const BenchArgs& args) {
+  if (args.scaling && args.model) return run_scaling_model(args);
   if (args.scaling) return run_scaling(args);
   setenv("LP_NUM_THREADS", "2", 0);  // before the device exists; an explicit setting wins
   std::optional<OutputFolder> json_folder;  // --json checked before the minutes of timing
@@ -431,6 +586,9 @@ void add_bench_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--threads", args->threads, "threads of the fast CPU path")->check(CLI::Range(1, 64));
   cmd->add_flag("--scaling", args->scaling,
                 "time the fast path alone at 1, 2, 4, ... threads up to the host's and chart time against threads");
+  cmd->add_flag("--model", args->model,
+                "with --scaling: render with 1, 2, 4, ..., 64 threads on the cores there are and project each N's time "
+                "on N cores from every worker's thread CPU time per phase");
   cmd->add_option("--chart-dir", args->chart_dir, "folder of the --scaling chart (default bench-scaling)");
   cmd->callback([args, &exit_code] { exit_code = run_bench(*args); });
 }

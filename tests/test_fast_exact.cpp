@@ -171,7 +171,7 @@ TEST(FastWindowMeshes, WindowCompositorMatchesExactPath) {
     expect_fast_matches(jittered_mesh(seed, 2.0, 4.0), seed % 2 == 0, {1u, 2u, 3u});
 }
 
-// Issue #23: the workers share the tile rows out by estimated work (row_balance.hpp), not as
+// The workers share the tile rows out by estimated work (row_balance.hpp), not as
 // r % workers. A 200x320 frame (five tile rows): a quad over the left part of every row (the
 // right tiles of rows 0, 1, 3 and 4 are cleared untouched), then a jittered mesh of 2-4 pixel cells
 // crowded into tile row 2 (nearly every block's work there), then big and thin triangles across
@@ -290,6 +290,29 @@ TEST(FastBenchScenes, SmallVersionsMatchExactPath) {
   expect_fast_matches(bench::lines_scene(300, 160), true);
   expect_fast_matches(bench::msaa_grid_scene(24, 96), true);
   expect_fast_matches(bench::engine_scene(480, 270), true);  // a real model: 115 draws, 121,496 triangles
+}
+
+// Lines and 4x frames (drawn by the exact rasterizer on each worker's tile rows): thousands of
+// primitives piled onto a small frame, with a compare op under which the later of two primitives
+// wins every tie (LESS_OR_EQUAL) or every sample (ALWAYS), so a primitive drawn out of order on
+// some worker changes the bytes. Wide and Bresenham lines, a 4x grid drawn twice, and a scissor and
+// fractional viewport offset that cut primitives at tile borders.
+TEST(FastExactRows, ManyPrimitivesKeepTheirOrderOnEveryWorker) {
+  for (const CompareOp op : {CompareOp::LessOrEqual, CompareOp::Always}) {
+    Scene lines = bench::lines_scene(6221, 150);
+    lines.draws[0].state.depth.compare_op = op;
+    expect_fast_matches(lines, true, {1u, 3u});
+    lines.draws[0].state.line_width = 3.0f;
+    lines.draws[0].state.line_mode = LineMode::Bresenham;
+    lines.scissor = Rect2D{5, 63, 140, 70};
+    expect_fast_matches(lines, false, {2u});
+
+    Scene msaa = bench::msaa_grid_scene(48, 140);  // 4,608 triangles a draw
+    msaa.draws.push_back(msaa.draws[0]);
+    for (Draw& draw : msaa.draws) draw.state.depth.compare_op = op;
+    msaa.viewport = Viewport{-3.5f, 60.25f, 150.0f, 90.0f, 0.0f, 1.0f};
+    expect_fast_matches(msaa, true, {1u, 2u, 3u});
+  }
 }
 
 // Triangles that need clipping, set up once by the block-row phase and drawn from its table by

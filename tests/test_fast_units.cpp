@@ -114,6 +114,37 @@ TEST(FastMemory, DepthBufferTakesTheOtherHalfOfThePage) {
   EXPECT_EQ(page_offset(result.depth_raw), 2048u);
 }
 
+// bench --scaling --model's input: a profiled render lists its phases in order, each with one CPU
+// time per worker, the tile-row walk ("bands") with work on every worker of a scene tall enough
+// for all of them, and its bytes are those of the render without a profile.
+TEST(FastRenderProfile, EveryPhaseHasEachWorkersTime) {
+  const Scene scene = bench::grid_scene(120, 512);  // 28,800 triangles over eight tile rows
+  CpuOptions options;
+  options.threads = 4;
+  FastConfig config;
+  RenderProfile profile;
+  config.profile = &profile;
+  const RenderResult plain = render_fast(scene, options, FastConfig{});
+  const RenderResult profiled = render_fast(scene, options, config);
+  EXPECT_TRUE(fast_test::same_bytes(plain, profiled));
+  std::vector<std::string> names;
+  for (const PhaseTimes& phase : profile.phases) {
+    names.push_back(phase.phase);
+    ASSERT_EQ(phase.worker_seconds.size(), 4u) << phase.phase;
+    for (const double t : phase.worker_seconds) EXPECT_GE(t, 0.0) << phase.phase;
+  }
+  EXPECT_EQ(names, (std::vector<std::string>{"vertices", "block rows", "bands"}));
+  for (const double t : profile.phases.back().worker_seconds) EXPECT_GT(t, 0.0);
+  EXPECT_GE(profile.serial_seconds, 0.0);
+  // One thread: the same phases on one worker, no pool; a second render refills, not appends.
+  options.threads = 1;
+  render_fast(scene, options, config);
+  render_fast(scene, options, config);
+  ASSERT_FALSE(profile.phases.empty());
+  for (const PhaseTimes& phase : profile.phases) EXPECT_EQ(phase.worker_seconds.size(), 1u) << phase.phase;
+  EXPECT_EQ(profile.phases.size(), 2u);  // vertices and bands: one worker measures no block rows
+}
+
 TEST(FastWorkerPool, EveryJobFlushesDenormals) {
   ASSERT_FALSE(cpu::denormals_flushed());
   std::vector<int> flushed(7, -1);
@@ -290,7 +321,7 @@ TEST(FastBlockRows, BlocksWithEveryLaneOutsideOnePlaneAreLeftOut) {
   EXPECT_GT(kept, 200);
 }
 
-// The tile rows' assignment (issue #23): every row to exactly one of the workers, the same
+// The tile rows' assignment: every row to exactly one of the workers, the same
 // answer every time, and on a skewed estimate (perspective's: one row 40% of the work) a split
 // close to the best whole rows allow, where r % 2 gives 61/39.
 std::vector<uint64_t> worker_loads(const std::vector<uint64_t>& weights, const std::vector<uint32_t>& owner,

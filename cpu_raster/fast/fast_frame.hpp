@@ -11,6 +11,7 @@
 #include "cpu_raster/exact/front_end.hpp"
 #include "cpu_raster/exact/render_targets.hpp"
 #include "cpu_raster/fast/fast_vertices.hpp"
+#include "cpu_raster/fast/render_fast.hpp"
 #include "cpu_raster/fast/tile_raster.hpp"
 
 namespace rastercmp::cpu::fast {
@@ -74,6 +75,8 @@ struct FastFrame {
   // more of them (a camera's sky: six of perspective's sixteen rows).
   std::vector<int32_t> unowned_rows;
   std::atomic<size_t> next_unowned{0};
+  RenderProfile* profile = nullptr;  // FastConfig::profile
+  double serial_mark = 0;            // profiled: the calling thread's CPU time when its last phase ended
 };
 
 }  // namespace rastercmp::cpu::fast

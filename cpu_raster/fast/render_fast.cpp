@@ -10,6 +10,8 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <ctime>
+#include <functional>
 #include <memory>
 
 #include "cpu_raster/exact/assemble.hpp"
@@ -35,6 +37,41 @@ namespace cpu::fast {
 namespace {
 
 constexpr size_t kVertexBlock = 4096;  // positions per task of the vertex phase
+
+double thread_cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return double(t.tv_sec) + double(t.tv_nsec) * 1e-9;
+}
+
+// job(0) .. job(workers - 1) at once (job(0) on the calling thread; one worker: just job(0)),
+// each one's thread CPU time recorded under `phase` when the render is profiled.
+void run_phase(FastFrame& frame, const char* phase, uint32_t workers, const std::function<void(uint32_t)>& job) {
+  if (frame.profile == nullptr) {
+    if (workers == 1)
+      job(0);
+    else
+      worker_pool(workers).run(job);
+    return;
+  }
+  // The calling thread's time since the last phase is serial; its time inside the pool's run
+  // outside job(0) (waking the others, spinning until they finish) belongs to no phase: on N free
+  // cores it would overlap the busiest worker's.
+  const double phase_start = thread_cpu_seconds();
+  frame.profile->serial_seconds += phase_start - frame.serial_mark;
+  PhaseTimes times{phase, std::vector<double>(workers, 0.0)};
+  const auto timed = [&](uint32_t w) {
+    const double start = thread_cpu_seconds();
+    job(w);
+    times.worker_seconds[w] = thread_cpu_seconds() - start;
+  };
+  if (workers == 1)
+    timed(0);
+  else
+    worker_pool(workers).run(timed);
+  frame.profile->phases.push_back(std::move(times));
+  frame.serial_mark = thread_cpu_seconds();
+}
 
 // Stored depth values keep the order the bounds rely on (tile_depth_bounds.hpp) in every draw.
 bool frame_bounds_usable(const Scene& scene, const std::vector<FastDraw>& draws) {
@@ -203,16 +240,11 @@ void transform_all_vertices(FastFrame& frame, bool check_pending) {
                                           : transform_vertices_scalar;
     task.flags = pass(job, task.begin, task.end, fd.vertices, fd.tile_rows);
   };
-  if (frame.workers == 1 || tasks.size() <= 1) {
-    if (check_pending) check_lavapipe_profile_support_but_indices(*frame.scene);
-    for (VertexTask& task : tasks) run(task);
-  } else {
-    std::atomic<size_t> next{0};
-    worker_pool(frame.workers).run([&](uint32_t w) {
-      if (w == 0 && check_pending) check_lavapipe_profile_support_but_indices(*frame.scene);
-      for (size_t i = next++; i < tasks.size(); i = next++) run(tasks[i]);
-    });
-  }
+  std::atomic<size_t> next{0};
+  run_phase(frame, "vertices", tasks.size() <= 1 ? 1 : frame.workers, [&](uint32_t w) {
+    if (w == 0 && check_pending) check_lavapipe_profile_support_but_indices(*frame.scene);
+    for (size_t i = next++; i < tasks.size(); i = next++) run(tasks[i]);
+  });
   std::vector<uint32_t> draw_flags(frame.draws.size(), 0);
   for (const VertexTask& task : tasks) draw_flags[task.draw] |= task.flags;
   for (uint32_t d = 0; d < frame.draws.size(); ++d) {
@@ -282,7 +314,7 @@ bool count_block_rows(const uint32_t* block_rows, uint32_t n, size_t tiles_y, in
   return any_row;
 }
 
-// Which worker draws each tile row (issue #23), from the blocks that reach each row (`reach`:
+// Which worker draws each tile row, from the blocks that reach each row (`reach`:
 // `tasks` arrays of tiles_y + 1 differences) and the row's width (tile_row_weight), whole rows
 // shared out by balance_rows. No block reaching any row: r % workers, as before. When every draw
 // is one of small blocks and each block's rows are known (`rows_known`), a row no block reaches is
@@ -339,7 +371,7 @@ void measure_all_block_rows(FastFrame& frame) {
   std::vector<ClippedTable> clipped(tasks.size());  // the tasks' clipped triangles (clipped_pieces.hpp)
   std::atomic<size_t> next{0};
   std::atomic<bool> bad_index{false}, any_row{false};
-  worker_pool(frame.workers).run([&](uint32_t) {
+  run_phase(frame, "block rows", frame.workers, [&](uint32_t) {
     for (size_t i = next++; i < tasks.size(); i = next++) {
       const RowTask& task = tasks[i];
       if (!measure_block_rows(frame, task.draw, task.begin, task.end)) {
@@ -359,11 +391,7 @@ void measure_all_block_rows(FastFrame& frame) {
 
 // Phase 4: every worker walks every draw into its own tile rows.
 void run_workers(FastFrame& frame) {
-  if (frame.workers == 1) {
-    BandWorker(frame, 0).run();
-    return;
-  }
-  worker_pool(frame.workers).run([&frame](uint32_t w) { BandWorker(frame, w).run(); });
+  run_phase(frame, "bands", frame.workers, [&frame](uint32_t w) { BandWorker(frame, w).run(); });
 }
 
 }  // namespace
@@ -373,6 +401,8 @@ void render_fast_into(const Scene& scene, const CpuOptions& options, const FastC
     result = render_exact(scene, options);  // the set-up method switches live in the exact path only
     return;
   }
+  if (config.profile) *config.profile = RenderProfile{};
+  const double start = config.profile ? thread_cpu_seconds() : 0.0;
   // The sizes first (they decide the allocations); with several workers the check runs beside
   // the vertex phase, and the index scans later, folded into the block-row phase where it reads
   // them (an index buffer is read once instead of twice before the walks).
@@ -384,6 +414,8 @@ void render_fast_into(const Scene& scene, const CpuOptions& options, const FastC
   const bool check_pending = several;
   const DenormalsFlushed ftz_daz;  // as the exact path; the pool sets it in its jobs (rules §7.10)
   FastFrame frame;
+  frame.profile = config.profile;
+  frame.serial_mark = start;
   init_frame(frame, scene, options, config, result);
   transform_all_vertices(frame, check_pending);
   if (check_pending) {
@@ -392,6 +424,7 @@ void render_fast_into(const Scene& scene, const CpuOptions& options, const FastC
   }
   run_workers(frame);
   move_into_result(std::move(frame.targets), lavapipe_profile_device(options), options.fma, result);
+  if (config.profile) config.profile->serial_seconds += thread_cpu_seconds() - frame.serial_mark;
 }
 
 RenderResult render_fast(const Scene& scene, const CpuOptions& options, const FastConfig& config) {

@@ -3,6 +3,8 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
+#include <vector>
 
 #include "cpu_raster/exact/cpu_options.hpp"
 #include "model/render_result.hpp"
@@ -19,11 +21,25 @@ void render_cpu_fast_into(const Scene& scene, const CpuOptions& options, RenderR
 
 namespace cpu::fast {
 
+// Where the CPU time of one render went: per phase, each worker's thread CPU time
+// (CLOCK_THREAD_CPUTIME_ID around its share of the phase), and the calling thread's time outside
+// the phases. `bench --scaling --model` runs N workers on the cores there are and projects the
+// time on N cores from it: the serial time plus, per phase, the busiest worker's.
+struct PhaseTimes {
+  std::string phase;
+  std::vector<double> worker_seconds;  // one per worker
+};
+struct RenderProfile {
+  std::vector<PhaseTimes> phases;  // in the order they ran
+  double serial_seconds = 0;       // the calling thread's time outside the phases
+};
+
 // Knobs for tests and benchmarks; the defaults are what render_cpu_fast uses.
 struct FastConfig {
   bool allow_avx2 = true;     // false: the scalar kernels even on an AVX2 host
   bool every_thread = false;  // true: options.threads workers even where one would do (tests)
   bool allow_avx512 = true;   // false: the AVX2 kernels even on an AVX-512 host
+  RenderProfile* profile = nullptr;  // filled when set (cleared first)
 };
 
 void render_fast_into(const Scene& scene, const CpuOptions& options, const FastConfig& config, RenderResult& result);
