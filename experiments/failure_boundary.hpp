@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -18,7 +19,28 @@ struct FailureBoundary {
   double boundary = NAN;    // first failing parameter value; NaN when no point fails
   double last_clean = NAN;  // the point before it; NaN when the first point fails already
   size_t points = 0, failing = 0, refused = 0;
+  std::vector<double> refused_values;  // the parameters of the refused points, in plan order
 };
+
+// Where theory puts a series' boundary (docs/experiments.md "Method maps"), for the series that have
+// a prediction: the D16/D24/D32 z-fighting onset far/near of depth_far_near (usual mapping), the
+// pseudo-depth step per format and far plane, painter's first contact of the cyclic bars (0.081) and
+// the interpenetration depth at the first pixel centre (0.0531). nullopt for every other series.
+struct BoundaryPrediction {
+  double value = NAN;
+  std::string formula;  // how it was computed, in words
+};
+std::optional<BoundaryPrediction> predicted_boundary(const std::string& experiment, const std::string& case_name,
+                                                     const std::string& method);
+
+// The measured bracket in increasing order (a descending sweep's first failing value is its low
+// end) and whether the prediction lies in it (low < predicted <= high, or the reverse for a
+// descending sweep: the true boundary lies after the last clean value).
+struct BracketCheck {
+  double measured_low = NAN, measured_high = NAN;
+  bool in_bracket = false;
+};
+BracketCheck check_bracket(const FailureBoundary& b, double predicted);
 
 // The measure of one row: "any_mismatch" = samples whose owner or raw depth differs from the
 // reference (coverage_mismatch + depth_mismatch), otherwise the named column (value_cpu: the

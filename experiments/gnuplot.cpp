@@ -93,6 +93,41 @@ std::string zero_tic_command(const std::string& axis, double floor) {
   return fmt::format("set {}tics add ('0' {:g})\n", axis, floor);
 }
 
+SymlogAxis::SymlogAxis(const std::vector<double>& values) {
+  double smallest = 0;
+  for (double v : values)
+    if (v != 0 && std::isfinite(v) && (smallest == 0 || std::fabs(v) < smallest)) smallest = std::fabs(v);
+  c = smallest == 0 ? 1 : smallest;
+}
+
+double SymlogAxis::position(double x) const {
+  const double m = std::fabs(x);
+  if (m < c) return x / c;
+  return std::copysign(1 + std::log10(m / c), x);
+}
+
+std::string SymlogAxis::tics_command(const std::string& axis, const std::vector<std::string>& labels) const {
+  std::string text = "set " + axis + "tics (";
+  for (size_t i = 0; i < labels.size(); ++i)
+    text += fmt::format("{}{} {:.10g}", i ? ", " : "", gp_quote(labels[i]), position(std::stod(labels[i])));
+  return text + ")\n";
+}
+
+bool only_zeros(const std::vector<DataBlock>& blocks, size_t column) {
+  bool zero = false;
+  for (const DataBlock& block : blocks)
+    for (const auto& row : block.rows) {
+      if (row.size() <= column) continue;
+      char* end = nullptr;
+      const double v = std::strtod(row[column].c_str(), &end);
+      if (end == row[column].c_str() || *end != '\0') continue;  // not a number
+      if (std::isnan(v)) continue;
+      if (v != 0) return false;
+      zero = true;
+    }
+  return zero;
+}
+
 std::string gp_quote(const std::string& text) {
   std::string quoted = "'";
   for (char c : text) quoted += c == '\'' ? std::string("''") : std::string(1, c);

@@ -35,6 +35,23 @@ std::string noenhanced_text(const std::string& body);
 double log_axis_floor(const std::vector<double>& values);
 std::string zero_tic_command(const std::string& axis, double floor);  // "set xtics add ('0' F)"
 
+// A symmetric log axis for parameters that include 0 or negative values (w -> 0 -> -1e-6): a value
+// x is drawn at sign(x) (1 + log10(|x| / c)) when |x| >= c and at x / c below, with c the smallest
+// non-zero |x|, so 0 sits at 0 with a tic labelled "0" and every value at its real place on the
+// scale (one unit per decade), never at an equally spaced category.
+struct SymlogAxis {
+  double c = 1;
+  explicit SymlogAxis(const std::vector<double>& values);
+  double position(double x) const;
+  // "set xtics (...)" with a tic at each value (labelled as written) and at 0 when one is 0.
+  std::string tics_command(const std::string& axis, const std::vector<std::string>& labels) const;
+};
+
+// True when every number in column `column` of the blocks' rows is 0 or NaN and at least one is 0
+// (rows whose cell is not a number, such as a header, are skipped): such a chart would be a flat
+// line at 0, and the page shows a table instead.
+bool only_zeros(const std::vector<DataBlock>& blocks, size_t column);
+
 // Quotes a string for a gnuplot script ('...' with '' for a quote).
 std::string gp_quote(const std::string& text);
 

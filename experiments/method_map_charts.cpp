@@ -21,51 +21,77 @@ size_t method_style(std::string_view family, const std::string& method) {
   return methods.size() + 1;
 }
 
-// One panel: all parameters positive -> a log axis of the values; otherwise (0, negative w) the
-// values in plan order as categories, benign on the left.
+// One panel: all parameters positive -> a log axis of the values; otherwise (0, negative w) a
+// symmetric log axis (SymlogAxis), 0 at its tic: every point at its real value, benign on the left.
+// A refused point (not_supported) is a star in the method's colour along the top of the panel; a
+// predicted boundary (predicted_boundary) a dotted vertical line in the method's colour.
 std::string panel(const CsvTable& table, const MapExperiment& e, const std::string& case_name,
                   std::vector<DataBlock>& blocks) {
   const std::string experiment(e.name);
   const Where where{{"experiment", experiment}, {"case", case_name}};
   const std::vector<std::string> params = distinct(table, "param_a", where);
+  std::vector<double> values;
   bool positive = true;
-  for (const std::string& p : params) positive = positive && to_double(p) > 0;
-  const size_t param = table.column("param_a");
-  std::string plot = "plot ";
-  for (const std::string& method : distinct(table, "method", where)) {
-    DataBlock block{method, {{"\"" + method + "\"", "x"}}};
+  for (const std::string& p : params) {
+    values.push_back(to_double(p));
+    positive = positive && to_double(p) > 0;
+  }
+  const SymlogAxis symlog(values);
+  const auto x_of = [&](double v) { return positive ? fmt::format("{:.10g}", v) : fmt::format("{:.10g}", symlog.position(v)); };
+  const size_t param = table.column("param_a"), agree = table.column("cpu_vk_agree");
+  const std::vector<std::string> methods = distinct(table, "method", where);
+  std::string plot = "plot ", marks;
+  for (size_t k = 0; k < methods.size(); ++k) {
+    const std::string& method = methods[k];
+    const size_t style = method_style(e.family, method);
+    DataBlock block{method, {{"\"" + method + "\"", "x"}}}, refused{method + " refused", {{"\"" + method + " refused\"", "x"}}};
     for (const Row& row : select_rows(table, {{"experiment", experiment}, {"case", case_name}, {"method", method}})) {
+      if (row[agree] == "not_supported") {
+        refused.rows.push_back({x_of(to_double(row[param])), fmt::format("{:g}", 0.97 - 0.05 * double(k))});
+        continue;
+      }
       const double measure = map_measure(table, row, std::string(e.measure));
-      if (std::isnan(measure)) continue;  // refused: no point
-      size_t index = 0;
-      while (params[index] != row[param]) ++index;
-      block.rows.push_back({positive ? row[param] : std::to_string(index), num(measure)});
+      if (std::isnan(measure)) continue;
+      block.rows.push_back({x_of(to_double(row[param])), num(measure)});
     }
-    if (block.rows.empty()) block.rows.push_back({"NaN", "NaN"});
-    plot += fmt::format("DATA index {} using 1:2 title {} with linespoints lt {}, ", blocks.size(), gp_quote(method),
-                        method_style(e.family, method));
+    if (block.rows.size() == 1) block.rows.push_back({"NaN", "NaN"});
+    plot += fmt::format("DATA index {} using 1:2 title {} with linespoints lt {}, ", blocks.size(), gp_quote(method), style);
     blocks.push_back(block);
+    if (refused.rows.size() > 1) {
+      plot += fmt::format("DATA index {} using 1:2 axes x1y2 title {} with points lt {} pt 3 ps 2.5, ", blocks.size(),
+                          gp_quote(method + " refused"), style);
+      blocks.push_back(refused);
+    }
+    if (const auto prediction = predicted_boundary(experiment, case_name, method)) {
+      marks += fmt::format("set arrow from {}, graph 0 to {}, graph 1 nohead lt {} dt 3 lw 2\n", x_of(prediction->value),
+                           x_of(prediction->value), style);
+      plot += fmt::format("keyentry with lines lt {} dt 3 lw 2 title {}, ", style,
+                          gp_quote(fmt::format("{} predicted {:.3g}", method, prediction->value)));
+    }
   }
   plot.resize(plot.size() - 2);
   std::string axis;
+  // Benign on the left: a descending sweep gets a reversed axis (explicit bounds, half a step out).
+  const std::vector<Row> first = select_rows(table, {{"experiment", experiment}, {"case", case_name}, {"method", methods.front()}});
+  const bool descending = to_double(first.front()[param]) > to_double(first.back()[param]);
   if (positive) {
     axis = "set logscale x 10\nset format x '10^{%L}'\nunset xtics\nset xtics\n";
-    // Benign on the left: a descending sweep gets a reversed axis (explicit bounds, half a step out).
-    double low = to_double(params.front()), high = low;
-    for (const std::string& p : params) low = std::min(low, to_double(p)), high = std::max(high, to_double(p));
-    const std::vector<Row> first = select_rows(table, {{"experiment", experiment}, {"case", case_name},
-                                                       {"method", distinct(table, "method", where).front()}});
-    const bool descending = to_double(first.front()[param]) > to_double(first.back()[param]);
+    double low = values.front(), high = low;
+    for (double v : values) low = std::min(low, v), high = std::max(high, v);
     axis += descending ? fmt::format("set xrange [{:g}:{:g}]\n", high * 1.5, low / 1.5)
                        : fmt::format("set xrange [{:g}:{:g}]\n", low / 1.5, high * 1.5);
   } else {
-    axis = "unset logscale x\nset format x '%g'\nset xtics (";
-    for (size_t i = 0; i < params.size(); ++i) axis += (i ? ", " : "") + gp_quote(params[i]) + " " + std::to_string(i);
-    axis += ") rotate by -30\nset xrange [-0.5:" + std::to_string(params.size()) + "-0.5] noreverse\n";
+    double low = symlog.position(values.front()), high = low;
+    for (double v : values) low = std::min(low, symlog.position(v)), high = std::max(high, symlog.position(v));
+    axis = "unset logscale x\nset format x '%g'\n" + symlog.tics_command("x", params) +
+           "set xtics rotate by -30\n" +
+           (descending ? fmt::format("set xrange [{:g}:{:g}]\n", high + 0.5, low - 0.5)
+                       : fmt::format("set xrange [{:g}:{:g}]\n", low - 0.5, high + 0.5));
   }
   const std::string y = e.measure == "value_cpu" ? "set yrange [-0.02:1.02]\nset ylabel 'fraction won by the wrong surface'\n"
-                                                 : "set yrange [-0.5:1<*]\nset ylabel 'samples whose owner or depth differs from the reference'\n";
-  return "set title " + gp_quote(case_name) + "\n" + axis + y + plot + "\n";
+                                                 : "set yrange [-0.5:1<*]\nset ylabel 'samples that differ'\n";
+  return "set title " + gp_quote(case_name) + "\nunset arrow\nset y2range [0:1]\nunset y2tics\n" + axis + y + marks +
+         plot + "\n";
 }
 
 void chart(const std::string& dir, const CsvTable& table, const MapExperiment& e) {
@@ -73,7 +99,7 @@ void chart(const std::string& dir, const CsvTable& table, const MapExperiment& e
   if (cases.empty()) return;
   std::vector<DataBlock> blocks;
   const size_t columns = cases.size() < 2 ? 1 : cases.size() < 5 ? 2 : 3;
-  std::string body = "set xlabel " + gp_quote(std::string(e.parameter)) + "\nset key left center font ',9'\nset grid\n";
+  std::string body = "set xlabel " + gp_quote(std::string(e.parameter)) + "\nset key below font ',9' maxrows 3\nset grid\n";
   body += fmt::format("set multiplot layout {},{} title {} noenhanced\n", (cases.size() + columns - 1) / columns, columns,
                       gp_quote(std::string(e.family) + ": " + std::string(e.notes)));
   for (const std::string& c : cases) body += panel(table, e, c, blocks);

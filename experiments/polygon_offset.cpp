@@ -131,6 +131,8 @@ void run_series(VulkanRenderer& vk, CsvAppender& csv, const OffsetSeries& series
   }
 }
 
+}  // namespace
+
 std::string r_json(const std::vector<DepthRMeasure>& measures) {
   nlohmann::ordered_json out = nlohmann::ordered_json::array();
   for (const DepthRMeasure& m : measures)
@@ -141,11 +143,12 @@ std::string r_json(const std::vector<DepthRMeasure>& measures) {
                    {"raw_step_vulkan", m.raw_step_vk},
                    {"spec_bound", m.spec_bound},
                    {"lavapipe_formula", m.lavapipe_formula},
-                   {"r_over_spec_bound", m.r_vk / m.spec_bound}});
+                   {"r_over_spec_bound", m.r_vk / m.spec_bound},
+                   {"predicted", m.lavapipe_formula},
+                   {"predicted_over_spec_bound", m.lavapipe_formula / m.spec_bound},
+                   {"measured_over_predicted", m.r_vk / m.lavapipe_formula}});
   return out.dump(2) + "\n";
 }
-
-}  // namespace
 
 std::vector<std::string> polygon_offset_header() {
   return {"experiment", "scene",     "format",   "far_near", "angle_deg", "constant",     "slope",      "clamp",

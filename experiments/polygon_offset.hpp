@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "experiments/depth_r.hpp"
+#include "experiments/gnuplot.hpp"
 #include "experiments/scene_make.hpp"
 #include "experiments/sweep_common.hpp"
 
@@ -31,5 +32,13 @@ void run_polygon_offset_sweep(const SweepOptions& options);
 
 // Charts and index.html from the CSV and the r measurements (polygon_offset_charts.cpp).
 void write_polygon_offset_charts(const std::string& dir, const std::vector<DepthRMeasure>& r);
+
+// depth_r.json: per format the measured r on each backend, the spec bound, and lavapipe's r
+// (docs/lavapipe-rules.md §4.3) as `predicted`, also divided by the bound.
+std::string r_json(const std::vector<DepthRMeasure>& measures);
+
+// The depth_r chart's data: three blocks (measured CPU, measured Vulkan, predicted), rows
+// (format index, format, r / spec bound).
+std::vector<DataBlock> depth_r_blocks(const std::vector<DepthRMeasure>& measures);
 
 }  // namespace rastercmp::experiments

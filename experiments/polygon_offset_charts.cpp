@@ -124,32 +124,44 @@ void chart_angle(const std::string& dir, const CsvTable& table) {
   render_chart(dir, "wrong_vs_angle", blocks, body);
 }
 
-// One legend entry per formula and the formats it applies to: lavapipe's r is 2 mrd = 2/(2^n-1) for
-// the unorm formats and 2^(e-n) for d32_sfloat (docs/lavapipe-rules.md §4.3).
+// r / spec bound per format: the measured ratio on each backend beside lavapipe's predicted one
+// (depth_r_blocks), on a linear axis, where D16's excess 2^16/(2^16-1) = 1.0000153 shows.
 void chart_r(const std::string& dir, const std::vector<DepthRMeasure>& measures) {
-  const char* titles[] = {"measured, CPU", "measured, Vulkan", "spec bound", "lavapipe 2/(2^n-1), unorm",
-                          "lavapipe 2^(e-n), d32_sfloat"};
-  std::vector<DataBlock> blocks(5);
-  for (size_t s = 0; s < 5; ++s) blocks[s] = {titles[s], {{"x", fmt::format("\"{}\"", titles[s]), "x"}}};
-  for (size_t i = 0; i < measures.size(); ++i) {
-    const DepthRMeasure& m = measures[i];
-    const bool is_float = m.format == DepthFormat::D32Sfloat;
-    const double values[] = {m.r_cpu, m.r_vk, m.spec_bound, m.lavapipe_formula};
-    for (size_t s = 0; s < 4; ++s)
-      blocks[s == 3 && is_float ? 4 : s].rows.push_back({fmt::format("{}", double(i) + 0.1 * double(s) - 0.15),
-                                                         to_string(m.format), fmt::format("{:.10g}", values[s])});
-  }
-  const std::string body =
-      "set title 'r (depth step of constantFactor 1) per format: measured against the bounds'\n"
-      "set logscale y 10\nset format y '10^{%L}'\nset ylabel 'r (depth units)'\nset xrange [-0.6:2.6]\n"
-      "set xtics noenhanced ('d16_unorm' 0, 'x8_d24_unorm' 1, 'd32_sfloat at z 0.375' 2)\nset key outside right "
-      "top\nset grid\n"
-      "plot for [i=0:4] DATA index i using 1:3 title columnheader(2) with points lt (i+1) pt "
-      "(i==0?7:i==1?2:i==2?4:i==3?6:8) ps 2\n";
+  std::vector<DataBlock> blocks = depth_r_blocks(measures);
+  std::string tics;
+  for (size_t i = 0; i < measures.size(); ++i)
+    tics += fmt::format("{}{} {}", i ? ", " : "",
+                        gp_quote(std::string(to_string(measures[i].format)) +
+                                 (measures[i].format == DepthFormat::D32Sfloat ? " at z 0.375" : "")),
+                        i);
+  const std::string body = fmt::format(
+      "set title 'r (depth step of constantFactor 1) per format, divided by the spec bound'\n"
+      "set ylabel 'r / spec bound (UNORM: 2 x 2^-n; D32: 2^(e-23))'\nset format y '%.7f'\n"
+      "set xrange [-0.6:{}-0.4]\nset xtics noenhanced ({})\nset key below\nset grid\n"
+      "set arrow from graph 0, first 1 to graph 1, first 1 nohead dt 2 lc rgb '#888888'\n"
+      "plot DATA index 2 using 1:3:(0.3) title columnheader(2) with xerrorbars lc rgb '#2ca02c' lw 2 pt 0, \\\n"
+      "     DATA index 0 using 1:3 title columnheader(2) with points lt 1 pt 7 ps 2.5, \\\n"
+      "     DATA index 1 using 1:3 title columnheader(2) with points lt 2 pt 2 ps 3\n",
+      measures.size(), tics);
+  for (DataBlock& block : blocks) block.rows.insert(block.rows.begin(), {"x", "\"" + block.title + "\"", "x"});
   render_chart(dir, "depth_r", blocks, body);
 }
 
 }  // namespace
+
+std::vector<DataBlock> depth_r_blocks(const std::vector<DepthRMeasure>& measures) {
+  std::vector<DataBlock> blocks{{"measured r / bound, CPU", {}},
+                                {"measured r / bound, Vulkan", {}},
+                                {"predicted (lavapipe: 2/(2^n-1) UNORM, 2^(e-23) D32) / bound", {}}};
+  for (size_t i = 0; i < measures.size(); ++i) {
+    const DepthRMeasure& m = measures[i];
+    const std::string x = std::to_string(i), name = to_string(m.format);
+    blocks[0].rows.push_back({x, name, fmt::format("{:.10g}", m.r_cpu / m.spec_bound)});
+    blocks[1].rows.push_back({x, name, fmt::format("{:.10g}", m.r_vk / m.spec_bound)});
+    blocks[2].rows.push_back({x, name, fmt::format("{:.10g}", m.lavapipe_formula / m.spec_bound)});
+  }
+  return blocks;
+}
 
 void write_polygon_offset_charts(const std::string& dir, const std::vector<DepthRMeasure>& r) {
   const CsvTable table = read_csv((std::filesystem::path(dir) / kPolygonOffsetCsv).string());
@@ -177,7 +189,8 @@ void write_polygon_offset_charts(const std::string& dir, const std::vector<Depth
         {"min_constant_vs_angle", "min_slope_vs_angle", "wrong_vs_angle"}},
        {"Clamp", "A large offset limited by depthBiasClamp.", {"clamp"}},
        {"r per depth format",
-        "Measured from the stored depth of a flat plane at depth 0.375 with constantFactor 1 against 0 (depth_r.json).",
+        "Measured from the stored depth of a flat plane at depth 0.375 with constantFactor 1 against 0, divided by the "
+        "spec bound, beside lavapipe's predicted r (depth_r.json: r_cpu, r_vulkan, predicted, spec_bound).",
         {"depth_r"}}},
       {kPolygonOffsetCsv, "depth_r.json"});
 }

@@ -13,6 +13,8 @@
 #include <utility>
 #include <vector>
 
+#include "experiments/gnuplot.hpp"
+#include "experiments/scene_needs.hpp"
 #include "experiments/sweep_common.hpp"
 #include "model/scene.hpp"
 
@@ -25,6 +27,10 @@ inline constexpr const char* kSkipSavingsCsv = "skip_savings.csv";
 // attachment (every vertex inside), the perspective mesh (it crosses the clip planes), the house
 // (bias, culling) and the line star; --quick takes a smaller grid.
 std::vector<std::pair<std::string, Scene>> skip_timing_scenes(bool quick);
+
+// The suite_needs chart's data: one row per pipeline stage (stage, scenes that need it, scenes that
+// skip it), in pipeline_stages() order, with no header row (gnuplot would read one as data).
+DataBlock suite_needs_block(const std::vector<StageNeeds>& needs);
 
 // `suite`: (case name, scene) of every scene to report (the built-in suite from the command).
 void run_scene_needs(const SweepOptions& options, const std::vector<std::pair<std::string, Scene>>& suite);

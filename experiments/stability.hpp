@@ -13,7 +13,11 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "experiments/csv_log.hpp"
+#include "experiments/failure_boundary.hpp"
+#include "experiments/gnuplot.hpp"
 #include "experiments/scene_make.hpp"
 #include "experiments/sweep_common.hpp"
 
@@ -50,5 +54,19 @@ void write_stability_outputs(const std::string& dir);
 // The smallest far/near ratio of a (format, separation) series at which the wrong surface wins
 // anywhere on either backend; NaN when it never does.
 double fight_onset_ratio(const CsvTable& table, const std::string& format, const std::string& separation);
+
+// One series of stability.json's "boundaries": the measured bracket (last_clean, boundary), the
+// refused points and, where theory predicts the boundary (predicted_boundary), `predicted` beside
+// `measured_low` / `measured_high` and whether it lies in the bracket.
+nlohmann::ordered_json boundary_json(const FailureBoundary& b);
+
+// The data of the limit charts (far_distance, near_w, non_finite): a coverage and a depth block,
+// rows (x, parameter as written, mismatch). x is the parameter's place on a SymlogAxis of the
+// experiment's parameters, or the row's index for non_finite (case=value categories).
+std::vector<DataBlock> limit_blocks(const CsvTable& table, const std::string& experiment);
+
+// The page table shown instead of a limit chart whose mismatches are all 0 (only_zeros): a header,
+// then (case, method, parameter, coverage mismatch, depth mismatch, identical to lavapipe) per point.
+std::vector<std::vector<std::string>> limit_zero_table(const CsvTable& table, const std::string& experiment);
 
 }  // namespace rastercmp::experiments
