@@ -62,6 +62,32 @@ std::set<std::string> failing_cases(const fs::path& out) {
 
 std::string profile_of(const std::string& release) { return "lavapipe-" + release.substr(0, release.rfind('.')); }
 
+// conformance --captures judges a scene without a capture as a ResourceError, which the methods'
+// baseline accepts for its scenes: a scene added without recording it on every release would pass
+// unjudged. Each scene file of scenes/ has its capture folder (its path without ".json", holding
+// render.json) on every release, and every capture folder a scene.
+TEST(ReleaseCaptures, EveryBuiltInSceneHasACaptureOnEveryRelease) {
+  const fs::path scenes = kSourceDir / "scenes";
+  std::set<std::string> scene_cases;
+  for (const auto& entry : fs::recursive_directory_iterator(scenes))
+    if (entry.is_regular_file() && entry.path().extension() == ".json")
+      scene_cases.insert(fs::relative(entry.path(), scenes).replace_extension().generic_string());
+  ASSERT_GT(scene_cases.size(), 150u);
+  for (const std::string& release : kReleases) {
+    SCOPED_TRACE(release);
+    const fs::path suite = release_dir(release) / "suite";
+    std::set<std::string> captured;
+    for (const auto& entry : fs::recursive_directory_iterator(suite))
+      if (entry.is_regular_file() && entry.path().filename() == "render.json")
+        captured.insert(fs::relative(entry.path().parent_path(), suite).generic_string());
+    for (const std::string& name : scene_cases)
+      EXPECT_TRUE(captured.count(name)) << "scenes/" << name << ".json has no capture in " << suite
+                                        << " (tests/captures/README.md, \"Recording them again\")";
+    for (const std::string& name : captured)
+      EXPECT_TRUE(scene_cases.count(name)) << suite / name << " is the capture of no scene of scenes/";
+  }
+}
+
 TEST(ReleaseCaptures, EachReleasePassesWithTheRulesOfItsDriver) {
   for (const std::string& release : kReleases) {
     SCOPED_TRACE(release);
