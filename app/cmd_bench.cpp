@@ -416,10 +416,11 @@ ModelPoint model_point(std::vector<Scene>& scenes, std::vector<RenderResult>& re
   std::vector<double> spreads;
   for (unsigned rep = 0; rep < reps; ++rep) {
     double rep_projected = 0, rep_wall = 0, busiest_bands = 0, mean_bands = 0;
-    std::vector<std::pair<std::string, double>> rep_phases;
+    std::vector<std::pair<std::string, double>> rep_phases{{"serial", 0.0}};  // summed over the scenes
     for (size_t i = 0; i < scenes.size(); ++i) {
       rep_wall += seconds_of([&] { cpu::fast::render_fast_into(scenes[i], options, config, results[i]); });
       rep_projected += profile.serial_seconds;
+      rep_phases.front().second += profile.serial_seconds;
       for (const cpu::fast::PhaseTimes& phase : profile.phases) {
         const double busiest = *std::max_element(phase.worker_seconds.begin(), phase.worker_seconds.end());
         rep_projected += busiest;
@@ -433,15 +434,6 @@ ModelPoint model_point(std::vector<Scene>& scenes, std::vector<RenderResult>& re
           mean_bands += sum / double(phase.worker_seconds.size());
         }
       }
-      rep_phases.insert(rep_phases.begin(), {"serial", 0.0});
-      rep_phases.front().second += profile.serial_seconds;
-      // fold a repeated "serial" entry of later scenes into the first
-      for (size_t k = 1; k < rep_phases.size(); ++k)
-        if (rep_phases[k].first == "serial") {
-          rep_phases.front().second += rep_phases[k].second;
-          rep_phases.erase(rep_phases.begin() + long(k));
-          break;
-        }
     }
     projected.push_back(rep_projected);
     wall.push_back(rep_wall);
