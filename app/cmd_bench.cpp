@@ -55,17 +55,8 @@ struct BenchArgs {
   std::string chart_dir = "bench-scaling";
 };
 
-// The host's CPU, as /proc/cpuinfo names it ("unknown" elsewhere), and the fast path's kernels on it.
-std::string cpu_model() {
-  std::ifstream in("/proc/cpuinfo");
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.rfind("model name", 0) != 0) continue;
-    const size_t colon = line.find(':');
-    if (colon != std::string::npos) return line.substr(line.find_first_not_of(" \t", colon + 1));
-  }
-  return "unknown";
-}
+// The host's CPU (model/host.hpp) and the fast path's kernels on it.
+std::string cpu_model() { return host_cpu_model(); }
 
 const char* fast_kernels() {
   return cpu::fast::host_has_avx512() ? "avx512" : cpu::fast::host_has_avx2_fma() ? "avx2" : "scalar";
@@ -311,6 +302,14 @@ void write_json(const std::string& path, const std::vector<CaseReport>& reports,
   out << j.dump(2) << "\n";
 }
 
+// A --scaling chart DIR/NAME.{dat,gp,svg,png} (gnuplot), named on stdout.
+void write_chart(const std::string& dir, const std::string& name, const std::vector<experiments::DataBlock>& blocks,
+                 const std::string& body) {
+  std::filesystem::create_directories(dir);
+  experiments::render_chart(dir, name, blocks, body);
+  fmt::print("\nchart: {}/{}.svg and .png\n", dir, name);
+}
+
 // --scaling: the fast path alone, at 1, 2, 4, ... threads up to the host's hardware threads (and
 // that number itself), median of --reps renders into reused buffers per scene and count.
 std::vector<uint32_t> scaling_threads() {
@@ -385,9 +384,7 @@ int run_scaling(const BenchArgs& args) {
                            " noenhanced\nset logscale xy 2\nset xlabel 'threads'\nset ylabel 'ms (median)'\n"
                            "set key outside right top\nset grid\n" +
                            plot + "\n";
-  std::filesystem::create_directories(args.chart_dir);
-  experiments::render_chart(args.chart_dir, "bench_scaling", blocks, body);
-  fmt::print("\nchart: {}/bench_scaling.svg and .png\n", args.chart_dir);
+  write_chart(args.chart_dir, "bench_scaling", blocks, body);
   return kExitOk;
 }
 
@@ -530,9 +527,7 @@ int run_scaling_model(const BenchArgs& args) {
       " noenhanced\nset logscale xy 2\nset xlabel 'workers N'\nset ylabel 'projected speed-up over 1 worker'\n"
       "set key outside right top\nset grid\n" +
       plot + "x title 'ideal' with lines dt 2 lc rgb 'gray'\n";
-  std::filesystem::create_directories(args.chart_dir);
-  experiments::render_chart(args.chart_dir, "bench_scaling_model", blocks, body);
-  fmt::print("\nchart: {}/bench_scaling_model.svg and .png\n", args.chart_dir);
+  write_chart(args.chart_dir, "bench_scaling_model", blocks, body);
   return kExitOk;
 }
 

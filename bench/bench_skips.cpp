@@ -10,7 +10,6 @@
 // Use --benchmark_repetitions=N --benchmark_report_aggregates_only=true for medians and spread.
 #include <benchmark/benchmark.h>
 
-#include <time.h>
 
 #include <cstdio>
 #include <fstream>
@@ -23,12 +22,6 @@
 
 namespace rastercmp {
 namespace {
-
-double thread_cpu_seconds() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return double(t.tv_sec) + double(t.tv_nsec) * 1e-9;
-}
 
 std::string load_average() {
   std::ifstream in("/proc/loadavg");

@@ -1,7 +1,5 @@
 #include "experiments/skip_savings.hpp"
 
-#include <time.h>
-
 #include <filesystem>
 #include <stdexcept>
 
@@ -16,22 +14,17 @@
 #include "experiments/progress.hpp"
 #include "experiments/scene_make.hpp"
 #include "experiments/scene_needs.hpp"
+#include "model/host.hpp"
 
 namespace rastercmp::experiments {
 namespace {
 
-// Thread CPU time, as bench/bench_skips.cpp measures: the exact path (threads = 0) renders on the
-// calling thread, and the other processes of a shared machine then count less than in wall time.
-double thread_seconds() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return double(t.tv_sec) + double(t.tv_nsec) * 1e-9;
-}
-
+// Thread CPU time (as bench/bench_skips.cpp measures): the exact path (threads = 0) renders on
+// the calling thread, and the other processes of a shared machine then count less than in wall time.
 double seconds_of(const Scene& scene, const CpuOptions& cpu) {
-  const double start = thread_seconds();
+  const double start = thread_cpu_seconds();
   const RenderResult result = render_cpu(scene, cpu);
-  const double seconds = thread_seconds() - start;
+  const double seconds = thread_cpu_seconds() - start;
   if (result.owner.empty()) throw std::logic_error("empty render");  // keeps the render observable
   return seconds;
 }

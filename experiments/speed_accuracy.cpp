@@ -10,10 +10,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <memory>
 #include <numbers>
-#include <sstream>
 #include <stdexcept>
 
 #include "experiments/csv_log.hpp"
@@ -24,6 +22,7 @@
 #include "experiments/scene_make.hpp"
 #include "model/camera.hpp"
 #include "model/errors.hpp"
+#include "model/host.hpp"
 
 namespace rastercmp::experiments {
 namespace {
@@ -184,13 +183,6 @@ std::vector<Runner> runners_for(VulkanRenderer& vk, const std::vector<MethodEntr
   return runners;
 }
 
-std::string read_file_text(const std::string& path) {
-  std::ifstream in(path);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 double load_average_1min() {
   double load[1];
   return getloadavg(load, 1) == 1 ? load[0] : -1;
@@ -253,18 +245,6 @@ EntrySummary timed_by(const EntrySummary& e, FrontClock clock) {
   out.seconds_high = e.cpu_seconds_high;
   out.wall_runs = e.cpu_runs;
   return out;
-}
-
-std::string cpu_model_from_cpuinfo(const std::string& cpuinfo) {
-  std::istringstream in(cpuinfo);
-  for (std::string line; std::getline(in, line);) {
-    if (line.rfind("model name", 0) != 0) continue;
-    const size_t colon = line.find(':');
-    if (colon == std::string::npos) continue;
-    const size_t start = line.find_first_not_of(" \t", colon + 1);
-    if (start != std::string::npos) return line.substr(start);
-  }
-  return "unknown";
 }
 
 double run_spread(const std::vector<double>& values) {
@@ -499,7 +479,7 @@ void run_speed_accuracy(const SweepOptions& options, int repetitions, FrontClock
   run.repeats = repetitions > 0 ? repetitions : options.quick ? 5 : 21;
   run.clock = clock;
   run.host.host = host_name();
-  run.host.cpu_model = cpu_model_from_cpuinfo(read_file_text("/proc/cpuinfo"));
+  run.host.cpu_model = host_cpu_model();
   fill_git(run.host);
   const std::vector<MethodEntry> entries = speed_accuracy_entries();
   CsvAppender csv((std::filesystem::path(options.out_dir) / kSpeedAccuracyCsv).string(),

@@ -118,8 +118,6 @@ struct RunHost {
   double load_before = -1, load_after = -1;  // 1-minute load average; -1 when unreadable
 };
 
-// The first "model name" of /proc/cpuinfo's text ("unknown" when there is none).
-std::string cpu_model_from_cpuinfo(const std::string& cpuinfo);
 
 struct SceneSetRun {
   std::string name;  // "triangles" or "lines"

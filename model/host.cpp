@@ -1,8 +1,11 @@
 #include "model/host.hpp"
 
 #include <cpuid.h>
+#include <time.h>
 
 #include <cstdlib>
+#include <fstream>
+#include <sstream>
 #include <string_view>
 
 namespace rastercmp {
@@ -26,6 +29,31 @@ bool lavapipe_fuses_on_this_host() {
   if (override_caps == nullptr) return true;
   const std::string_view caps(override_caps);
   return !(caps == "nosse" || caps == "sse" || caps == "sse2" || caps == "sse3" || caps == "ssse3" || caps == "sse4.1");
+}
+
+std::string cpu_model_from_cpuinfo(const std::string& cpuinfo) {
+  std::istringstream in(cpuinfo);
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("model name", 0) != 0) continue;
+    const size_t colon = line.find(':');
+    if (colon == std::string::npos) continue;
+    const size_t start = line.find_first_not_of(" \t", colon + 1);
+    if (start != std::string::npos) return line.substr(start);
+  }
+  return "unknown";
+}
+
+std::string host_cpu_model() {
+  std::ifstream in("/proc/cpuinfo");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return cpu_model_from_cpuinfo(text.str());
+}
+
+double thread_cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return double(t.tv_sec) + double(t.tv_nsec) * 1e-9;
 }
 
 }  // namespace rastercmp

@@ -1,5 +1,8 @@
-// Facts about the host CPU that decide lavapipe's arithmetic (docs/lavapipe-rules.md §1.3, §7.1).
+// Facts about the host CPU: those that decide lavapipe's arithmetic (docs/lavapipe-rules.md §1.3,
+// §7.1), and those a measurement records (its CPU model, a thread's CPU clock).
 #pragma once
+
+#include <string>
 
 namespace rastercmp {
 
@@ -9,5 +12,14 @@ bool host_cpu_has_fma();
 // lavapipe on this host fuses llvm.fmuladd: the host has FMA and GALLIUM_OVERRIDE_CPU_CAPS does not
 // turn AVX off (any override naming a level below avx2, e.g. "sse4.1", disables FMA).
 bool lavapipe_fuses_on_this_host();
+
+// The first "model name" of a /proc/cpuinfo text ("unknown" when there is none).
+std::string cpu_model_from_cpuinfo(const std::string& cpuinfo);
+
+// This host's CPU model, from /proc/cpuinfo ("unknown" where it cannot be read).
+std::string host_cpu_model();
+
+// The calling thread's CPU time in seconds (CLOCK_THREAD_CPUTIME_ID).
+double thread_cpu_seconds();
 
 }  // namespace rastercmp

@@ -12,6 +12,7 @@
 
 #include "cpu_raster/cpu_raster.hpp"
 #include "experiments/speed_accuracy.hpp"
+#include "model/host.hpp"
 
 namespace rastercmp::experiments {
 namespace {

@@ -10,7 +10,6 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <ctime>
 #include <functional>
 #include <memory>
 
@@ -30,6 +29,7 @@
 #include "cpu_raster/fast/row_balance.hpp"
 #include "cpu_raster/fast/worker_pool.hpp"
 #include "model/depth_format.hpp"
+#include "model/host.hpp"
 #include "model/render_result.hpp"
 
 namespace rastercmp {
@@ -38,20 +38,17 @@ namespace {
 
 constexpr size_t kVertexBlock = 4096;  // positions per task of the vertex phase
 
-double thread_cpu_seconds() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return double(t.tv_sec) + double(t.tv_nsec) * 1e-9;
-}
-
 // job(0) .. job(workers - 1) at once (job(0) on the calling thread; one worker: just job(0)),
 // each one's thread CPU time recorded under `phase` when the render is profiled.
 void run_phase(FastFrame& frame, const char* phase, uint32_t workers, const std::function<void(uint32_t)>& job) {
-  if (frame.profile == nullptr) {
+  const auto dispatch = [workers](const std::function<void(uint32_t)>& f) {
     if (workers == 1)
-      job(0);
+      f(0);
     else
-      worker_pool(workers).run(job);
+      worker_pool(workers).run(f);
+  };
+  if (frame.profile == nullptr) {
+    dispatch(job);
     return;
   }
   // The calling thread's time since the last phase is serial; its time inside the pool's run
@@ -65,10 +62,7 @@ void run_phase(FastFrame& frame, const char* phase, uint32_t workers, const std:
     job(w);
     times.worker_seconds[w] = thread_cpu_seconds() - start;
   };
-  if (workers == 1)
-    timed(0);
-  else
-    worker_pool(workers).run(timed);
+  dispatch(timed);
   frame.profile->phases.push_back(std::move(times));
   frame.serial_mark = thread_cpu_seconds();
 }
