@@ -151,14 +151,21 @@ std::string find_gnuplot() {
 
 void render_chart(const std::string& dir, const std::string& name, const std::vector<DataBlock>& blocks,
                   const std::string& body) {
+  render_chart_sized(dir, name, blocks, body, 1200, 800);
+}
+
+void render_chart_sized(const std::string& dir, const std::string& name, const std::vector<DataBlock>& blocks,
+                        const std::string& body, int width, int height) {
   const std::string gnuplot = find_gnuplot();
   write_text_file_atomic((fs::path(dir) / (name + ".dat")).string(), data_text(blocks));
   write_text_file_atomic((fs::path(dir) / (name + ".gp")).string(),
                          "# rastercmp chart; run: gnuplot -e \"set terminal svg; set output 'x.svg'; DATA='" + name +
                              ".dat'\" " + name + ".gp\n" + "set key noenhanced\n" + series_style_commands() +
                              noenhanced_text(body));
-  run_terminal(gnuplot, dir, name, "svg size 960,640 dynamic font 'sans,13' background '#ffffff'", "svg");
-  run_terminal(gnuplot, dir, name, "pngcairo size 1200,800 font 'sans,12'", "png");
+  run_terminal(gnuplot, dir, name,
+               fmt::format("svg size {},{} dynamic font 'sans,13' background '#ffffff'", width * 4 / 5, height * 4 / 5),
+               "svg");
+  run_terminal(gnuplot, dir, name, fmt::format("pngcairo size {},{} font 'sans,12'", width, height), "png");
 }
 
 }  // namespace rastercmp::experiments

@@ -11,6 +11,9 @@
 #include <gtest/gtest.h>
 
 #include "experiments/chart_labels.hpp"
+#include "experiments/depth_precision.hpp"
+#include "experiments/resolution_sweep.hpp"
+#include "experiments/summary_figure.hpp"
 #include "experiments/csv_log.hpp"
 #include "experiments/gnuplot.hpp"
 #include "experiments/html_page.hpp"
@@ -336,6 +339,125 @@ TEST(ExperimentsSceneNeeds, QuickRunTimesOnlySkippedStages) {
   EXPECT_EQ(depthless, 4u);  // clip, depth, bias, all
   for (const char* chart : {"suite_needs", "skip_savings"})
     EXPECT_NE(read_text(dir / (std::string(chart) + ".svg")).find("<svg"), std::string::npos) << chart;
+}
+
+
+// chart depth-precision: the stage functions store what render_cpu stores, at the bucket's edges too.
+TEST(DepthPrecision, StageFunctionsStoreWhatTheRendererStores) {
+  const DepthPlanes planes;
+  for (DepthFormat format : sweep_depth_formats())
+    for (PrecisionMapping mapping : kPrecisionMappings)
+      for (float w : {0.13f, 1.7f, 42.0f, 777.0f}) {
+        EXPECT_EQ(stored_depth_raw(format, mapping, w, planes), rendered_depth_raw(format, mapping, w, planes))
+            << to_string(format) << " " << to_string(mapping) << " w " << w;
+        const DepthBucket b = depth_bucket(format, mapping, w, planes);
+        ASSERT_FALSE(b.open) << to_string(format) << " " << to_string(mapping) << " w " << w;
+        EXPECT_LE(b.w_low, w);
+        EXPECT_GE(b.w_high, w);
+        EXPECT_EQ(rendered_depth_raw(format, mapping, b.w_high, planes), b.raw);
+        EXPECT_NE(rendered_depth_raw(format, mapping, std::nextafter(b.w_high, 1e30f), planes), b.raw);
+        EXPECT_NE(rendered_depth_raw(format, mapping, std::nextafter(b.w_low, 0.0f), planes), b.raw);
+      }
+}
+
+// Where theory holds (D16: its step is 2^8 times the float rounding of z), the measured bucket is the
+// ideal one within 1.5%, and the first-order analytic step w^2 (f - n) / (f n (2^16 - 1)) within 1.5%
+// plus the bucket's own relative width (the slope changes across it).
+TEST(DepthPrecision, D16MeasuredStepMatchesTheAnalyticOne) {
+  const DepthPlanes planes;
+  for (PrecisionMapping mapping : kPrecisionMappings)
+    for (float w : eye_distances(planes, 2)) {
+      const DepthBucket b = depth_bucket(DepthFormat::D16Unorm, mapping, w, planes);
+      if (b.open) continue;
+      const double measured = b.width(), ideal = ideal_bucket_width(DepthFormat::D16Unorm, mapping, w, planes);
+      const double analytic = analytic_step(DepthFormat::D16Unorm, mapping, w, planes);
+      EXPECT_NEAR(measured / ideal, 1.0, 0.015) << to_string(mapping) << " w " << w;
+      EXPECT_NEAR(measured / analytic, 1.0, 0.015 + 2 * measured / w) << to_string(mapping) << " w " << w;
+      if (mapping == PrecisionMapping::Standard) {  // the textbook form, written out
+        EXPECT_NEAR(analytic, double(w) * w * (1000 - 0.1) / (1000 * 0.1 * 65535), 1e-12 * analytic);
+      }
+    }
+}
+
+// Float32: the D32 step can never be finer than the float spacing of w itself, and on the infinite
+// reversed mapping (z = n / w) the ideal bucket is a fixed fraction of w (2^-23 .. 2^-24 relative).
+TEST(DepthPrecision, D32StepIsBoundedByTheFloatSpacingOfW) {
+  const DepthPlanes planes;
+  for (float w : eye_distances(planes, 2)) {
+    const DepthBucket b = depth_bucket(DepthFormat::D32Sfloat, PrecisionMapping::ReversedInfinite, w, planes);
+    EXPECT_GE(b.width(), float_spacing(w)) << w;
+    const double relative = ideal_bucket_width(DepthFormat::D32Sfloat, PrecisionMapping::ReversedInfinite, w, planes) / w;
+    EXPECT_GE(relative, std::ldexp(1.0, -25)) << w;
+    EXPECT_LE(relative, std::ldexp(1.0, -22)) << w;
+  }
+}
+
+// chart resolution: the exponent fit, and the rule on two methods whose error is clear-cut: DDA's
+// lines differ along their length (count ~ size), bilinear depth inside every triangle (~ size^2).
+TEST(ResolutionSweep, ExponentOfAPowerLaw) {
+  std::vector<ResolutionPoint> points;
+  for (uint32_t size : {64u, 128u, 256u}) points.push_back({"f", "m", size, 0, 0, 0, size_t(size) * size * 3});
+  EXPECT_NEAR(count_exponent(points), 2.0, 1e-12);
+  points.push_back({"f", "m", 512, 0, 0, 0, 0});  // a zero count is left out of the fit
+  EXPECT_NEAR(count_exponent(points), 2.0, 1e-12);
+  EXPECT_TRUE(std::isnan(count_exponent({points[0]})));
+}
+
+TEST(ResolutionSweep, EdgeErrorsGrowWithSizeAndAreaErrorsWithItsSquare) {
+  std::vector<ResolutionMethod> chosen;
+  for (const ResolutionMethod& m : resolution_methods())
+    if (m.method == "line=dda" || m.method == "depth=bilinear") chosen.push_back(m);
+  ASSERT_EQ(chosen.size(), 2u);
+  const std::vector<uint32_t> sizes = {64, 128, 256, 512};
+  const std::vector<ResolutionPoint> points = measure_resolution(chosen, sizes);
+  for (size_t k = 0; k < chosen.size(); ++k) {
+    const std::vector<ResolutionPoint> series(points.begin() + long(k * sizes.size()),
+                                              points.begin() + long((k + 1) * sizes.size()));
+    for (const ResolutionPoint& p : series) {
+      EXPECT_GT(p.either, 0u) << p.method << " " << p.size;
+      EXPECT_EQ(p.samples, size_t(p.size) * p.size * (chosen[k].lines ? 2 : 4));
+    }
+    EXPECT_NEAR(count_exponent(series), chosen[k].predicted_exponent, kExponentTolerance) << chosen[k].method;
+  }
+  EXPECT_EQ(chosen[0].predicted_exponent + chosen[1].predicted_exponent, 3);  // one edge, one area
+}
+
+// chart summary: it reads each source's fields (and ignores fields it does not know), normalises
+// by the prediction, and names the file and the field of a bad input.
+TEST(SummaryFigure, ReadsEachSourceAndNamesABadField) {
+  const fs::path dir = temp_dir("summary");
+  std::ofstream(dir / "stability.json")
+      << R"({"boundaries": [{"experiment": "depth_far_near", "family": "depth", "case": "d16_unorm", "method": "exact",
+            "last_clean": 177.8, "boundary": 316.2, "predicted": 241, "measured_low": 177.8, "measured_high": 316.2,
+            "predicted_in_bracket": true, "a_field_added_later": [1, 2]},
+           {"experiment": "fill_fan", "family": "fill", "case": "fan", "method": "scanline", "boundary": 0.5}]})";
+  std::ofstream(dir / "depth_r.json")
+      << R"([{"format": "d16_unorm", "r_cpu": 3.0e-5, "r_vulkan": 3.0e-5, "predicted": 3.0e-5}])";
+  std::ofstream(dir / "zfight.json")
+      << R"({"series": [{"format": "d16_unorm", "mapping": "standard", "measured_onset_above": 10,
+            "measured_onset_at_most": 31.6, "predicted_onset": 20, "predicted_onset_interval": [10, 31.6],
+            "calibration": true, "agrees": true}]})";
+  const std::vector<SummaryRow> rows = read_summary_inputs({dir.string()});
+  ASSERT_EQ(rows.size(), 3u);  // the boundary without a prediction is not a row
+  EXPECT_EQ(rows[0].family, "depth");
+  EXPECT_NEAR(rows[0].low, 177.8 / 241, 1e-12);
+  EXPECT_NEAR(rows[0].high, 316.2 / 241, 1e-12);
+  EXPECT_TRUE(rows[0].agrees);
+  EXPECT_EQ(rows[1].source, "zfight.json");
+  EXPECT_NEAR(rows[1].predicted_high, 31.6 / 20, 1e-12);
+  EXPECT_EQ(rows[2].source, "depth_r.json");
+  EXPECT_TRUE(rows[2].agrees);
+
+  std::ofstream(dir / "zfight.json") << R"({"series": [{"format": "d16_unorm", "mapping": "standard",
+      "measured_onset_above": 10, "measured_onset_at_most": "31.6", "predicted_onset": 20}]})";
+  try {
+    read_summary_inputs({dir.string()});
+    FAIL() << "a string where a number belongs was accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), (dir / "zfight.json").string());
+    EXPECT_EQ(e.json_path(), "$.series[0].measured_onset_at_most");
+  }
+  EXPECT_THROW(read_summary_inputs({(dir / "no_such_folder").string()}), UsageError);
 }
 
 }  // namespace
