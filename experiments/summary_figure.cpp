@@ -28,7 +28,8 @@ class Fields {
                      fmt::format("expected {}, found {}", expected, found.is_null() ? std::string("nothing") : found.dump()));
   }
   const Json& member(const Json& object, const std::string& path, const std::string& key) const {
-    if (!object.is_object() || !object.contains(key)) fail(path + "." + key, "a value", Json());
+    if (!object.is_object()) fail(path, "an object", object);
+    if (!object.contains(key)) throw InputError(file_, path + "." + key, "expected this field, found none");
     return object.at(key);
   }
   const Json& array(const Json& object, const std::string& path, const std::string& key) const {
@@ -186,15 +187,15 @@ void chart_summary(const std::string& dir, const std::vector<SummaryRow>& rows) 
   for (size_t s = 0; s < sources.size(); ++s)
     plot += fmt::format(
         "{}DATA index {} using 2:1:3:4:ytic(8) with xerrorbars lt {} pt 7 ps 1.2 lw 2 title {}, "
-        "DATA index {} using ($7 == 0 ? $2 : NaN):1 with points pt 6 ps 2.6 lw 2 lc rgb '#d62728' notitle, "
+        "DATA index {} using ($7 == 0 ? $2 : NaN):1 with points pt 6 ps 2.6 lw 2 lc rgb '#000000' notitle, "
         "DATA index {} using (($5 != 1 || $6 != 1) ? 1 : NaN):($1 - 0.3):5:6 with xerrorbars pt 2 ps 0.8 "
         "lc rgb '#555555' notitle",
         s ? ", \\\n  " : "", s, s + 1, gp_quote(sources[s]), s, s);
-  plot += ", \\\n  NaN with points pt 6 ps 2.6 lw 2 lc rgb '#d62728' title 'prediction outside the measured bracket'"
+  plot += ", \\\n  NaN with points pt 6 ps 2.6 lw 2 lc rgb '#000000' title 'prediction outside the measured bracket'"
           ", \\\n  NaN with xerrorbars pt 2 lc rgb '#555555' title 'the prediction''s own interval (z-fighting)'";
   const std::string body = fmt::format(
       "set title 'Measured boundaries against their predictions (bar: measured bracket / prediction; 1: agreement)'\n"
-      "set logscale x\nset format x '%g'\nset xrange [{}:{}]\nset yrange [-1:{}]\n"
+      "set termoption noenhanced\nset logscale x\nset format x '%g'\nset xrange [{}:{}]\nset yrange [-1:{}]\n"
       "set ytics font ',10'\nset grid xtics\nset lmargin 62\n"
       "set xlabel 'measured / predicted (log scale)'\n"
       "set arrow from 1, graph 0 to 1, graph 1 nohead dt 2 lw 2 lc rgb '#444444'\n"
@@ -290,7 +291,7 @@ void run_summary(const SweepOptions& options, const std::vector<std::string>& fr
       options.out_dir, "Measured boundaries against their predictions",
       {{"All boundaries",
         fmt::format("Read from {}. Each bar is the measured bracket divided by the prediction (a point: one measured "
-                    "value); 1 is agreement. A red ring marks a row whose source says the prediction is not met. "
+                    "value); 1 is agreement. A black ring marks a row whose source says the prediction is not met. "
                     "{} of {} rows agree.",
                     fmt::join(dirs, ", "), agree, rows.size()),
         {"summary_boundaries"},
