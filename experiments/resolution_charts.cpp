@@ -115,7 +115,8 @@ std::string json_text(const std::vector<MethodFit>& fits, const std::vector<uint
                              {"predicted_exponent", f.method->predicted_exponent},
                              {"measured_exponent", std::isfinite(f.exponent) ? nlohmann::ordered_json(f.exponent)
                                                                              : nlohmann::ordered_json()},
-                             {"agrees", f.any ? nlohmann::ordered_json(f.agrees()) : nlohmann::ordered_json()},
+                             {"agrees", std::isfinite(f.exponent) ? nlohmann::ordered_json(f.agrees())
+                                                                  : nlohmann::ordered_json()},
                              {"refused", f.refused}};
     m["points"] = nlohmann::ordered_json::array();
     for (const ResolutionPoint& p : f.points)
@@ -167,7 +168,10 @@ void run_resolution_sweep(const SweepOptions& options) {
       if (!in) continue;
       std::vector<std::string> row{f.method->method, std::to_string(f.method->predicted_exponent),
                                    std::isfinite(f.exponent) ? fmt::format("{:.2f}", f.exponent) : "—",
-                                   !f.any ? "no mismatch" : f.agrees() ? "yes" : "no"};
+                                   !f.any                       ? "no mismatch"
+                                   : !std::isfinite(f.exponent) ? "differs at one size only"
+                                   : f.agrees()                 ? "yes"
+                                                                : "no"};
       for (const ResolutionPoint& p : f.points) row.push_back(p.refused ? "refused" : std::to_string(p.either));
       table.push_back(row);
     }
