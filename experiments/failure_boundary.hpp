@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "experiments/csv_log.hpp"
+#include "model/scene.hpp"
 
 namespace rastercmp::experiments {
 
@@ -29,6 +30,9 @@ struct FailureBoundary {
 struct BoundaryPrediction {
   double value = NAN;
   std::string formula;  // how it was computed, in words
+  // True where theory says the predicted value itself is clean (the smallest polygon offset that
+  // separates a coplanar pair): the bracket is then (boundary, last_clean], closed at the clean end.
+  bool clean_at_value = false;
 };
 std::optional<BoundaryPrediction> predicted_boundary(const std::string& experiment, const std::string& case_name,
                                                      const std::string& method);
@@ -40,7 +44,13 @@ struct BracketCheck {
   double measured_low = NAN, measured_high = NAN;
   bool in_bracket = false;
 };
-BracketCheck check_bracket(const FailureBoundary& b, double predicted);
+BracketCheck check_bracket(const FailureBoundary& b, double predicted, bool clean_at_value = false);
+
+// coplanar_offset: by how many raw steps (UNORM integers, D32 float ulps) the decal's stored depth
+// exceeds the base's at worst over the decal's pixels, both drawn alone without offset with the
+// method's depth interpolation (the exact CPU path, which equals lavapipe): the rounding
+// discrepancy of two triangulations of one plane that the offset has to overcome. Far/near 1000.
+double coplanar_discrepancy_steps(DepthFormat format, const std::string& method);
 
 // The measure of one row: "any_mismatch" = samples whose owner or raw depth differs from the
 // reference (coverage_mismatch + depth_mismatch), otherwise the named column (value_cpu: the

@@ -25,8 +25,11 @@ size_t method_style(std::string_view family, const std::string& method) {
 // symmetric log axis (SymlogAxis), 0 at its tic: every point at its real value, benign on the left.
 // A refused point (not_supported) is a star in the method's colour along the top of the panel; a
 // predicted boundary (predicted_boundary) a dotted vertical line in the method's colour.
+// shared_key: many panels (depth_far_near's twelve); the first panel's legend stands for all, at
+// the outer right of the chart, the others have none, and predicted lines are titled without their
+// value (it is in the table and stability.json).
 std::string panel(const CsvTable& table, const MapExperiment& e, const std::string& case_name,
-                  std::vector<DataBlock>& blocks) {
+                  std::vector<DataBlock>& blocks, bool shared_key, bool first_panel) {
   const std::string experiment(e.name);
   const Where where{{"experiment", experiment}, {"case", case_name}};
   const std::vector<std::string> params = distinct(table, "param_a", where);
@@ -66,7 +69,8 @@ std::string panel(const CsvTable& table, const MapExperiment& e, const std::stri
       marks += fmt::format("set arrow from {}, graph 0 to {}, graph 1 nohead lt {} dt 3 lw 2\n", x_of(prediction->value),
                            x_of(prediction->value), style);
       plot += fmt::format("keyentry with lines lt {} dt 3 lw 2 title {}, ", style,
-                          gp_quote(fmt::format("{} predicted {:.3g}", method, prediction->value)));
+                          gp_quote(shared_key ? method + " predicted (dotted)"
+                                              : fmt::format("{} predicted {:.3g}", method, prediction->value)));
     }
   }
   plot.resize(plot.size() - 2);
@@ -88,10 +92,16 @@ std::string panel(const CsvTable& table, const MapExperiment& e, const std::stri
            (descending ? fmt::format("set xrange [{:g}:{:g}]\n", high + 0.5, low - 0.5)
                        : fmt::format("set xrange [{:g}:{:g}]\n", low - 0.5, high + 0.5));
   }
-  const std::string y = e.measure == "value_cpu" ? "set yrange [-0.02:1.02]\nset ylabel 'fraction won by the wrong surface'\n"
-                                                 : "set yrange [-0.5:1<*]\nset ylabel 'samples that differ'\n";
-  return "set title " + gp_quote(case_name) + "\nunset arrow\nset y2range [0:1]\nunset y2tics\n" + axis + y + marks +
-         plot + "\n";
+  const std::string y = e.measure == "value_cpu"
+                            ? std::string("set yrange [-0.02:1.02]\nset ylabel '") +
+                                  (shared_key ? "wrong fraction" : "fraction won by the wrong surface") + "'\n"
+                            : "set yrange [-0.5:1<*]\nset ylabel 'samples that differ'\n";
+  const std::string key = !shared_key ? ""
+                          : first_panel
+                              ? "set key at screen 0.995, screen 0.9 right top vertical maxrows auto font ',9'\n"
+                              : "unset key\n";
+  return "set title " + gp_quote(case_name) + "\nunset arrow\nset y2range [0:1]\nunset y2tics\n" + axis + y + key +
+         marks + plot + "\n";
 }
 
 void chart(const std::string& dir, const CsvTable& table, const MapExperiment& e) {
@@ -99,10 +109,17 @@ void chart(const std::string& dir, const CsvTable& table, const MapExperiment& e
   if (cases.empty()) return;
   std::vector<DataBlock> blocks;
   const size_t columns = cases.size() < 2 ? 1 : cases.size() < 5 ? 2 : 3;
+  const bool shared_key = cases.size() > 6;
   std::string body = "set xlabel " + gp_quote(std::string(e.parameter)) + "\nset key below font ',9' maxrows 3\nset grid\n";
-  body += fmt::format("set multiplot layout {},{} title {} noenhanced\n", (cases.size() + columns - 1) / columns, columns,
+  body += fmt::format("set multiplot layout {},{} {}title {} noenhanced\n", (cases.size() + columns - 1) / columns,
+                      columns, shared_key ? "margins 0.06,0.78,0.08,0.92 spacing 0.06,0.08 " : "",
                       gp_quote(std::string(e.family) + ": " + std::string(e.notes)));
-  for (const std::string& c : cases) body += panel(table, e, c, blocks);
+  for (size_t i = 0; i < cases.size(); ++i) {
+    // Many panels: the x label only under the bottom row, so each panel title keeps clear of it.
+    if (shared_key)
+      body += "set xlabel " + gp_quote(i + columns < cases.size() ? "" : std::string(e.parameter)) + "\n";
+    body += panel(table, e, cases[i], blocks, shared_key, i == 0);
+  }
   body += "unset multiplot\n";
   render_chart(dir, "map_" + std::string(e.name), blocks, body);
 }

@@ -105,19 +105,20 @@ void add_depth(std::vector<StabilityPoint>& plan, bool quick) {
   const std::vector<NamedMethod> methods =
       named({{"depth", "no_fma"}, {"depth", "bilinear"}, {"depth", "perspective_correct"}});
   const std::vector<double> ratios = powers(4, 24, quick ? 2 : 1, 4);  // 10 .. 10^6
-  for (bool reversed : {false, true})
+  // Each format with each clip-z mapping: standard or reversed, formed in float (as a camera
+  // matrix does) or in double from w (scene_make.hpp DepthMapping).
+  for (DepthMapping mapping : kDepthMappings)
     for (DepthFormat format : sweep_depth_formats())
       add_series(
-          plan, "depth_far_near", std::string(to_string(format)) + (reversed ? "_reversed_z" : ""), methods, ratios,
-          [format, reversed](double ratio) {
+          plan, "depth_far_near", std::string(to_string(format)) + mapping_suffix(mapping), methods, ratios,
+          [format, mapping](double ratio) {
             PairParams p;
             p.kind = PairKind::NearCoplanar;
             p.format = format;
             p.far_near_ratio = ratio;
             p.angle_deg = kOnsetAngleDeg;
             p.separation = 0.1;
-            const Scene scene = make_decal_scene(p).scene;
-            return reversed ? reversed_z(scene, p.far_plane / ratio, p.far_plane) : scene;
+            return with_depth_mapping(make_decal_scene(p).scene, mapping, p.far_plane / ratio, p.far_plane);
           },
           true);
   for (DepthFormat format : sweep_depth_formats())

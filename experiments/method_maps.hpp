@@ -5,7 +5,8 @@
 // parameter value whose measure exceeds 0 (failure_boundary.hpp).
 //   fill        fill_sliver_width, fill_fan, fill_distance (and the sliver heat map of stability.cpp)
 //   clip        clip_near_w, clip_near_w_line, clip_near_cross
-//   depth       depth_far_near (with reversed Z as cases), pseudo_depth, coplanar_offset
+//   depth       depth_far_near (cases: format x clip-z mapping, scene_make.hpp DepthMapping), pseudo_depth,
+//               coplanar_offset
 //   visibility  visibility_cyclic, visibility_interpenetration
 #pragma once
 

@@ -11,6 +11,7 @@
 #include "experiments/gnuplot.hpp"
 #include "experiments/pixel_stats.hpp"
 #include "experiments/progress.hpp"
+#include "experiments/table_query.hpp"
 
 namespace rastercmp::experiments {
 namespace {
@@ -92,6 +93,19 @@ void add_clamp_and_angle(std::vector<OffsetSeries>& plan, bool quick) {
       }
 }
 
+// The control: one triangle drawn twice with the same vertices, the second with constant offset 0
+// and 1 (units of r), per format and viewing angle.
+void add_identical(std::vector<OffsetSeries>& plan, bool quick) {
+  const std::vector<double> angles = quick ? std::vector<double>{0, 60} : std::vector<double>{0, 30, 60, 75};
+  for (DepthFormat format : sweep_depth_formats())
+    for (double angle : angles) {
+      OffsetSeries series;
+      for (double constant : {0.0, 1.0})
+        series.push_back({"identical", pair(PairKind::Identical, format, 1000, angle, bias(constant, 0))});
+      plan.push_back(series);
+    }
+}
+
 std::vector<std::string> key_of(const OffsetPoint& point) {
   const PairParams& p = point.params;
   return {point.experiment,
@@ -150,6 +164,37 @@ std::string r_json(const std::vector<DepthRMeasure>& measures) {
   return out.dump(2) + "\n";
 }
 
+std::vector<IdenticalControl> identical_controls(const CsvTable& table) {
+  std::vector<IdenticalControl> out;
+  const size_t format = table.column("format"), angle = table.column("angle_deg"), constant = table.column("constant"),
+               cpu = table.column("wrong_cpu"), vk = table.column("wrong_vk"), agree = table.column("cpu_vk_agree");
+  for (const Row& row : select_rows(table, {{"experiment", "identical"}})) {
+    IdenticalControl c{row[format], to_double(row[angle]), to_double(row[constant]), to_double(row[cpu]),
+                       to_double(row[vk]), row[agree] == "true", false};
+    // Without offset the second draw ties the first everywhere and loses under Less; with 1 r it
+    // must win every pixel (the spec: r is the smallest difference that separates two depths).
+    c.as_expected = c.constant == 0 ? (c.wrong_cpu == 1 && c.wrong_vk == 1) : (c.wrong_cpu == 0 && c.wrong_vk == 0);
+    out.push_back(c);
+  }
+  return out;
+}
+
+std::string identical_control_json(const CsvTable& table) {
+  nlohmann::ordered_json controls = nlohmann::ordered_json::array();
+  for (const IdenticalControl& c : identical_controls(table))
+    controls.push_back({{"format", c.format},
+                        {"angle_deg", c.angle_deg},
+                        {"constant", c.constant},
+                        {"wrong_cpu", c.wrong_cpu},
+                        {"wrong_vulkan", c.wrong_vk},
+                        {"cpu_vk_agree", c.cpu_vk_agree},
+                        {"expected", c.constant == 0 ? "the second draw loses every pixel (equal depth, Less)"
+                                                     : "the second draw wins every pixel (1 r separates)"},
+                        {"as_expected", c.as_expected}});
+  nlohmann::ordered_json out{{"identical_vertex_control", controls}};
+  return out.dump(2) + "\n";
+}
+
 std::vector<std::string> polygon_offset_header() {
   return {"experiment", "scene",     "format",   "far_near", "angle_deg", "constant",     "slope",      "clamp",
           "separation", "wrong_cpu", "wrong_vk", "flip_cpu", "flip_vk",   "cpu_vk_agree", "mask_pixels"};
@@ -160,6 +205,7 @@ std::vector<OffsetSeries> polygon_offset_plan(bool quick) {
   add_far_near(plan, quick);
   add_factor_axes(plan, quick);
   add_clamp_and_angle(plan, quick);
+  add_identical(plan, quick);
   return plan;
 }
 
@@ -183,6 +229,8 @@ void run_polygon_offset_sweep(const SweepOptions& options) {
   progress.done();
   const std::vector<DepthRMeasure> r = measure_depth_r(vk);
   write_json_file(options.out_dir, "depth_r.json", r_json(r));
+  write_json_file(options.out_dir, "polygon_offset.json",
+                  identical_control_json(read_csv((std::filesystem::path(options.out_dir) / kPolygonOffsetCsv).string())));
   write_polygon_offset_charts(options.out_dir, r);
 }
 

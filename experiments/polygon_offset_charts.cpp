@@ -137,7 +137,7 @@ void chart_r(const std::string& dir, const std::vector<DepthRMeasure>& measures)
   const std::string body = fmt::format(
       "set title 'r (depth step of constantFactor 1) per format, divided by the spec bound'\n"
       "set ylabel 'r / spec bound (UNORM: 2 x 2^-n; D32: 2^(e-23))'\nset format y '%.7f'\n"
-      "set xrange [-0.6:{}-0.4]\nset xtics noenhanced ({})\nset key below\nset grid\n"
+      "set xrange [-0.6:{}-0.4]\nset xtics noenhanced ({})\nset key outside right top\nset grid\n"
       "set arrow from graph 0, first 1 to graph 1, first 1 nohead dt 2 lc rgb '#888888'\n"
       "plot DATA index 2 using 1:3:(0.3) title columnheader(2) with xerrorbars lc rgb '#2ca02c' lw 2 pt 0, \\\n"
       "     DATA index 0 using 1:3 title columnheader(2) with points lt 1 pt 7 ps 2.5, \\\n"
@@ -175,6 +175,19 @@ void write_polygon_offset_charts(const std::string& dir, const std::vector<Depth
   chart_clamp(dir, table);
   chart_angle(dir, table);
   chart_r(dir, r);
+  PageSection control{"Control: one triangle drawn twice",
+                      "The same triangle (same vertices) drawn twice under compare op Less, the second with constant "
+                      "offset 0 and 1 (units of r) towards the eye, on every depth format and at several viewing "
+                      "angles (polygon_offset.json). Without offset the two depths are equal and the second draw loses "
+                      "every pixel; the spec makes r the smallest difference that separates two depths, so with 1 r "
+                      "it must win every pixel.",
+                      {},
+                      {{"format", "angle (degrees)", "constant (r)", "lost by the second draw, CPU",
+                        "lost by the second draw, Vulkan", "CPU = Vulkan", "as expected"}}};
+  for (const IdenticalControl& c : identical_controls(table))
+    control.table.push_back({c.format, fmt::format("{:g}", c.angle_deg), fmt::format("{:g}", c.constant),
+                             fmt::format("{:g}", c.wrong_cpu), fmt::format("{:g}", c.wrong_vk),
+                             c.cpu_vk_agree ? "yes" : "no", c.as_expected ? "yes" : "NO"});
   write_index_html(
       dir, "Polygon offset and z-fighting",
       {{"Z-fighting against far/near",
@@ -188,11 +201,12 @@ void write_polygon_offset_charts(const std::string& dir, const std::vector<Depth
         "neither backend shows a wrong pixel; missing points: no tried value was enough.",
         {"min_constant_vs_angle", "min_slope_vs_angle", "wrong_vs_angle"}},
        {"Clamp", "A large offset limited by depthBiasClamp.", {"clamp"}},
+       control,
        {"r per depth format",
         "Measured from the stored depth of a flat plane at depth 0.375 with constantFactor 1 against 0, divided by the "
         "spec bound, beside lavapipe's predicted r (depth_r.json: r_cpu, r_vulkan, predicted, spec_bound).",
         {"depth_r"}}},
-      {kPolygonOffsetCsv, "depth_r.json"});
+      {kPolygonOffsetCsv, "depth_r.json", "polygon_offset.json"});
 }
 
 }  // namespace rastercmp::experiments

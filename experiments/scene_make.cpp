@@ -59,6 +59,10 @@ DecalScene make_pair(const PairParams& p) {
   push_quad(base, plane_rect(centre, angle, 18 * p.scale, 18 * p.scale), false);
   const double separation = p.kind == PairKind::NearCoplanar ? p.separation : 0.0;
   push_quad(decal, plane_rect(centre + normal * separation, angle, 12 * p.scale, 10 * p.scale), true);
+  if (p.kind == PairKind::Identical) {
+    base.resize(3);
+    decal = base;
+  }
   DecalScene out;
   out.scene.name = std::string("experiments.") + to_string(p.kind);
   out.scene.depth_format = p.format;
@@ -66,7 +70,22 @@ DecalScene make_pair(const PairParams& p) {
   out.scene.draws.push_back(world_draw("decal", decal, world_to_clip, CullMode::None));
   out.scene.draws[1].state.depth_bias = p.decal_bias;
   out.decal_draw = 1;
+  if (p.jitter_x_px != 0 || p.jitter_y_px != 0)
+    for (Draw& draw : out.scene.draws)
+      for (glm::vec4& clip : draw.positions_clip) {  // window x = (x/w + 1) width / 2
+        clip.x = float(clip.x + 2 * p.jitter_x_px / out.scene.width * clip.w);
+        clip.y = float(clip.y + 2 * p.jitter_y_px / out.scene.height * clip.w);
+      }
   return out;
+}
+
+double halton_radical_inverse(int index, int base) {
+  double result = 0, f = 1;
+  for (int i = index; i > 0; i /= base) {
+    f /= base;
+    result += f * (i % base);
+  }
+  return result;
 }
 
 // The lecture's house: walls z 30..54, x 0..16, y 0..10, roof ridge at y 16 (scenes/house/*.json).
@@ -133,6 +152,7 @@ const char* to_string(PairKind kind) {
     case PairKind::Coplanar: return "coplanar";
     case PairKind::NearCoplanar: return "near_coplanar";
     case PairKind::House: return "house";
+    case PairKind::Identical: return "identical";
   }
   return "?";
 }
@@ -140,6 +160,74 @@ const char* to_string(PairKind kind) {
 DecalScene make_decal_scene(const PairParams& params) {
   return params.kind == PairKind::House ? make_house(params) : make_pair(params);
 }
+
+const char* mapping_suffix(DepthMapping mapping) {
+  switch (mapping) {
+    case DepthMapping::StandardFloat: return "";
+    case DepthMapping::StandardDouble: return "_double_z";
+    case DepthMapping::ReversedFloat: return "_reversed_z_float";
+    case DepthMapping::ReversedDouble: return "_reversed_z";
+  }
+  return "?";
+}
+
+const char* mapping_name(DepthMapping mapping) {
+  switch (mapping) {
+    case DepthMapping::StandardFloat: return "standard, float clip z";
+    case DepthMapping::StandardDouble: return "standard, double clip z";
+    case DepthMapping::ReversedFloat: return "reversed, float clip z";
+    case DepthMapping::ReversedDouble: return "reversed, double clip z";
+  }
+  return "?";
+}
+
+DepthMapping case_depth_mapping(const std::string& case_name) {
+  DepthMapping found = DepthMapping::StandardFloat;
+  size_t longest = 0;
+  for (DepthMapping m : kDepthMappings) {
+    const std::string suffix = mapping_suffix(m);
+    if (suffix.size() > longest && case_name.size() > suffix.size() &&
+        case_name.compare(case_name.size() - suffix.size(), suffix.size(), suffix) == 0)
+      found = m, longest = suffix.size();
+  }
+  return found;
+}
+
+std::string case_depth_format(const std::string& case_name) {
+  return case_name.substr(0, case_name.size() - std::string(mapping_suffix(case_depth_mapping(case_name))).size());
+}
+
+bool is_reversed(DepthMapping mapping) {
+  return mapping == DepthMapping::ReversedFloat || mapping == DepthMapping::ReversedDouble;
+}
+
+Scene with_depth_mapping(Scene scene, DepthMapping mapping, double near_plane, double far_plane) {
+  const double n = near_plane, f = far_plane;
+  // z = A z_eye + B with z_eye = -w: standard A = -f / (f - n), B = -f n / (f - n); reversed
+  // A = n / (f - n), B = n f / (f - n).
+  const bool reversed = is_reversed(mapping);
+  const float a = float(reversed ? n / (f - n) : -f / (f - n)), b = float(reversed ? n * f / (f - n) : -f * n / (f - n));
+  if (mapping == DepthMapping::StandardFloat) return scene;
+  if (reversed) {
+    scene.name += mapping_suffix(mapping);
+    scene.depth_clear = 0.0f;
+  }
+  for (Draw& draw : scene.draws) {
+    if (reversed) draw.state.depth.compare_op = CompareOp::Greater;
+    for (glm::vec4& p : draw.positions_clip) {
+      const double w = p.w;
+      if (mapping == DepthMapping::StandardDouble) p.z = float(f * (w - n) / (f - n));
+      if (mapping == DepthMapping::ReversedDouble) p.z = float(n * (f - w) / (f - n));
+      if (mapping == DepthMapping::ReversedFloat) {
+        const float product = a * -p.w;  // rounded before the sum, as a matrix product without FMA
+        p.z = product + b;
+      }
+    }
+  }
+  return scene;
+}
+
+Jitter ensemble_jitter(int j) { return j == 0 ? Jitter{} : Jitter{halton_radical_inverse(j, 2), halton_radical_inverse(j, 3), halton_radical_inverse(j, 5)}; }
 
 Scene decal_only(const DecalScene& decal) {
   Scene scene = decal.scene;

@@ -15,7 +15,7 @@ struct DecalScene {
   uint32_t decal_draw = 1;
 };
 
-enum class PairKind { Coplanar, NearCoplanar, House };
+enum class PairKind { Coplanar, NearCoplanar, House, Identical };
 const char* to_string(PairKind);
 
 struct PairParams {
@@ -28,11 +28,41 @@ struct PairParams {
   // Coplanar / NearCoplanar only: the far plane, the distance of the pair's centre from the eye and
   // a scale of its sides (the defaults give the pair described below).
   double far_plane = 100, distance = 50, scale = 1;
+  // Coplanar / NearCoplanar only: the whole image moved by this many pixels (sub-pixel jitter).
+  double jitter_x_px = 0, jitter_y_px = 0;
 };
+
+// How clip z is formed from the eye distance w with the camera's near n and far f (the cases of
+// depth_far_near and fight_onset). Standard: z = f (w - n) / (f - n), compare Less, clear 1;
+// reversed: z = n (f - w) / (f - n), compare Greater, clear 0. Float: as a float camera matrix
+// forms it, fl(fl(A z_eye) + B) with A, B rounded to float; double: formed in double from w and
+// rounded to float once. StandardFloat is the camera matrix's own z (model/camera.hpp).
+enum class DepthMapping { StandardFloat, StandardDouble, ReversedFloat, ReversedDouble };
+inline constexpr DepthMapping kDepthMappings[] = {DepthMapping::StandardFloat, DepthMapping::StandardDouble,
+                                                   DepthMapping::ReversedFloat, DepthMapping::ReversedDouble};
+// The case-name suffix: "", "_double_z", "_reversed_z_float", "_reversed_z".
+const char* mapping_suffix(DepthMapping mapping);
+const char* mapping_name(DepthMapping mapping);  // "standard, float z", ...
+bool is_reversed(DepthMapping mapping);
+// A case name's mapping (by its suffix) and the format name before the suffix.
+DepthMapping case_depth_mapping(const std::string& case_name);
+std::string case_depth_format(const std::string& case_name);
+// Every clip z of the scene replaced as the mapping forms it (StandardFloat: unchanged).
+Scene with_depth_mapping(Scene scene, DepthMapping mapping, double near_plane, double far_plane);
+
+// The sub-pixel offset and depth phase of jitter j of an ensemble (j = 0: none): x and y offsets
+// in pixels from the Halton sequences of bases 2 and 3, and a depth phase in [0, 1) from base 5
+// (the caller scales it into a move away from the eye: stability.hpp kOnsetDepthPhaseRange).
+struct Jitter {
+  double x_px = 0, y_px = 0, depth_phase = 0;
+};
+Jitter ensemble_jitter(int j);
 
 // Coplanar / near-coplanar pair: a 36x36 square 50 units in front of the eye (far = 100), split
 // along one diagonal, drawn first; then a 24x20 decal on (or `separation` in front of) the same
 // plane, split along the other diagonal, so the two interpolate depth from different vertices.
+// Identical: one triangle of that square drawn twice with the same vertices (the polygon-offset
+// control: the spec's r must separate the second draw, offset by 1 r, under compare op Less).
 // House: the lecture's house (z 30..54, notes "clipping-fill-zbuffer"), camera of
 // scenes/house/far_75.json (far 75), orbited by angle-45 degrees; decal = door and windows.
 DecalScene make_decal_scene(const PairParams& params);

@@ -19,21 +19,36 @@ std::vector<double> pick(bool quick, std::vector<double> small, std::vector<doub
   return quick ? small : full;
 }
 
+// Every (format, mapping, separation, far/near) at kOnsetJitters(quick) jitters: sub-pixel offset
+// and depth phase (ensemble_jitter), so an onset is a distribution, not one placement's.
 void add_fight_onset(std::vector<StabilityPoint>& plan, bool quick) {
   std::vector<double> ratios;
   for (int k = 4; k <= 24; k += quick ? 4 : 1) ratios.push_back(std::pow(10.0, k / 4.0));
-  for (DepthFormat format : sweep_depth_formats())
-    for (double separation : pick(quick, {0.1}, {0.01, 0.1, 1}))
-      for (double ratio : ratios) {
-        PairParams p;
-        p.kind = PairKind::NearCoplanar;
-        p.format = format;
-        p.far_near_ratio = ratio;
-        p.angle_deg = kOnsetAngleDeg;
-        p.separation = separation;
-        plan.push_back({"fight_onset", to_string(format), "exact", separation, ratio,
-                        [p] { return make_decal_scene(p).scene; }, exact_cpu_options(), 1, true});
-      }
+  for (DepthMapping mapping : kDepthMappings)
+    for (DepthFormat format : sweep_depth_formats())
+      for (double separation : pick(quick, {0.1}, {0.01, 0.1, 1}))
+        for (int j = 0; j < onset_jitters(quick); ++j)
+          for (double ratio : ratios) {
+            const Jitter jitter = ensemble_jitter(j);
+            PairParams p;
+            p.kind = PairKind::NearCoplanar;
+            p.format = format;
+            p.far_near_ratio = ratio;
+            p.angle_deg = kOnsetAngleDeg;
+            p.separation = separation;
+            p.jitter_x_px = jitter.x_px;
+            p.jitter_y_px = jitter.y_px;
+            p.distance += jitter.depth_phase * kOnsetDepthPhaseRange;
+            StabilityPoint point{"fight_onset", std::string(to_string(format)) + mapping_suffix(mapping), "exact",
+                                 separation, ratio,
+                                 [p, mapping] {
+                                   return with_depth_mapping(make_decal_scene(p).scene, mapping,
+                                                             p.far_plane / p.far_near_ratio, p.far_plane);
+                                 },
+                                 exact_cpu_options(), 1, true};
+            point.jitter = j;
+            plan.push_back(point);
+          }
 }
 
 void add_slivers(std::vector<StabilityPoint>& plan, bool quick) {
@@ -61,7 +76,7 @@ void add_limits(std::vector<StabilityPoint>& plan, bool quick) {
 }
 
 std::vector<std::string> key_of(const StabilityPoint& p) {
-  return {p.experiment, p.case_name, p.method, num(p.param_a), num(p.param_b)};
+  return {p.experiment, p.case_name, p.method, num(p.param_a), num(p.param_b), std::to_string(p.jitter)};
 }
 
 }  // namespace
@@ -91,8 +106,8 @@ std::vector<std::string> measure_stability_point(const StabilityPoint& point, co
 }
 
 std::vector<std::string> stability_header() {
-  return {"experiment",        "case",           "method",      "param_a", "param_b", "value_cpu", "value_vk",
-          "coverage_mismatch", "depth_mismatch", "cpu_vk_agree"};
+  return {"experiment", "case",     "method",            "param_a",        "param_b",     "jitter",
+          "value_cpu",  "value_vk", "coverage_mismatch", "depth_mismatch", "cpu_vk_agree"};
 }
 
 std::vector<StabilityPoint> stability_plan(bool quick) {
@@ -109,7 +124,7 @@ void run_stability_sweep(const SweepOptions& options) {
   prepare_out_dir(options.out_dir);
   VulkanRenderer vk(VkOptions{});
   const std::vector<StabilityPoint> plan = stability_plan(options.quick);
-  CsvAppender csv((std::filesystem::path(options.out_dir) / kStabilityCsv).string(), stability_header(), 5,
+  CsvAppender csv((std::filesystem::path(options.out_dir) / kStabilityCsv).string(), stability_header(), 6,
                   options.resume);
   Progress progress("sweep stability", plan.size());
   for (const StabilityPoint& point : plan) {

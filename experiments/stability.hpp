@@ -1,5 +1,6 @@
 // `rastercmp sweep stability`: where methods stop being right. Experiments (column "experiment"):
-//   fight_onset   near-coplanar pair per depth format and separation against far/near
+//   fight_onset   near-coplanar pair per depth format, clip-z mapping and separation against far/near,
+//                 over an ensemble of jitters (sub-pixel offset, depth phase): onset distributions
 //   sliver        sliver angle and size against coverage errors (exact path, no FMA, ablations)
 //   far_distance  distance from the origin up to the viewportBoundsRange limit (exact path)
 //   near_w        a vertex on the near plane with w approaching 0
@@ -9,7 +10,9 @@
 // Output: stability.csv (appended per point), stability.json (thresholds), charts, index.html.
 #pragma once
 
+#include <cmath>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,7 +35,16 @@ struct StabilityPoint {
   CpuOptions cpu;           // the method under test
   uint32_t decal_draw = 0;     // wrong_surface: the draw that should win (others: unused)
   bool wrong_surface = false;  // value_* = fraction of the decal's pixels it does not win (else covered pixels)
+  int jitter = 0;              // fight_onset: the ensemble member (ensemble_jitter); 0 elsewhere
 };
+
+// fight_onset's ensemble size: jitters 0 .. onset_jitters - 1 at every point. A jitter's depth
+// phase h moves the pair h * kOnsetDepthPhaseRange world units away from the eye: the standard
+// mapping's float clip z ~ w has a 2^-18 grid at w in [32, 64), and w (A - 1), A - 1 ~ 1/R, moves
+// by 2/R >= 2^-18 for far/near up to 5.2e5, so the vertices take every phase of that grid; the
+// one-step onset ~ 1/w^2 moves by at most 7% (56 -> 58).
+inline int onset_jitters(bool quick) { return quick ? 4 : 8; }
+inline constexpr double kOnsetDepthPhaseRange = 2;
 
 // One point measured against a reference render of the same scene (lavapipe in the sweep; the
 // exact CPU path, which equals lavapipe bit for bit, in the device-free tests): the CSV row.
@@ -51,9 +63,30 @@ void run_stability_sweep(const SweepOptions& options);
 // stability.json, charts and index.html from the CSV (stability_charts.cpp).
 void write_stability_outputs(const std::string& dir);
 
-// The smallest far/near ratio of a (format, separation) series at which the wrong surface wins
-// anywhere on either backend; NaN when it never does.
-double fight_onset_ratio(const CsvTable& table, const std::string& format, const std::string& separation);
+// The smallest far/near ratio of a (case, separation, jitter) series at which the wrong surface
+// wins anywhere on either backend; NaN when it never does. Case: format + mapping_suffix.
+double fight_onset_ratio(const CsvTable& table, const std::string& case_name, const std::string& separation,
+                         const std::string& jitter = "0");
+
+// The onsets of a (case, separation) series over the jitter ensemble, sorted, a jitter that never
+// fights as +infinity; quartiles by nearest rank (sorted[(k (J - 1) + 2) / 4] for k = 0..4), so
+// every statistic is a grid value. `before_min`: the grid ratio before the smallest onset (NaN when
+// that is the first), so the ensemble's onsets lie in (before_min, max].
+struct OnsetDistribution {
+  std::vector<double> onsets;
+  double min = NAN, q1 = NAN, median = NAN, q3 = NAN, max = NAN, before_min = NAN;
+  size_t never = 0;
+};
+OnsetDistribution fight_onset_distribution(const CsvTable& table, const std::string& case_name,
+                                           const std::string& separation);
+
+// The analytic onset of fight_onset / depth_far_near (failure_boundary.cpp): nullopt where theory
+// puts none within far/near 10^6 (D32 reversed).
+struct OnsetPrediction {
+  double value = NAN;
+  std::string formula;
+};
+std::optional<OnsetPrediction> predicted_onset(const std::string& case_name, double separation);
 
 // One series of stability.json's "boundaries": the measured bracket (last_clean, boundary), the
 // refused points and, where theory predicts the boundary (predicted_boundary), `predicted` beside

@@ -16,40 +16,110 @@
 namespace rastercmp::experiments {
 namespace {
 
-std::string plot_blocks(size_t count, const std::string& using_clause, const std::string& style) {
-  return "plot for [i=0:" + std::to_string(count - 1) + "] DATA index i using " + using_clause +
-         " title columnheader(1) " + style + "\n";
+std::string onset_number(double v) { return std::isfinite(v) ? fmt::format("{:.10g}", v) : "NaN"; }
+
+// One panel per mapping (2 x 2); each row's legend once, outside the plots at the outer right.
+std::string onset_panel_layout(const std::string& title) {
+  return "set multiplot layout 2,2 margins 0.07,0.79,0.08,0.9 spacing 0.09,0.13 title " + gp_quote(title) + "\n";
 }
 
-void chart_fight_onset(const std::string& dir, const CsvTable& table) {
-  std::vector<DataBlock> lines, onsets;
-  const size_t ratio = table.column("param_b"), wrong = table.column("value_cpu");
-  const Where base{{"experiment", "fight_onset"}};
-  for (const std::string& format : distinct(table, "case", base)) {
-    DataBlock onset{format, {{format, "x"}}};
-    for (const std::string& sep : distinct(table, "param_a", base)) {
-      const std::string title = format + ", separation " + sep;
-      DataBlock block{title, {{"\"" + title + "\"", "x"}}};
-      for (const Row& row : select_rows(table, {{"experiment", "fight_onset"}, {"case", format}, {"param_a", sep}}))
-        block.rows.push_back({row[ratio], row[wrong]});
-      lines.push_back(block);
-      const double r = fight_onset_ratio(table, format, sep);
-      onset.rows.push_back({sep, std::isnan(r) ? "NaN" : fmt::format("{}", r)});
-    }
-    onsets.push_back(onset);
+std::string onset_panel_key(DepthMapping mapping) {
+  switch (mapping) {
+    case DepthMapping::StandardDouble: return "set key at screen 0.995, screen 0.9 right top font ',8' spacing 0.9\n";
+    case DepthMapping::ReversedDouble: return "set key at screen 0.995, screen 0.44 right top font ',8' spacing 0.9\n";
+    default: return "unset key\n";
   }
-  render_chart(
-      dir, "fight_vs_far_near", lines,
-      "set title 'Two surfaces a given distance apart (50 units away, 30 degrees): wrong surface against far/near'\n"
-      "set logscale x 10\nset format x '10^{%L}'\nset xlabel 'far / near'\nset yrange [-0.02:1.02]\n"
-      "set ylabel 'fraction won by the farther surface'\nset key outside right top\nset grid\n" +
-          plot_blocks(lines.size(), "1:2", "with linespoints lt (i+1)"));
-  render_chart(
-      dir, "fight_onset_map", onsets,
-      "set title 'Far/near ratio at which surfaces start to fight, per depth format'\n"
-      "set logscale xy 10\nset format y '10^{%L}'\nset xlabel 'separation between the surfaces (world units)'\n"
-      "set ylabel 'smallest far/near with a wrong pixel'\nset key outside right top\nset grid\n" +
-          plot_blocks(onsets.size(), "1:2", "with linespoints lt (i+1)"));
+}
+
+// fight_vs_far_near: per mapping, per (format, separation), the mean wrong fraction over the jitter
+// ensemble against far/near, with bars from the ensemble's smallest to its largest fraction.
+void chart_fight_vs_far_near(const std::string& dir, const CsvTable& table) {
+  std::vector<DataBlock> blocks;
+  const size_t cpu = table.column("value_cpu"), vk = table.column("value_vk");
+  const Where base{{"experiment", "fight_onset"}};
+  std::string body = onset_panel_layout(
+      "Near-coplanar pair (50 units away, 30 degrees): wrong surface against far/near, mean over the jitter "
+      "ensemble, bars: least to most");
+  body += "set logscale x 10\nset format x '10^{%L}'\nset xlabel 'far / near'\nset yrange [-0.02:1.02]\n"
+          "set ylabel 'fraction won by the farther surface'\nset grid\n";
+  for (DepthMapping mapping : kDepthMappings) {
+    std::string plot;
+    size_t style = 0;
+    for (const std::string& c : distinct(table, "case", base)) {
+      if (case_depth_mapping(c) != mapping) continue;
+      for (const std::string& sep : distinct(table, "param_a", {{"experiment", "fight_onset"}, {"case", c}})) {
+        ++style;
+        DataBlock block{case_depth_format(c) + ", sep " + sep, {}};
+        for (const std::string& r : distinct(table, "param_b", {{"experiment", "fight_onset"}, {"case", c}, {"param_a", sep}})) {
+          double sum = 0, low = INFINITY, high = -INFINITY;
+          size_t n = 0;
+          for (const Row& row : select_rows(table, {{"experiment", "fight_onset"}, {"case", c}, {"param_a", sep}, {"param_b", r}})) {
+            const double v = std::max(to_double(row[cpu]), to_double(row[vk]));
+            sum += v, low = std::min(low, v), high = std::max(high, v), ++n;
+          }
+          block.rows.push_back({r, onset_number(sum / double(n)), onset_number(low), onset_number(high)});
+        }
+        plot += fmt::format("DATA index {} using 1:2:3:4 title {} with yerrorlines lt {}, ", blocks.size(),
+                            gp_quote(block.title), style);
+        blocks.push_back(block);
+      }
+    }
+    if (plot.empty()) continue;
+    plot.resize(plot.size() - 2);
+    body += "set title " + gp_quote(mapping_name(mapping)) + "\n" + onset_panel_key(mapping) + "plot " + plot + "\n";
+  }
+  body += "unset multiplot\n";
+  render_chart(dir, "fight_vs_far_near", blocks, body);
+}
+
+// fight_onset_map: per mapping, the onset over the ensemble against separation per format: median,
+// bars from the smallest to the largest onset (an ensemble member that never fights puts its bar at
+// the top of the panel), and the predicted onset (predicted_onset) as a dotted line.
+void chart_fight_onset_map(const std::string& dir, const CsvTable& table) {
+  std::vector<DataBlock> blocks;
+  const Where base{{"experiment", "fight_onset"}};
+  double top = 1;
+  for (const std::string& r : distinct(table, "param_b", base)) top = std::max(top, to_double(r));
+  std::string body = onset_panel_layout(
+      "Far/near at which the pair starts to fight over the jitter ensemble: median, bars: least to most; dotted: "
+      "predicted");
+  body += fmt::format(
+      "set logscale xy 10\nset format y '10^{{%L}}'\nset format x '%g'\nset yrange [3:{:g}]\nset xrange [0.005:2]\n"
+      "set xlabel 'separation between the surfaces (world units)'\nset ylabel 'far/near of the first wrong pixel'\n"
+      "set grid\n",
+      top * 4);
+  for (DepthMapping mapping : kDepthMappings) {
+    std::string plot;
+    size_t style = 0;
+    for (const std::string& c : distinct(table, "case", base)) {
+      if (case_depth_mapping(c) != mapping) continue;
+      ++style;
+      DataBlock block{case_depth_format(c), {}}, theory{case_depth_format(c) + " predicted", {}};
+      for (const std::string& sep : distinct(table, "param_a", {{"experiment", "fight_onset"}, {"case", c}})) {
+        const OnsetDistribution d = fight_onset_distribution(table, c, sep);
+        const auto clip_top = [&](double v) { return std::isfinite(v) ? v : top * 3; };
+        block.rows.push_back({sep, onset_number(d.median), onset_number(clip_top(d.min)), onset_number(clip_top(d.max))});
+        if (const auto p = predicted_onset(c, to_double(sep))) theory.rows.push_back({sep, onset_number(p->value)});
+      }
+      plot += fmt::format("DATA index {} using 1:2:3:4 title {} with yerrorlines lt {} ps 1.5, ", blocks.size(),
+                          gp_quote(block.title + " (median)"), style);
+      blocks.push_back(block);
+      if (!theory.rows.empty()) {
+        if (theory.rows.size() == 1) {  // one separation (--quick): a short horizontal mark
+          theory.rows.push_back({fmt::format("{:g}", to_double(theory.rows[0][0]) * 1.6), theory.rows[0][1]});
+          theory.rows[0][0] = fmt::format("{:g}", to_double(theory.rows[0][0]) / 1.6);
+        }
+        plot += fmt::format("DATA index {} using 1:2 title {} with lines lt {} dt 3 lw 2, ", blocks.size(),
+                            gp_quote(theory.title), style);
+        blocks.push_back(theory);
+      }
+    }
+    if (plot.empty()) continue;
+    plot.resize(plot.size() - 2);
+    body += "set title " + gp_quote(mapping_name(mapping)) + "\n" + onset_panel_key(mapping) + "plot " + plot + "\n";
+  }
+  body += "unset multiplot\n";
+  render_chart(dir, "fight_onset_map", blocks, body);
 }
 
 // One panel per fill method, on one colour scale (one colour bar, right of the panels), each cell
@@ -79,10 +149,12 @@ void chart_slivers(const std::string& dir, const CsvTable& table) {
       "set cbrange [0:{:g}]\nunset colorbox\nset grid\n",
       a_low / 2, a_high * 2, b_low / 1.6, b_high * 1.6, std::max(highest, 1.0));
   body += fmt::format(
-      "set multiplot layout {},2 margins 0.08,0.86,0.07,0.9 spacing 0.09,0.11 title 'Sliver pairs: pixels that "
+      "set multiplot layout {},2 margins 0.08,0.84,0.07,0.9 spacing 0.09,0.09 title 'Sliver pairs: pixels that "
       "differ from lavapipe (number in each cell; one colour scale for every panel)'\n",
       rows);
   for (size_t i = 0; i < blocks.size(); ++i) {
+    // The x label only under the bottom row, so each panel title has the room above its panel.
+    body += i + 2 < blocks.size() ? "set xlabel ''\n" : "set xlabel 'apex angle (degrees)'\n";
     if (i + 1 == blocks.size())
       body += "set colorbox user origin screen 0.9, screen 0.2 size screen 0.025, screen 0.6\n"
               "set cblabel 'pixels that differ from lavapipe'\n";
@@ -130,17 +202,49 @@ PageSection chart_limit(const std::string& dir, const CsvTable& table, const std
   return section;
 }
 
+nlohmann::ordered_json onset_json_number(double v) {
+  return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json();
+}
+
+// One (case, separation) of fight_onset: the onset distribution over the ensemble (null: never
+// within the range), beside the predicted onset and whether it lies in (before_min, max].
+nlohmann::ordered_json onset_json(const CsvTable& table, const std::string& c, const std::string& sep) {
+  const OnsetDistribution d = fight_onset_distribution(table, c, sep);
+  nlohmann::ordered_json onsets = nlohmann::ordered_json::array();
+  for (double v : d.onsets) onsets.push_back(onset_json_number(v));
+  nlohmann::ordered_json out{{"case", c},
+                             {"format", case_depth_format(c)},
+                             {"mapping", mapping_name(case_depth_mapping(c))},
+                             {"separation", to_double(sep)},
+                             {"jitters", d.onsets.size()},
+                             {"onset_min", onset_json_number(d.min)},
+                             {"onset_q1", onset_json_number(d.q1)},
+                             {"onset_median", onset_json_number(d.median)},
+                             {"onset_q3", onset_json_number(d.q3)},
+                             {"onset_max", onset_json_number(d.max)},
+                             {"never", d.never},
+                             {"onsets", onsets},
+                             {"measured_low", onset_json_number(d.before_min)},
+                             {"measured_high", onset_json_number(d.max)}};
+  if (const auto p = predicted_onset(c, to_double(sep))) {
+    out["predicted"] = p->value;
+    out["predicted_formula"] = p->formula;
+    out["predicted_in_bracket"] = d.never == 0 && std::isfinite(d.max) &&
+                                  (std::isnan(d.before_min) || p->value > d.before_min) && p->value <= d.max;
+  } else {
+    out["predicted"] = nullptr;
+    out["predicted_formula"] = "no onset up to far/near 10^6";
+    out["predicted_in_bracket"] = d.never == d.onsets.size();
+  }
+  return out;
+}
+
 nlohmann::ordered_json summary(const CsvTable& table) {
   nlohmann::ordered_json out;
   out["fight_onset"] = nlohmann::ordered_json::array();
-  for (const std::string& format : distinct(table, "case", {{"experiment", "fight_onset"}}))
-    for (const std::string& sep : distinct(table, "param_a", {{"experiment", "fight_onset"}, {"case", format}})) {
-      const double r = fight_onset_ratio(table, format, sep);
-      out["fight_onset"].push_back(
-          {{"format", format},
-           {"separation", to_double(sep)},
-           {"onset_far_near", std::isnan(r) ? nlohmann::ordered_json() : nlohmann::ordered_json(r)}});
-    }
+  for (const std::string& c : distinct(table, "case", {{"experiment", "fight_onset"}}))
+    for (const std::string& sep : distinct(table, "param_a", {{"experiment", "fight_onset"}, {"case", c}}))
+      out["fight_onset"].push_back(onset_json(table, c, sep));
   const size_t agree = table.column("cpu_vk_agree"), method = table.column("method");
   for (const char* experiment : {"sliver", "far_distance", "near_w", "non_finite"}) {
     nlohmann::ordered_json per_method;
@@ -160,13 +264,37 @@ nlohmann::ordered_json summary(const CsvTable& table) {
 
 }  // namespace
 
-double fight_onset_ratio(const CsvTable& table, const std::string& format, const std::string& separation) {
+double fight_onset_ratio(const CsvTable& table, const std::string& case_name, const std::string& separation,
+                         const std::string& jitter) {
   const size_t ratio = table.column("param_b"), cpu = table.column("value_cpu"), vk = table.column("value_vk");
   double onset = NAN;
-  for (const Row& row : select_rows(table, {{"experiment", "fight_onset"}, {"case", format}, {"param_a", separation}}))
+  for (const Row& row : select_rows(
+           table, {{"experiment", "fight_onset"}, {"case", case_name}, {"param_a", separation}, {"jitter", jitter}}))
     if ((to_double(row[cpu]) > 0 || to_double(row[vk]) > 0) && !(to_double(row[ratio]) >= onset))
       onset = to_double(row[ratio]);
   return onset;
+}
+
+OnsetDistribution fight_onset_distribution(const CsvTable& table, const std::string& case_name,
+                                           const std::string& separation) {
+  OnsetDistribution d;
+  const Where where{{"experiment", "fight_onset"}, {"case", case_name}, {"param_a", separation}};
+  for (const std::string& j : distinct(table, "jitter", where)) {
+    const double onset = fight_onset_ratio(table, case_name, separation, j);
+    d.onsets.push_back(std::isnan(onset) ? INFINITY : onset);
+    d.never += std::isnan(onset) ? 1 : 0;
+  }
+  if (d.onsets.empty()) return d;
+  std::sort(d.onsets.begin(), d.onsets.end());
+  const size_t last = d.onsets.size() - 1;
+  double* stats[] = {&d.min, &d.q1, &d.median, &d.q3, &d.max};
+  for (size_t k = 0; k < 5; ++k) *stats[k] = d.onsets[(k * last + 2) / 4];
+  std::vector<double> grid;
+  for (const std::string& r : distinct(table, "param_b", where)) grid.push_back(to_double(r));
+  std::sort(grid.begin(), grid.end());
+  for (double r : grid)
+    if (r < d.min) d.before_min = r;
+  return d;
 }
 
 std::vector<DataBlock> limit_blocks(const CsvTable& table, const std::string& experiment) {
@@ -215,7 +343,7 @@ nlohmann::ordered_json boundary_json(const FailureBoundary& b) {
                              {"refused", b.refused},
                              {"refused_values", b.refused_values}};
   if (const auto prediction = predicted_boundary(b.experiment, b.case_name, b.method)) {
-    const BracketCheck bracket = check_bracket(b, prediction->value);
+    const BracketCheck bracket = check_bracket(b, prediction->value, prediction->clean_at_value);
     out["predicted"] = prediction->value;
     out["predicted_formula"] = prediction->formula;
     out["measured_low"] = number(bracket.measured_low);
@@ -228,11 +356,15 @@ nlohmann::ordered_json boundary_json(const FailureBoundary& b) {
 void write_stability_outputs(const std::string& dir) {
   const CsvTable table = read_csv((std::filesystem::path(dir) / kStabilityCsv).string());
   write_json_file(dir, "stability.json", summary(table).dump(2) + "\n");
-  chart_fight_onset(dir, table);
+  chart_fight_vs_far_near(dir, table);
+  chart_fight_onset_map(dir, table);
   chart_slivers(dir, table);
   std::vector<PageSection> sections{
       {"Z-fighting onset",
-        "A near-coplanar pair; the first far/near ratio at which the farther surface wins a pixel.",
+        "A near-coplanar pair 50 units away at 30 degrees, in each depth format and with each clip-z mapping "
+        "(standard or reversed, clip z formed in float as a camera matrix does or in double from w), rendered at an "
+        "ensemble of jitters (sub-pixel offset and depth phase); the onset is the first far/near ratio at which the "
+        "farther surface wins a pixel, one per jitter (stability.json: min, quartiles, max, and the predicted onset).",
         {"fight_vs_far_near", "fight_onset_map"}},
       {"Slivers",
        "Two thin triangles sharing an edge through a pixel centre, every fill method; colour and number: pixels "

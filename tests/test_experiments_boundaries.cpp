@@ -175,6 +175,16 @@ TEST(ExperimentsBoundaries, DepthMethodsFightFromAFarNearRatioPerFormat) {
     // UNORM steps are uniform, so reversing gains little (z formed in double from w here).
     expect_boundary("depth_far_near", "d16_unorm_reversed_z", method, 316.22776601683796, 1000);
     expect_boundary("depth_far_near", "x8_d24_unorm_reversed_z", method, 31622.776601683792, 100000);
+    // The other two mappings: standard with clip z formed in double, reversed formed in float.
+    expect_boundary("depth_far_near", "d16_unorm_double_z", method, 316.22776601683796, 1000);
+    // Bilinear interpolation rounds otherwise: here one grid step later.
+    if (std::string(method) == "depth=bilinear")
+      expect_boundary("depth_far_near", "x8_d24_unorm_double_z", method, 100000, 316227.7660168379);
+    else
+      expect_boundary("depth_far_near", "x8_d24_unorm_double_z", method, 31622.776601683792, 100000);
+    expect_boundary("depth_far_near", "d16_unorm_reversed_z_float", method, 316.22776601683796, 1000);
+    expect_boundary("depth_far_near", "x8_d24_unorm_reversed_z_float", method, 31622.776601683792, 100000);
+    expect_never_fails("depth_far_near", "d32_sfloat_reversed_z_float", method);
   }
   // Window z interpolated perspective-correctly is not the plane the rasterizer shares between the
   // two surfaces: the pair fights at every ratio.
@@ -190,6 +200,17 @@ TEST(ExperimentsBoundaries, CoplanarPairsNeedAnOffsetPerFormat) {
     expect_boundary("coplanar_offset", "d32_sfloat", method, 8, 2);
   }
   expect_boundary("coplanar_offset", "d16_unorm", "depth=perspective_correct", 2, 1);
+  // The prediction (D + 1) / 2 for UNORM (lavapipe's r is 2 steps), D + 1 for D32, D the decal's
+  // largest excess over the base at zero offset, lies in each measured bracket (closed at the clean end).
+  for (const char* format : {"d16_unorm", "x8_d24_unorm", "d32_sfloat"})
+    for (const char* method : {"exact", "depth=no_fma", "depth=bilinear"}) {
+      const auto predicted = predicted_boundary("coplanar_offset", format, method);
+      ASSERT_TRUE(predicted.has_value());
+      const FailureBoundary b = boundary("coplanar_offset", format, method);
+      EXPECT_TRUE(check_bracket(b, predicted->value, true).in_bracket)
+          << format << " " << method << " predicted " << predicted->value << " in (" << b.boundary << ", "
+          << b.last_clean << "]";
+    }
   expect_boundary("coplanar_offset", "x8_d24_unorm", "depth=perspective_correct", kNever, 8);
 }
 

@@ -9,6 +9,7 @@
 #include "experiments/failure_boundary.hpp"
 #include "experiments/gnuplot.hpp"
 #include "experiments/polygon_offset.hpp"
+#include "experiments/scene_make.hpp"
 #include "experiments/skip_savings.hpp"
 #include "experiments/stability.hpp"
 
@@ -103,6 +104,56 @@ TEST(ExperimentsCharts, MapJsonCarriesPredictedBesideTheMeasuredBracket) {
   FailureBoundary refused{"clip_near_w", "clip", "triangle", "clip=weiler_atherton", 0.1, 1, 12, 7, 1, {0.0}};
   EXPECT_EQ(boundary_json(refused)["refused_values"], nlohmann::ordered_json::array({0.0}));
   EXPECT_FALSE(boundary_json(refused).contains("predicted"));
+}
+
+// fight_onset over a jitter ensemble: one onset per jitter (a jitter that never fights is +inf),
+// nearest-rank quartiles, and the grid ratio before the smallest onset as the bracket's low end.
+TEST(ExperimentsCharts, OnsetDistributionOverTheJitterEnsemble) {
+  CsvTable t{stability_header(), {}};
+  const char* ratios[] = {"10", "100", "1000"};
+  // jitter 0 fights from 100, jitter 1 from 1000, jitter 2 never, jitter 3 from 10.
+  const int first_wrong[] = {1, 2, 3, 0};
+  for (int j = 0; j < 4; ++j)
+    for (int k = 0; k < 3; ++k)
+      t.rows.push_back({"fight_onset", "d16_unorm", "exact", "0.1", ratios[k], std::to_string(j),
+                        k >= first_wrong[j] ? "0.5" : "0", "0", "0", "0", "true"});
+  EXPECT_EQ(fight_onset_ratio(t, "d16_unorm", "0.1"), 100.0);
+  EXPECT_TRUE(std::isnan(fight_onset_ratio(t, "d16_unorm", "0.1", "2")));
+  const OnsetDistribution d = fight_onset_distribution(t, "d16_unorm", "0.1");
+  ASSERT_EQ(d.onsets.size(), 4u);
+  EXPECT_EQ(d.never, 1u);
+  EXPECT_EQ(d.min, 10.0);
+  EXPECT_EQ(d.median, 1000.0);  // sorted 10, 100, 1000, inf: rank (2 * 3 + 2) / 4 = 2
+  EXPECT_TRUE(std::isinf(d.max));
+  EXPECT_TRUE(std::isnan(d.before_min));  // the first grid value fights already
+}
+
+TEST(ExperimentsCharts, OnsetPredictionPerFormatAndMapping) {
+  // D16 at separation 0.1: 100 (0.1 / cos 30) 65535 / 56^2 = 241, the same for every mapping
+  // (UNORM steps are uniform); D32 reversed has none; D32 standard steps as 24 bits near 1.
+  EXPECT_NEAR(predicted_onset("d16_unorm", 0.1)->value, 241.3, 0.1);
+  EXPECT_NEAR(predicted_onset("d16_unorm_reversed_z_float", 0.1)->value, 241.3, 0.1);
+  EXPECT_NEAR(predicted_onset("x8_d24_unorm_double_z", 1)->value, 617751, 1);
+  EXPECT_EQ(predicted_onset("d32_sfloat", 0.1)->value, predicted_onset("x8_d24_unorm", 0.1)->value);
+  EXPECT_FALSE(predicted_onset("d32_sfloat_reversed_z", 0.1).has_value());
+  EXPECT_FALSE(predicted_onset("d32_sfloat_reversed_z_float", 0.1).has_value());
+  EXPECT_EQ(case_depth_format("x8_d24_unorm_reversed_z_float"), "x8_d24_unorm");
+  EXPECT_EQ(case_depth_mapping("x8_d24_unorm_reversed_z"), DepthMapping::ReversedDouble);
+  EXPECT_EQ(case_depth_mapping("d16_unorm"), DepthMapping::StandardFloat);
+}
+
+// The smallest offset that separates a coplanar pair is clean itself: its bracket is closed there.
+TEST(ExperimentsCharts, CoplanarOffsetPredictionIsCleanAtItsValue) {
+  const auto d16 = predicted_boundary("coplanar_offset", "d16_unorm", "exact");
+  ASSERT_TRUE(d16.has_value());
+  EXPECT_TRUE(d16->clean_at_value);
+  // D16's two triangulations store the same depth (D = 0): c = (0 + 1) / 2.
+  EXPECT_EQ(d16->value, 0.5);
+  FailureBoundary measured{"coplanar_offset", "depth", "d16_unorm", "exact", 0.25, 0.5, 9, 2, 0, {}};
+  EXPECT_TRUE(check_bracket(measured, 0.5, true).in_bracket);
+  EXPECT_FALSE(check_bracket(measured, 0.5, false).in_bracket);
+  EXPECT_FALSE(check_bracket(measured, 0.25, true).in_bracket);
+  EXPECT_TRUE(boundary_json(measured)["predicted_in_bracket"].get<bool>());
 }
 
 }  // namespace

@@ -101,6 +101,18 @@ TEST(ExperimentsSweeps, PolygonOffsetQuick) {
   EXPECT_EQ(r[2]["r_vulkan"].get<double>(), std::ldexp(1.0, -25));  // z 0.375: e = -2
   for (const auto& format : r) EXPECT_EQ(format["r_cpu"], format["r_vulkan"]) << format["format"];
 
+  // The identical-vertex control: on every format, lavapipe and the exact path alike, the second
+  // draw of the same triangle loses every pixel without offset and wins every pixel with 1 r.
+  const std::vector<IdenticalControl> controls = identical_controls(table);
+  EXPECT_EQ(controls.size(), 3u * 2 * 2);  // formats x angles (0, 60) x constants (0, 1)
+  for (const IdenticalControl& c : controls) {
+    EXPECT_TRUE(c.as_expected) << c.format << " angle " << c.angle_deg << " constant " << c.constant;
+    EXPECT_EQ(c.wrong_vk, c.constant == 0 ? 1.0 : 0.0) << c.format << " angle " << c.angle_deg;
+  }
+  const nlohmann::json control_json = nlohmann::json::parse(read_text(dir / "polygon_offset.json"));
+  EXPECT_EQ(control_json["identical_vertex_control"].size(), controls.size());
+  EXPECT_NE(read_text(dir / "index.html").find("Control: one triangle drawn twice"), std::string::npos);
+
   for (const char* chart : {"zfight_far_near_coplanar", "zfight_far_near_house", "min_constant_vs_angle",
                             "min_slope_vs_angle", "clamp", "wrong_vs_angle", "depth_r"})
     expect_chart(dir, chart);
@@ -165,6 +177,14 @@ TEST(ExperimentsSweeps, StabilityQuick) {
 
   const nlohmann::json summary = nlohmann::json::parse(read_text(dir / "stability.json"));
   EXPECT_EQ(summary["far_distance"]["exact"]["points"], far.size());
+  // Every (case, separation) of fight_onset: its onset distribution over the jitter ensemble beside
+  // the predicted onset; the four mappings of each format are there.
+  EXPECT_EQ(summary["fight_onset"].size(), 3u * 4);
+  for (const auto& onset : summary["fight_onset"]) {
+    EXPECT_EQ(onset["jitters"].get<int>(), onset_jitters(true)) << onset["case"];
+    EXPECT_TRUE(onset.contains("onset_median") && onset.contains("predicted") && onset.contains("measured_low"))
+        << onset["case"];
+  }
   for (const char* chart : {"fight_vs_far_near", "fight_onset_map", "sliver_map"}) expect_chart(dir, chart);
   // A limit experiment whose points all match lavapipe is a table on the page, not a chart.
   for (const char* chart : {"far_distance", "near_w", "non_finite"})

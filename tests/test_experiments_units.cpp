@@ -18,6 +18,7 @@
 #include "experiments/gnuplot.hpp"
 #include "experiments/html_page.hpp"
 #include "experiments/order_stats.hpp"
+#include "experiments/pixel_stats.hpp"
 #include "experiments/scene_make.hpp"
 #include "experiments/scene_needs.hpp"
 #include "experiments/skip_savings.hpp"
@@ -183,6 +184,75 @@ TEST(ExperimentsScenes, DecalSceneBiasSignAndDraws) {
   const Scene alone = decal_only(decal);
   ASSERT_EQ(alone.draws.size(), 1u);
   EXPECT_FALSE(alone.draws[0].state.depth.test_enable);
+}
+
+// The four clip-z mappings of depth_far_near and fight_onset: the same eye distances, z formed as
+// each says; reversed maps near to 1 and far to 0 with compare Greater and clear 0.
+TEST(ExperimentsScenes, DepthMappingsFormClipZFromW) {
+  PairParams p;
+  p.kind = PairKind::NearCoplanar;
+  p.separation = 0.1;
+  p.far_near_ratio = 1e5;
+  const Scene standard = make_decal_scene(p).scene;
+  const double n = p.far_plane / p.far_near_ratio, f = p.far_plane;
+  const Scene dbl = with_depth_mapping(standard, DepthMapping::StandardDouble, n, f);
+  const Scene rev = with_depth_mapping(standard, DepthMapping::ReversedDouble, n, f);
+  const Scene rev_float = with_depth_mapping(standard, DepthMapping::ReversedFloat, n, f);
+  const glm::vec4 v = standard.draws[0].positions_clip[0];
+  EXPECT_EQ(dbl.draws[0].positions_clip[0].z, float(f * (double(v.w) - n) / (f - n)));
+  EXPECT_NEAR(double(v.z), f * (double(v.w) - n) / (f - n), 1e-5);  // the camera matrix's float z
+  EXPECT_EQ(rev.draws[0].positions_clip[0].z, float(n * (f - double(v.w)) / (f - n)));
+  EXPECT_NEAR(double(rev_float.draws[0].positions_clip[0].z), n * (f - double(v.w)) / (f - n), 1e-9);
+  EXPECT_EQ(rev.draws[1].state.depth.compare_op, CompareOp::Greater);
+  EXPECT_EQ(rev_float.depth_clear, 0.0f);
+  EXPECT_EQ(dbl.draws[1].state.depth.compare_op, standard.draws[1].state.depth.compare_op);
+  EXPECT_EQ(std::string(mapping_suffix(DepthMapping::ReversedFloat)), "_reversed_z_float");
+}
+
+// The jitter ensemble: jitter 0 is the plain placement; the others differ in x, y and depth phase.
+TEST(ExperimentsScenes, EnsembleJittersAreSubPixelAndDistinct) {
+  EXPECT_EQ(ensemble_jitter(0).x_px, 0.0);
+  EXPECT_EQ(ensemble_jitter(0).depth_phase, 0.0);
+  std::set<double> xs;
+  for (int j = 1; j < 8; ++j) {
+    const Jitter jitter = ensemble_jitter(j);
+    EXPECT_GT(jitter.x_px, 0.0);
+    EXPECT_LT(jitter.x_px, 1.0);
+    EXPECT_LT(jitter.y_px, 1.0);
+    EXPECT_LT(jitter.depth_phase, 1.0);
+    xs.insert(jitter.x_px + 10 * jitter.y_px);
+  }
+  EXPECT_EQ(xs.size(), 7u);
+  PairParams p;
+  p.kind = PairKind::NearCoplanar;
+  const Scene plain = make_decal_scene(p).scene;
+  p.jitter_x_px = 0.5;
+  const Scene moved = make_decal_scene(p).scene;
+  const glm::vec4 a = plain.draws[0].positions_clip[0], b = moved.draws[0].positions_clip[0];
+  EXPECT_NEAR((double(b.x) / b.w - double(a.x) / a.w) * plain.width / 2, 0.5, 1e-4);
+}
+
+// The identical-vertex control on the exact path (which equals lavapipe): one triangle drawn twice,
+// the second loses every pixel without offset and wins every pixel with constant offset 1 r, on
+// every depth format (test_experiments_sweeps checks lavapipe's render of the same points).
+TEST(ExperimentsScenes, IdenticalTriangleIsSeparatedByOneR) {
+  for (DepthFormat format : sweep_depth_formats())
+    for (double angle : {0.0, 60.0})
+      for (float constant : {0.0f, 1.0f}) {
+        PairParams p;
+        p.kind = PairKind::Identical;
+        p.format = format;
+        p.angle_deg = angle;
+        p.decal_bias = {constant != 0, -constant, 0, 0};
+        const DecalScene decal = make_decal_scene(p);
+        ASSERT_EQ(decal.scene.draws[0].positions_clip, decal.scene.draws[1].positions_clip);
+        ASSERT_EQ(decal.scene.draws[0].positions_clip.size(), 3u);
+        const RenderResult both = render_cpu(decal.scene, exact_cpu_options());
+        const std::vector<bool> mask = covered_mask(render_cpu(decal_only(decal), exact_cpu_options()));
+        ASSERT_GT(count(mask), 100u);
+        EXPECT_EQ(wrong_surface_fraction(both, mask, 1), constant == 0 ? 1.0 : 0.0)
+            << to_string(format) << " angle " << angle << " constant " << constant;
+      }
 }
 
 TEST(ExperimentsScenes, FarTriangleReachesTheViewportBoundsLimit) {
@@ -462,3 +532,4 @@ TEST(SummaryFigure, ReadsEachSourceAndNamesABadField) {
 
 }  // namespace
 }  // namespace rastercmp::experiments
+
