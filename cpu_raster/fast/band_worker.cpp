@@ -379,10 +379,12 @@ void BandWorker::raster_exact_in_band(const RasterPrimitive& primitive, const De
   if (visit.empty()) return;
   for (int32_t ty = visit.y0 >> kTileOrder; ty <= visit.y1 >> kTileOrder; ++ty) {
     if (!owns_tile_row(ty)) continue;
+    const int32_t y0 = std::max(visit.y0, ty * kTileSize), y1 = std::min(visit.y1, ty * kTileSize + kTileSize - 1);
+    prepare_tiles(PixelRect{visit.x0, y0, visit.x1, y1}, depth.write);
+    if (frame_.raster.avx2 && rasterize_rows_avx2(primitive, y0, y1, depth, frame_.targets)) continue;
     RasterPrimitive band = primitive;
-    band.visit.y0 = std::max(visit.y0, ty * kTileSize);
-    band.visit.y1 = std::min(visit.y1, ty * kTileSize + kTileSize - 1);
-    prepare_tiles(band.visit, depth.write);
+    band.visit.y0 = y0;
+    band.visit.y1 = y1;
     if (band.binned)  // llvmpipe's wrapping set-up: coverage from its bins, not a plane test
       rasterize_binned_rows(band, depth, frame_.targets, frame_.raster.avx2);
     else

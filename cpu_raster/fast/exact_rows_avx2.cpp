@@ -1,0 +1,300 @@
+// The exact rows (exact_rows.hpp) with AVX2: the covered columns of four sample rows per vector
+// step, worked out from every plane at once, then the covered samples' raw depths, depth tests
+// and stored values eight fragments at a time (gathered from any row and column).
+//
+// Coverage. For a sample row (sample point y Y, x offset sx in fixed units), plane i's value at
+// column px is E(px) = k - d * px with k = E at column 0 and d = dcdx * 256: an integer, covered
+// iff n(px) = E(px) - 1 >= 0. In the form of row_columns_avx2.hpp (n + gx * u >= 0, gx = -d) the
+// covered columns of a plane with d < 0 are bounded below by L = ceil(-n / gx), those of one with
+// d > 0 above by U = floor(-n / gx); a plane with d = 0 covers the whole row or none (n >= 0).
+// Four consecutive rows sit in the lanes of a double vector.
+//
+// Exactness. A primitive is taken only when, for every plane, |n| <= 2^51 in the first row and in
+// the last row a batch computes (n is linear in the row, so in every row between) and
+// |d| * (max(|x0|, |x1|) + 2) <= 2^51 for its visit columns [x0, x1]: then every n, every
+// n + gx * u for u in [x0 - 2, x1 + 2] and every row step is an integer below 2^53, exact in
+// double (the FMA rounds once, an exact value not at all), so each test n + gx * u < 0 is the exact
+// path's E <= 0. The candidate c = ceil(q) or floor(q), q = n * (-1 / gx) rounded twice, is within
+// 2^43 * 3 * 2^-53 < 1 of -n / gx (|n / gx| <= 2^51 / 256), so within one of the bound; clamped to
+// [x0 - 1, x1 + 1] and corrected by the plane's own test at c -/+ 1 and c (row_columns_avx2.hpp's
+// argument), max(x0, L) and min(x1, U) are the exact interval. The sample grid: sample_point's
+// fixed offsets and floats (px as float, plus the sample's x offset: the same conversion and add).
+//
+// Depth. A covered (column, sample) gets z = fl(FMA?(dzdy, y, FMA?(dzdx, x, a0)) + o), clamped and
+// converted (fragment depth of avx2_depth.hpp: sample_depth's operations, one intrinsic each), is
+// tested against the stored value (depth_passes: depth_test_passes' predicates), and a passing one
+// is written as write_covered_sample writes it. A batch holds fragments of one primitive only, all
+// distinct samples, so reading every stored value of the batch before writing any reads what the
+// exact path's sample by sample order reads.
+#include <immintrin.h>
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cstdint>
+#include <cstdlib>
+
+#include "cpu_raster/fast/avx2_depth.hpp"
+#include "cpu_raster/fast/cpu_features.hpp"
+#include "cpu_raster/fast/exact_rows.hpp"
+#include "cpu_raster/fast/format_dispatch.hpp"
+
+namespace rastercmp::cpu::fast {
+namespace {
+
+constexpr int64_t kExactBound = int64_t(1) << 51;
+
+// A primitive's planes for the rows of its samples, four rows per step, grouped by the bound they
+// give: [0, lower) bound the columns below, [lower, upper) above, [upper, count) are flat. n holds
+// the current sample's values (start_sample), first[s] each sample's n in row y0.
+struct PlaneRows {
+  __m256d n[8], step[8], gx[8], inv[8];
+  double dy[8];
+  double first[4][8];
+  uint32_t lower = 0, upper = 0, count = 0;
+};
+
+// The planes of p for rows y0, y0 + 1, ... of each tested sample; false when a value leaves the
+// bounds above (rows up to y1 + 3 are checked: the last step may compute them; |dcdx|, |dcdy| <=
+// 2^30 and |x| <= 2^20 keep the checks themselves inside int64).
+RASTERCMP_AVX2 bool init_plane_rows(PlaneRows& rows, const RasterPrimitive& p, uint32_t samples, int32_t y0,
+                                    int32_t y1) {
+  constexpr int64_t kDeltaBound = int64_t(1) << 30;
+  const int64_t widest = std::max<int64_t>(std::abs(int64_t(p.visit.x0)), std::abs(int64_t(p.visit.x1))) + 2;
+  if (widest > (int64_t(1) << 20)) return false;  // then |d| * widest below stays within int64
+  const int64_t span = (int64_t(y1) + 3 - y0) * kFixedOne;
+  uint32_t group[3][8], size[3] = {0, 0, 0};  // bounds below (d < 0), above (d > 0), flat
+  for (uint32_t i = 0; i < p.planes.count; ++i) {
+    const EdgePlane& plane = p.planes.plane[i];
+    if (plane.dcdx > kDeltaBound || plane.dcdx < -kDeltaBound || plane.dcdy > kDeltaBound || plane.dcdy < -kDeltaBound)
+      return false;
+    const int64_t d = plane.dcdx * kFixedOne;
+    if ((d < 0 ? -d : d) * widest > kExactBound) return false;
+    const uint32_t g = d < 0 ? 0 : d > 0 ? 1 : 2;
+    group[g][size[g]++] = i;
+  }
+  std::array<SamplePoint, 4> offset;
+  for (uint32_t s = 0; s < samples; ++s) offset[s] = sample_point(0, y0, s, p.per_sample);
+  rows.lower = size[0];
+  rows.upper = size[0] + size[1];
+  rows.count = rows.upper + size[2];
+  uint32_t e = 0;
+  for (uint32_t g = 0; g < 3; ++g) {
+    for (uint32_t k = 0; k < size[g]; ++k, ++e) {
+      const EdgePlane& plane = p.planes.plane[group[g][k]];
+      for (uint32_t s = 0; s < samples; ++s) {
+        const int64_t first = edge_value(plane, offset[s].x_fixed, offset[s].y_fixed) - 1;
+        const int64_t last = first + plane.dcdy * span;
+        if (first > kExactBound || first < -kExactBound || last > kExactBound || last < -kExactBound) return false;
+        rows.first[s][e] = double(first);  // exact integers, as every value below
+      }
+      rows.dy[e] = double(plane.dcdy * kFixedOne);
+      rows.step[e] = _mm256_set1_pd(4.0 * rows.dy[e]);
+      const double gx = -double(plane.dcdx * kFixedOne);
+      rows.gx[e] = _mm256_set1_pd(gx);
+      rows.inv[e] = _mm256_set1_pd(gx != 0 ? -1.0 / gx : 0.0);
+    }
+  }
+  return true;
+}
+
+// The values of sample s in rows y0 to y0 + 3.
+RASTERCMP_AVX2 inline void start_sample(PlaneRows& rows, uint32_t s) {
+  const __m256d lanes = _mm256_setr_pd(0, 1, 2, 3);
+  for (uint32_t e = 0; e < rows.count; ++e)
+    rows.n[e] = _mm256_fmadd_pd(_mm256_set1_pd(rows.dy[e]), lanes, _mm256_set1_pd(rows.first[s][e]));
+}
+
+// The covered columns [u0[k], u1[k]] (u0 > u1: none) of the step's four rows, then the next step.
+RASTERCMP_AVX2 inline void next_plane_rows(PlaneRows& rows, __m256d first, __m256d last, int32_t* u0, int32_t* u1) {
+  const __m256d zero = _mm256_setzero_pd(), one = _mm256_set1_pd(1.0);
+  const __m256d clamp_lo = _mm256_sub_pd(first, one), clamp_hi = _mm256_add_pd(last, one);
+  __m256d lo = first, hi = last;
+  for (uint32_t e = 0; e < rows.lower; ++e) {  // L = c - 1 + [G(c-1) < 0] + [G(c) < 0]
+    const __m256d c = _mm256_min_pd(_mm256_max_pd(_mm256_ceil_pd(_mm256_mul_pd(rows.n[e], rows.inv[e])), clamp_lo),
+                                    clamp_hi);
+    const __m256d outer = _mm256_sub_pd(c, one);
+    const __m256d out_fails = _mm256_cmp_pd(_mm256_fmadd_pd(rows.gx[e], outer, rows.n[e]), zero, _CMP_LT_OQ);
+    const __m256d c_fails = _mm256_cmp_pd(_mm256_fmadd_pd(rows.gx[e], c, rows.n[e]), zero, _CMP_LT_OQ);
+    lo = _mm256_max_pd(lo, _mm256_add_pd(outer, _mm256_add_pd(_mm256_and_pd(out_fails, one), _mm256_and_pd(c_fails, one))));
+    rows.n[e] = _mm256_add_pd(rows.n[e], rows.step[e]);
+  }
+  for (uint32_t e = rows.lower; e < rows.upper; ++e) {  // U = c + 1 - [G(c+1) < 0] - [G(c) < 0]
+    const __m256d c = _mm256_min_pd(_mm256_max_pd(_mm256_floor_pd(_mm256_mul_pd(rows.n[e], rows.inv[e])), clamp_lo),
+                                    clamp_hi);
+    const __m256d outer = _mm256_add_pd(c, one);
+    const __m256d out_fails = _mm256_cmp_pd(_mm256_fmadd_pd(rows.gx[e], outer, rows.n[e]), zero, _CMP_LT_OQ);
+    const __m256d c_fails = _mm256_cmp_pd(_mm256_fmadd_pd(rows.gx[e], c, rows.n[e]), zero, _CMP_LT_OQ);
+    hi = _mm256_min_pd(hi, _mm256_sub_pd(outer, _mm256_add_pd(_mm256_and_pd(out_fails, one), _mm256_and_pd(c_fails, one))));
+    rows.n[e] = _mm256_add_pd(rows.n[e], rows.step[e]);
+  }
+  for (uint32_t e = rows.upper; e < rows.count; ++e) {  // flat: the whole row (n >= 0) or none
+    lo = _mm256_blendv_pd(lo, clamp_hi, _mm256_cmp_pd(rows.n[e], zero, _CMP_LT_OQ));
+    rows.n[e] = _mm256_add_pd(rows.n[e], rows.step[e]);
+  }
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(u0), _mm256_cvttpd_epi32(lo));
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(u1), _mm256_cvttpd_epi32(hi));
+}
+
+// Calls run(py, s, x0, x1) for each sample row of rows [y0, y1] with a covered column (its covered
+// columns [x0, x1]); false, having called nothing, when the planes leave the exact bounds.
+template <class Run>
+RASTERCMP_AVX2 bool for_each_run(const RasterPrimitive& p, int32_t y0, int32_t y1, uint32_t tested_samples, Run&& run) {
+  PlaneRows planes;
+  if (!init_plane_rows(planes, p, tested_samples, y0, y1)) return false;
+  const __m256d first = _mm256_set1_pd(double(p.visit.x0)), last = _mm256_set1_pd(double(p.visit.x1));
+  alignas(16) int32_t u0[4], u1[4];
+  for (uint32_t s = 0; s < tested_samples; ++s) {
+    start_sample(planes, s);
+    for (int32_t y = y0; y <= y1; y += 4) {
+      next_plane_rows(planes, first, last, u0, u1);
+      const int32_t rows = std::min(4, y1 - y + 1);
+      for (int32_t k = 0; k < rows; ++k)
+        if (u0[k] <= u1[k]) run(y + k, s, u0[k], u1[k]);
+    }
+  }
+  return true;
+}
+
+constexpr int32_t kBatch = 256;
+
+// The covered samples of a primitive waiting for their depth: index into the targets (sample s,
+// or 0 for a pixel-centre primitive), and the depth interpolation point.
+struct Fragments {
+  alignas(32) std::array<int32_t, kBatch + 8> index;
+  alignas(32) std::array<float, kBatch + 8> x, y;
+  int32_t count = 0;
+};
+
+template <DepthFormat F, CompareOp Op>
+struct DepthRows {
+  DepthRows(const RasterPrimitive& primitive, const KernelDepth& depth, RenderTargets& render_targets)
+      : p(primitive), d(depth), targets(render_targets) {}  // f's arrays left uninitialized: written before read
+
+  const RasterPrimitive& p;
+  const KernelDepth& d;
+  RenderTargets& targets;
+  Fragments f;
+
+  // The batch's fragments: raw depth, test against the stored values, writes.
+  RASTERCMP_AVX2 void flush() {
+    const __m256 a0 = _mm256_set1_ps(p.depth.a0), dzdx = _mm256_set1_ps(p.depth.dzdx);
+    const __m256 dzdy = _mm256_set1_ps(p.depth.dzdy), offset = _mm256_set1_ps(p.offset.offset);
+    const __m256i lanes = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+    uint32_t* depth = targets.depth_raw.data();
+    uint32_t* owner = targets.owner.data();
+    const uint32_t samples = targets.samples;
+    alignas(32) uint32_t raw_lanes[8];
+    for (int32_t i = 0; i < f.count; i += 8) {
+      const __m256i valid = _mm256_cmpgt_epi32(_mm256_set1_epi32(f.count - i), lanes);
+      const __m256 x = _mm256_load_ps(&f.x[size_t(i)]), y = _mm256_load_ps(&f.y[size_t(i)]);
+      const __m256i index = _mm256_load_si256(reinterpret_cast<const __m256i*>(&f.index[size_t(i)]));
+      const __m256 z = finish_depth8(mul_add8(dzdy, y, mul_add8(dzdx, x, a0, d.fma), d.fma), offset, d);
+      const __m256i raw = to_raw<F>(z);
+      __m256i pass = valid;
+      if constexpr (Op != CompareOp::Always) {
+        const __m256i stored = _mm256_mask_i32gather_epi32(_mm256_setzero_si256(), reinterpret_cast<const int*>(depth),
+                                                           index, valid, 4);
+        pass = _mm256_and_si256(valid, depth_passes<F, Op>(z, raw, stored));
+      }
+      uint32_t bits = uint32_t(_mm256_movemask_ps(_mm256_castsi256_ps(pass)));
+      if (bits == 0) continue;
+      _mm256_store_si256(reinterpret_cast<__m256i*>(raw_lanes), raw);
+      for (; bits != 0; bits &= bits - 1) {
+        const int k = std::countr_zero(bits);
+        const size_t at = size_t(uint32_t(f.index[size_t(i + k)]));
+        if (d.write) depth[at] = raw_lanes[k];
+        if (p.per_sample) {
+          owner[at] = p.owner;
+        } else {
+          for (uint32_t t = 0; t < samples; ++t) owner[at + t] = p.owner;
+        }
+      }
+    }
+    f.count = 0;
+  }
+
+  // Columns [x0, x1] of sample row (py, s), all covered.
+  RASTERCMP_AVX2 void add(int32_t py, uint32_t s, int32_t x0, int32_t x1) {
+    // sample_point's floats: float(py) plus the sample's offsets (a pixel-centre primitive: none)
+    const float sx = p.per_sample ? kStandardSamples4x[s].x : 0.0f;
+    const float sy = p.per_sample ? float(py) + kStandardSamples4x[s].y : float(py);
+    const uint32_t samples = targets.samples;
+    const __m256i lanes = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+    const __m256i base = _mm256_set1_epi32(int32_t(targets.index(0, py, p.per_sample ? s : 0)));
+    const __m256 x_offset = _mm256_set1_ps(sx), y = _mm256_set1_ps(sy);
+    // The run's stored depths are read, and its owners written, when the batch is flushed: their
+    // cache lines asked for now (a line's rows lie in different lines of the attachments).
+    const size_t first = targets.index(x0, py, p.per_sample ? s : 0), last = targets.index(x1, py, p.per_sample ? s : 0);
+    _mm_prefetch(reinterpret_cast<const char*>(targets.depth_raw.data() + first), _MM_HINT_T0);
+    _mm_prefetch(reinterpret_cast<const char*>(targets.owner.data() + first), _MM_HINT_T0);
+    _mm_prefetch(reinterpret_cast<const char*>(targets.depth_raw.data() + last), _MM_HINT_T0);
+    _mm_prefetch(reinterpret_cast<const char*>(targets.owner.data() + last), _MM_HINT_T0);
+    for (int32_t x = x0; x <= x1; x += 8) {
+      if (f.count > kBatch - 8) flush();
+      const __m256i px = _mm256_add_epi32(_mm256_set1_epi32(x), lanes);
+      const __m256i index = _mm256_add_epi32(base, _mm256_mullo_epi32(px, _mm256_set1_epi32(int32_t(samples))));
+      _mm256_storeu_si256(reinterpret_cast<__m256i*>(&f.index[size_t(f.count)]), index);
+      // sample_point: float(px), then + the sample's x offset (a pixel-centre primitive adds +0,
+      // which leaves an integer-valued float, never -0, unchanged)
+      _mm256_storeu_ps(&f.x[size_t(f.count)], _mm256_add_ps(_mm256_cvtepi32_ps(px), x_offset));
+      _mm256_storeu_ps(&f.y[size_t(f.count)], y);
+      f.count += std::min(8, x1 - x + 1);
+    }
+  }
+};
+
+template <DepthFormat F, CompareOp Op>
+RASTERCMP_AVX2 bool depth_rows(const RasterPrimitive& p, int32_t y0, int32_t y1, const KernelDepth& d,
+                               RenderTargets& targets) {
+  DepthRows<F, Op> rows(p, d, targets);
+  const bool exact = for_each_run(p, y0, y1, p.per_sample ? targets.samples : 1,
+                                  [&](int32_t py, uint32_t s, int32_t x0, int32_t x1)
+                                      RASTERCMP_AVX2 { rows.add(py, s, x0, x1); });
+  if (exact) rows.flush();
+  return exact;
+}
+
+// Without an active depth test every covered sample is written (the owner only).
+RASTERCMP_AVX2 bool coverage_rows(const RasterPrimitive& p, int32_t y0, int32_t y1, RenderTargets& targets) {
+  uint32_t* owner = targets.owner.data();
+  const uint32_t samples = targets.samples;
+  return for_each_run(p, y0, y1, p.per_sample ? samples : 1, [&](int32_t py, uint32_t s, int32_t x0, int32_t x1) {
+    for (int32_t px = x0; px <= x1; ++px) {
+      if (p.per_sample) {
+        owner[targets.index(px, py, s)] = p.owner;
+      } else {
+        for (uint32_t t = 0; t < samples; ++t) owner[targets.index(px, py, t)] = p.owner;
+      }
+    }
+  });
+}
+
+using DepthRowsFn = bool (*)(const RasterPrimitive&, int32_t, int32_t, const KernelDepth&, RenderTargets&);
+
+struct DepthRowsMaker {
+  template <DepthFormat F, CompareOp Op>
+  static constexpr DepthRowsFn get() {
+    if constexpr (F == DepthFormat::None) return nullptr;
+    else return &depth_rows<F, Op>;
+  }
+};
+constexpr auto kDepthRows = kernel_table<DepthRowsMaker>();
+
+}  // namespace
+
+bool rasterize_rows_avx2(const RasterPrimitive& p, int32_t y0, int32_t y1, const DepthTestState& depth,
+                         RenderTargets& targets) {
+  if (p.binned || depth.compute_when_inactive || (p.per_sample && targets.samples > kStandardSamples4x.size()))
+    return false;
+  if (uint64_t(targets.width) * targets.height * targets.samples > uint64_t(INT32_MAX)) return false;  // gather indices
+  if (y0 > y1 || p.visit.x0 > p.visit.x1) return true;
+  if (!depth.active) return coverage_rows(p, y0, y1, targets);
+  if (depth.format == DepthFormat::None || targets.depth_raw.empty()) return false;
+  if (depth.op == CompareOp::Never) return true;  // no covered sample passes: nothing is written
+  const KernelDepth d{depth.format,     depth.op,         depth.write, depth.range.clamp,
+                      depth.range.zmin, depth.range.zmax, depth.fma};
+  return select_kernel(kDepthRows, depth.format, depth.op)(p, y0, y1, d, targets);
+}
+
+}  // namespace rastercmp::cpu::fast
