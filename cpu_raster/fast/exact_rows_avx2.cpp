@@ -237,14 +237,42 @@ RASTERCMP_AVX2 bool depth_rows(const RasterPrimitive& p, int32_t y0, int32_t y1,
     const float sx = p.per_sample ? kStandardSamples4x[s].x : 0.0f;
     const __m256 x_offset = _mm256_set1_ps(sx);
     const int32_t sample = p.per_sample ? int32_t(s) : 0;
+    const float sy = p.per_sample ? kStandardSamples4x[s].y : 0.0f;
     for (int32_t y = y0; y <= y1; y += 4) {
       next_plane_rows(planes, s, first, last, u0, u1);
       const int32_t rows = std::min(4, y1 - y + 1);
+      // A thin primitive's four rows, each run at most eight columns: every row's eight lanes
+      // stored at the end of the queue so far (an empty row's lanes, past it, are overwritten
+      // by the next row's or lie past the queue's end), without a branch on the runs.
+      const __m128i runs = _mm_max_epi32(
+          _mm_sub_epi32(_mm_load_si128(reinterpret_cast<const __m128i*>(u1)),
+                        _mm_sub_epi32(_mm_load_si128(reinterpret_cast<const __m128i*>(u0)), _mm_set1_epi32(1))),
+          _mm_setzero_si128());
+      if (rows == 4 && count <= kBatch - 32 &&
+          _mm_movemask_ps(_mm_castsi128_ps(_mm_cmpgt_epi32(runs, _mm_set1_epi32(8)))) == 0) {
+        alignas(16) int32_t length[4];
+        _mm_store_si128(reinterpret_cast<__m128i*>(length), runs);
+        for (int32_t k = 0; k < 4; ++k) {
+          const int32_t py = y + k, x0 = u0[k], base = py * row_stride + sample;  // targets.index(0, py, sample)
+          const float fy = p.per_sample ? float(py) + sy : float(py);
+          const __m256i px = _mm256_add_epi32(_mm256_set1_epi32(x0), lanes);
+          _mm256_storeu_si256(reinterpret_cast<__m256i*>(f.index + count),
+                              _mm256_add_epi32(_mm256_set1_epi32(base), _mm256_mullo_epi32(px, column_step)));
+          _mm256_storeu_ps(f.x + count, _mm256_add_ps(_mm256_cvtepi32_ps(px), x_offset));
+          _mm256_storeu_ps(f.y + count, _mm256_set1_ps(fy));
+          if (length[k] > 0) {
+            _mm_prefetch(reinterpret_cast<const char*>(depth + base + x0 * stride), _MM_HINT_T0);
+            _mm_prefetch(reinterpret_cast<const char*>(owner + base + x0 * stride), _MM_HINT_T0);
+          }
+          count += length[k];
+        }
+        continue;
+      }
       for (int32_t k = 0; k < rows; ++k) {
         const int32_t x0 = u0[k], x1 = u1[k];
         if (x0 > x1) continue;
         const int32_t py = y + k, base = py * row_stride + sample;  // targets.index(0, py, sample)
-        const float fy = p.per_sample ? float(py) + kStandardSamples4x[s].y : float(py);
+        const float fy = p.per_sample ? float(py) + sy : float(py);
         const int32_t at0 = base + x0 * stride, at1 = base + x1 * stride;
         _mm_prefetch(reinterpret_cast<const char*>(depth + at0), _MM_HINT_T0);
         _mm_prefetch(reinterpret_cast<const char*>(owner + at0), _MM_HINT_T0);
