@@ -75,8 +75,11 @@ RASTERCMP_AVX2 bool init_plane_rows(PlaneRows& rows, const RasterPrimitive& p, u
     const uint32_t g = d < 0 ? 0 : d > 0 ? 1 : 2;
     group[g][size[g]++] = i;
   }
-  std::array<SamplePoint, 4> offset;
-  for (uint32_t s = 0; s < samples; ++s) offset[s] = sample_point(0, y0, s, p.per_sample);
+  int64_t sample_x[4], sample_y[4];  // sample_point(0, y0, s, p.per_sample)'s fixed coordinates
+  for (uint32_t s = 0; s < samples; ++s) {
+    sample_x[s] = p.per_sample ? kStandardSamples4x[s].x_fixed : 0;
+    sample_y[s] = int64_t(y0) * kFixedOne + (p.per_sample ? kStandardSamples4x[s].y_fixed : 0);
+  }
   rows.lower = size[0];
   rows.upper = size[0] + size[1];
   rows.count = rows.upper + size[2];
@@ -85,7 +88,7 @@ RASTERCMP_AVX2 bool init_plane_rows(PlaneRows& rows, const RasterPrimitive& p, u
     for (uint32_t k = 0; k < size[g]; ++k, ++e) {
       const EdgePlane& plane = p.planes.plane[group[g][k]];
       for (uint32_t s = 0; s < samples; ++s) {
-        const int64_t first = edge_value(plane, offset[s].x_fixed, offset[s].y_fixed) - 1;
+        const int64_t first = edge_value(plane, sample_x[s], sample_y[s]) - 1;
         const int64_t last = first + plane.dcdy * span;
         if (first > kExactBound || first < -kExactBound || last > kExactBound || last < -kExactBound) return false;
         rows.first[s][e] = double(first);  // exact integers, as every value below
