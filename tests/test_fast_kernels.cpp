@@ -1,7 +1,7 @@
 // Unit tests of the fast path's rasterizing stages against the exact path's own functions and
 // against each other: the eight- and sixteen-wide small-triangle set-ups (packed grid words, the
 // window compositor, the pair set-up), the 32-bit "G" edge form, the row columns, the vector tile
-// kernels against the scalar one, and the binned tiles. test_fast_units.cpp holds the stages
+// kernels against the scalar one, the binned tiles and the vector exact rows. test_fast_units.cpp holds the stages
 // around them (vertices, clears, the pool, block rows, row balance, depth bounds, exact rows).
 #include <gtest/gtest.h>
 
@@ -13,10 +13,14 @@
 #include "cpu_raster/exact/depth_sample.hpp"
 #include "cpu_raster/exact/edge_plane.hpp"
 #include "cpu_raster/exact/fixed_point.hpp"
+#include "cpu_raster/exact/front_end.hpp"
+#include "cpu_raster/exact/rasterize.hpp"
+#include "cpu_raster/exact/render_targets.hpp"
 #include "cpu_raster/exact/triangle_setup.hpp"
 #include "cpu_raster/fast/binned_tiles.hpp"
 #include "cpu_raster/fast/clipped_pieces.hpp"
 #include "cpu_raster/fast/cpu_features.hpp"
+#include "cpu_raster/fast/exact_rows.hpp"
 #include "cpu_raster/fast/fast_vertices.hpp"
 #include "cpu_raster/fast/small_triangles.hpp"
 #include "cpu_raster/fast/small_window.hpp"
@@ -530,6 +534,63 @@ TEST(FastClippedPieces, LeanSetUpGivesTheExactPathsTriangle) {
   EXPECT_GT(drawn, 12000);  // 16943, 18703 and 4354 of the 40000
   EXPECT_GT(dropped, 12000);
   EXPECT_GT(full, 2500);
+}
+
+// rasterize_rows_avx2 (exact_rows.hpp) against the exact rasterizer, primitive by primitive on the
+// same targets: random scenes of lines (every mode, widths 0.5-6 px, non-integer too) and triangles,
+// half of them in 4x frames (per-sample triangles and rectangular lines, pixel-centre Bresenham
+// lines), every depth format and compare op, writes, clamp, bias, scissors and viewports that cut
+// primitives, stored depths at random, each primitive's rows split at a random row as the tile rows
+// split them. Both targets must hold the same owner and depth bytes after every draw.
+TEST(FastExactRows, VectorRowsWriteWhatTheExactRasterizerWrites) {
+  if (!host_has_avx2_fma()) GTEST_SKIP() << "the host runs no AVX2";
+  uint64_t vector_primitives = 0, lines = 0, per_sample = 0;
+  for (uint64_t seed = 1; seed <= 160; ++seed) {
+    fast_test::Random r(seed * 7919);
+    fast_test::RandomSceneSpec spec;
+    spec.max_primitives = 60;
+    Scene scene = fast_test::random_scene(seed, spec);
+    if (seed % 2 == 0) scene.samples = 4;
+    for (Draw& draw : scene.draws) {
+      if (r.chance(0.5)) draw.state.line_width = float(r.range(0.5, 6.0));
+      if (r.chance(0.15)) draw.state.line_mode = LineMode::RectangularSmooth;
+    }
+    const bool fma = seed % 3 != 0;
+    const FrameContext frame = make_frame_context(scene, fma, {});
+    RenderTargets exact = make_render_targets(scene);
+    const uint32_t mask = depth_format_info(scene.depth_format).raw_mask;
+    for (uint32_t& raw : exact.depth_raw) raw = r.chance(0.3) ? raw : r.below(1u << 24) & mask;
+    if (is_float(scene.depth_format))
+      for (uint32_t& raw : exact.depth_raw) raw = float_bits(float(r.unit()));
+    RenderTargets vector = exact;
+    for (uint32_t d = 0; d < scene.draws.size(); ++d) {
+      const DepthTestState depth = make_depth_test_state(scene, scene.draws[d], frame.viewport, fma);
+      run_front_end(frame, d, [&](const PrimitiveOutcome& outcome) {
+        if (!outcome.rasterized()) return;
+        const RasterPrimitive& p = outcome.raster;
+        rasterize_primitive(p, depth, exact, WorkSkips{});
+        if (p.visit.empty()) return;
+        const int32_t split = p.visit.y0 + int32_t(r.below(uint32_t(p.visit.y1 - p.visit.y0 + 1)));
+        for (const auto& [y0, y1] : {std::pair{p.visit.y0, split - 1}, std::pair{split, p.visit.y1}}) {
+          if (rasterize_rows_avx2(p, y0, y1, depth, vector)) {
+            ++vector_primitives;
+            lines += p.is_line ? 1 : 0;
+            per_sample += p.per_sample ? 1 : 0;
+            continue;
+          }
+          RasterPrimitive band = p;
+          band.visit.y0 = y0;
+          band.visit.y1 = y1;
+          if (!band.visit.empty()) rasterize_primitive_rows(band, depth, vector, true);
+        }
+      });
+      ASSERT_EQ(exact.owner, vector.owner) << "seed " << seed << " draw " << d;
+      ASSERT_EQ(exact.depth_raw, vector.depth_raw) << "seed " << seed << " draw " << d;
+    }
+  }
+  EXPECT_GT(vector_primitives, 2000u);
+  EXPECT_GT(lines, 500u);
+  EXPECT_GT(per_sample, 500u);
 }
 
 }  // namespace

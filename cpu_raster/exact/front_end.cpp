@@ -210,26 +210,39 @@ LineSetup setup_line_in_mode(SetupDenormals mode, const std::array<WindowVertex,
   return setup_in_mode(mode, ctx.draw_index, primitive_index, *ctx.state, [&] { return setup_line(window, owner, ctx); });
 }
 
-void run_front_end(const FrameContext& frame, uint32_t draw_index, const OutcomeSink& sink) {
+DrawWalk begin_draw(const FrameContext& frame, uint32_t draw_index) {
   const Draw& draw = frame.scene->draws[draw_index];
-  const SetupContext ctx = make_setup_context(frame, draw_index);
-  PrimitiveOutcome base;
-  base.draw_index = draw_index;
-  base.is_line = is_line_topology(draw.topology);
-  const std::vector<bool> pipelined = pipelined_chunks(draw, draw.state.depth_clip_enabled());  // §1.5
-  const TrailingPipelineRun run = trailing_pipeline_run(draw, pipelined);                       // §7.11
-  const uint32_t count = primitive_count(draw), per_chunk = primitives_per_chunk(draw);
-  for (uint32_t i = 0; i < count; ++i) {
-    const AssembledPrimitive prim = assemble_primitive(draw, i);
-    PrimitiveOutcome outcome = base;
-    outcome.primitive_index = i;
-    outcome.pipelined = pipelined[i / per_chunk];
-    outcome.setup_denormals = setup_denormals(run, outcome.pipelined, i);
-    if (base.is_line)
-      run_line(frame, ctx, draw, prim, outcome, sink);
-    else
-      run_triangle(frame, ctx, draw, prim, outcome, sink);
-  }
+  DrawWalk walk;
+  walk.draw = &draw;
+  walk.ctx = make_setup_context(frame, draw_index);
+  walk.base.draw_index = draw_index;
+  walk.base.is_line = is_line_topology(draw.topology);
+  walk.pipelined = pipelined_chunks(draw, draw.state.depth_clip_enabled());  // §1.5
+  walk.run = trailing_pipeline_run(draw, walk.pipelined);                   // §7.11
+  walk.count = primitive_count(draw);
+  walk.per_chunk = primitives_per_chunk(draw);
+  return walk;
+}
+
+SetupDenormals primitive_setup_denormals(const DrawWalk& walk, uint32_t primitive) {
+  return setup_denormals(walk.run, walk.pipelined[primitive / walk.per_chunk], primitive);
+}
+
+void run_primitive(const FrameContext& frame, const DrawWalk& walk, uint32_t i, const OutcomeSink& sink) {
+  const AssembledPrimitive prim = assemble_primitive(*walk.draw, i);
+  PrimitiveOutcome outcome = walk.base;
+  outcome.primitive_index = i;
+  outcome.pipelined = walk.pipelined[i / walk.per_chunk];
+  outcome.setup_denormals = setup_denormals(walk.run, outcome.pipelined, i);
+  if (walk.base.is_line)
+    run_line(frame, walk.ctx, *walk.draw, prim, outcome, sink);
+  else
+    run_triangle(frame, walk.ctx, *walk.draw, prim, outcome, sink);
+}
+
+void run_front_end(const FrameContext& frame, uint32_t draw_index, const OutcomeSink& sink) {
+  const DrawWalk walk = begin_draw(frame, draw_index);
+  for (uint32_t i = 0; i < walk.count; ++i) run_primitive(frame, walk, i, sink);
 }
 
 }  // namespace rastercmp::cpu

@@ -130,4 +130,18 @@ SetupContext make_setup_context(const FrameContext& frame, uint32_t draw_index);
 
 void run_front_end(const FrameContext& frame, uint32_t draw_index, const OutcomeSink& sink);
 
+// run_front_end one primitive at a time (the fast path's walks, which leave out primitives that
+// cannot reach their rows): the draw's state, then primitive i of it through the geometry stages.
+struct DrawWalk {
+  const Draw* draw = nullptr;
+  SetupContext ctx;
+  std::vector<bool> pipelined;
+  TrailingPipelineRun run;
+  uint32_t count = 0, per_chunk = 1;
+  PrimitiveOutcome base;
+};
+DrawWalk begin_draw(const FrameContext& frame, uint32_t draw_index);
+SetupDenormals primitive_setup_denormals(const DrawWalk& walk, uint32_t primitive);
+void run_primitive(const FrameContext& frame, const DrawWalk& walk, uint32_t primitive, const OutcomeSink& sink);
+
 }  // namespace rastercmp::cpu

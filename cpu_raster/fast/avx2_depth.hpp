@@ -42,4 +42,36 @@ RASTERCMP_AVX2 inline __m256i to_raw(__m256 z) {
   }
 }
 
+template <CompareOp Op>
+constexpr int unordered_predicate() {  // depth_test_passes for D32: true whenever NaN is involved
+  switch (Op) {
+    case CompareOp::Less: return _CMP_NGE_UQ;
+    case CompareOp::Equal: return _CMP_EQ_UQ;
+    case CompareOp::LessOrEqual: return _CMP_NGT_UQ;
+    case CompareOp::Greater: return _CMP_NLE_UQ;
+    case CompareOp::NotEqual: return _CMP_NEQ_UQ;
+    case CompareOp::GreaterOrEqual: return _CMP_NLT_UQ;
+    default: return _CMP_TRUE_UQ;
+  }
+}
+
+// depth_test_passes(op, format, fragment, stored) per lane (Never and Always never get here): the
+// float compares use the unordered predicates of docs/lavapipe-rules.md §3.6; UNORM depth stays
+// below 2^24, so a signed 32-bit compare orders it as the unsigned one does.
+template <DepthFormat F, CompareOp Op>
+RASTERCMP_AVX2 inline __m256i depth_passes(__m256 z, __m256i raw, __m256i stored) {
+  if constexpr (is_float(F)) {
+    return _mm256_castps_si256(_mm256_cmp_ps(z, _mm256_castsi256_ps(stored), unordered_predicate<Op>()));
+  } else {
+    const __m256i ones = _mm256_set1_epi32(-1);
+    if constexpr (Op == CompareOp::Less) return _mm256_cmpgt_epi32(stored, raw);
+    if constexpr (Op == CompareOp::Equal) return _mm256_cmpeq_epi32(raw, stored);
+    if constexpr (Op == CompareOp::LessOrEqual) return _mm256_xor_si256(_mm256_cmpgt_epi32(raw, stored), ones);
+    if constexpr (Op == CompareOp::Greater) return _mm256_cmpgt_epi32(raw, stored);
+    if constexpr (Op == CompareOp::NotEqual) return _mm256_xor_si256(_mm256_cmpeq_epi32(raw, stored), ones);
+    if constexpr (Op == CompareOp::GreaterOrEqual) return _mm256_xor_si256(_mm256_cmpgt_epi32(stored, raw), ones);
+    return ones;
+  }
+}
+
 }  // namespace rastercmp::cpu::fast

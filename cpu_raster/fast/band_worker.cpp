@@ -6,6 +6,8 @@
 #include <cmath>
 
 #include "cpu_raster/exact/assemble.hpp"
+#include "cpu_raster/exact/clip_vertex.hpp"
+#include "cpu_raster/exact/front_end.hpp"
 #include "cpu_raster/exact/depth_plane.hpp"
 #include "cpu_raster/exact/pipeline_cull.hpp"
 #include "cpu_raster/exact/triangle_setup.hpp"
@@ -366,12 +368,51 @@ size_t BandWorker::first_visible(const PixelRect& tile, const uint8_t* list, siz
 
 // Draws the fast path does not handle: the exact front end, each primitive's visit rectangle cut
 // to this worker's tile rows, and the exact rasterizer's evaluation on the same targets (each row's
-// columns cut to the primitive's, exact_rows.hpp).
+// columns cut to the primitive's, exact_rows.hpp). A primitive that cannot reach this worker's
+// rows is left out before its clipping and set-up (misses_own_rows).
 void BandWorker::walk_exact(uint32_t d) {
+  const FrameContext& frame = frame_.exact;
   const DepthTestState& depth = frame_.draws[d].raster.depth;
-  run_front_end(frame_.exact, d, [&](const PrimitiveOutcome& outcome) {
+  const DrawWalk walk = begin_draw(frame, d);
+  const OutcomeSink sink = [&](const PrimitiveOutcome& outcome) {
     if (outcome.rasterized()) raster_exact_in_band(outcome.raster, depth);
-  });
+  };
+  const bool lines = walk.base.is_line, depth_clip = walk.draw->state.depth_clip_enabled();
+  // How far a primitive's visit rectangle reaches past its vertices' window y: a line's quad its
+  // half width, a Bresenham end's shift (at most one pixel) and the rounded-up box; a triangle's
+  // box and the multisample scissor quirk one row each.
+  const float margin = lines ? std::max(walk.draw->state.line_width, 1.0f) + 3.0f : 2.0f;
+  const uint32_t corners = lines ? 2 : 3;
+  for (uint32_t i = 0; i < walk.count; ++i) {
+    if (workers_ > 1 && primitive_setup_denormals(walk, i) == SetupDenormals::Flushed) {
+      const AssembledPrimitive prim = assemble_primitive(*walk.draw, i);
+      std::array<ClipVertex, 3> v;
+      for (uint32_t k = 0; k < corners; ++k)
+        v[k] = make_clip_vertex(walk.draw->positions_clip[prim.position[k]], frame.viewport, depth_clip, frame.fma);
+      if (misses_own_rows(v.data(), corners, margin)) continue;
+    }
+    run_primitive(frame, walk, i, sink);
+  }
+}
+
+// Whether a primitive whose set-up runs with denormals flushed (where set-up cannot throw but for
+// llvmpipe's wrapping set-up) certainly reaches none of this worker's tile rows: every vertex
+// inside every clip plane (the clipper passes it unchanged, so these window positions are set-up's
+// input), finite, spanning less than 32000 px in x plus y with the margin (so its edges stay in
+// the direct range: no wrapping set-up, lavapipe-rules §7.5), and its window y extent widened by
+// `margin` on each side in no row this worker owns. Leaving it out changes nothing in these rows.
+bool BandWorker::misses_own_rows(const ClipVertex* v, uint32_t count, float margin) const {
+  float x_lo = v[0].window.x, x_hi = x_lo, y_lo = v[0].window.y, y_hi = y_lo;
+  for (uint32_t k = 0; k < count; ++k) {
+    if (v[k].clip_mask != 0 || !std::isfinite(v[k].window.x) || !std::isfinite(v[k].window.y)) return false;
+    x_lo = std::min(x_lo, v[k].window.x);
+    x_hi = std::max(x_hi, v[k].window.x);
+    y_lo = std::min(y_lo, v[k].window.y);
+    y_hi = std::max(y_hi, v[k].window.y);
+  }
+  if ((x_hi - x_lo) + (y_hi - y_lo) + 4.0f * margin >= 32000.0f || y_lo < -1e7f || y_hi > 1e7f) return false;
+  const int32_t row_lo = int32_t(std::floor(y_lo - margin)), row_hi = int32_t(std::floor(y_hi + margin));
+  return !owns_tile_rows(row_lo >> kTileOrder, row_hi >> kTileOrder);
 }
 
 void BandWorker::raster_exact_in_band(const RasterPrimitive& primitive, const DepthTestState& depth) {
@@ -379,10 +420,12 @@ void BandWorker::raster_exact_in_band(const RasterPrimitive& primitive, const De
   if (visit.empty()) return;
   for (int32_t ty = visit.y0 >> kTileOrder; ty <= visit.y1 >> kTileOrder; ++ty) {
     if (!owns_tile_row(ty)) continue;
+    const int32_t y0 = std::max(visit.y0, ty * kTileSize), y1 = std::min(visit.y1, ty * kTileSize + kTileSize - 1);
+    prepare_tiles(PixelRect{visit.x0, y0, visit.x1, y1}, depth.write);
+    if (frame_.raster.avx2 && rasterize_rows_avx2(primitive, y0, y1, depth, frame_.targets)) continue;
     RasterPrimitive band = primitive;
-    band.visit.y0 = std::max(visit.y0, ty * kTileSize);
-    band.visit.y1 = std::min(visit.y1, ty * kTileSize + kTileSize - 1);
-    prepare_tiles(band.visit, depth.write);
+    band.visit.y0 = y0;
+    band.visit.y1 = y1;
     if (band.binned)  // llvmpipe's wrapping set-up: coverage from its bins, not a plane test
       rasterize_binned_rows(band, depth, frame_.targets, frame_.raster.avx2);
     else

@@ -20,6 +20,14 @@ bool plane_columns(const EdgePlane& plane, int64_t sample_x, int64_t y_fixed, in
 void rasterize_primitive_rows(const RasterPrimitive& p, const DepthTestState& depth, RenderTargets& targets,
                               bool avx2);
 
+// Same writes as rasterize_primitive(p, depth, targets) for the rows [y0, y1] of p.visit
+// (exact_rows_avx2.cpp; call only when host_has_avx2_fma()): every plane's columns of four sample
+// rows per step, then the covered samples' depths, tests and writes eight at a time, gathered from
+// any row. False, having written nothing, for a binned primitive, the depth skip off, or planes
+// whose values leave the range it evaluates exactly in double: then rasterize_primitive_rows.
+bool rasterize_rows_avx2(const RasterPrimitive& p, int32_t y0, int32_t y1, const DepthTestState& depth,
+                         RenderTargets& targets);
+
 // Same writes as rasterize_primitive(p, depth, targets) for a binned primitive (p.binned): coverage
 // a 64x64 tile at a time from its bins, binned_covers only in partial tiles. avx2: as for
 // rasterize_primitive_rows, each run of covered columns of a sample row with its raw depths eight

@@ -340,6 +340,18 @@ void balance_tile_rows(FastFrame& frame, const std::vector<int32_t>& reach, size
   frame.unowned_rows = std::move(empty_rows);
 }
 
+// A frame of exact draws only (lines, multisampled frames; no block gives an estimate): worker w
+// owns the w-th of `workers` runs of consecutive tile rows, so that a primitive, whose rows are
+// consecutive, mostly lies in one worker's rows and the other workers leave it out before its
+// set-up (BandWorker::misses_own_rows); r % workers would give a primitive crossing a row border
+// to two workers. Only which thread writes a row changes.
+void contiguous_rows(FastFrame& frame) {
+  if (std::any_of(frame.draws.begin(), frame.draws.end(), [](const FastDraw& d) { return d.fast; })) return;
+  const size_t tiles_y = size_t(std::max(frame.raster.tiles_y, 0));
+  frame.row_worker.resize(tiles_y);
+  for (size_t r = 0; r < tiles_y; ++r) frame.row_worker[r] = uint32_t(r * frame.workers / tiles_y);
+}
+
 // Phase 3 (several workers): which tile rows each block of small triangles may reach, measured
 // once, so that a worker sets up only the blocks it may draw into. Each block's indices are
 // checked before they are read through; a bad one: the full profile check, which throws.
@@ -348,7 +360,10 @@ void measure_all_block_rows(FastFrame& frame) {
   size_t blocks = 0;
   for (uint32_t d = 0; d < frame.draws.size(); ++d)
     if (frame.draws[d].small_blocks) blocks += (primitive_count(frame.scene->draws[d]) + 7) / 8;
-  if (blocks == 0) return;
+  if (blocks == 0) {
+    contiguous_rows(frame);
+    return;
+  }
   uint32_t* rows = thread_word_scratch(blocks);
   std::vector<RowTask> tasks;
   for (uint32_t d = 0; d < frame.draws.size(); ++d) {

@@ -1,0 +1,462 @@
+// The exact rows (exact_rows.hpp) with AVX2: the covered columns of four sample rows per vector
+// step, worked out from every plane at once, then the covered samples' raw depths, depth tests
+// and stored values eight at a time: in a frame of one sample per pixel (lines) fragments queued
+// from any row and column, their stored depths gathered (depth_rows); for a per-sample primitive
+// in a 4x frame the four samples of two pixels, contiguous in the attachments (sample_span_rows).
+//
+// Coverage. For a sample row (sample point y Y, x offset sx in fixed units), plane i's value at
+// column px is E(px) = k - d * px with k = E at column 0 and d = dcdx * 256: an integer, covered
+// iff n(px) = E(px) - 1 >= 0. In the form of row_columns_avx2.hpp (n + gx * u >= 0, gx = -d) the
+// covered columns of a plane with d < 0 are bounded below by L = ceil(-n / gx), those of one with
+// d > 0 above by U = floor(-n / gx); a plane with d = 0 covers the whole row or none (n >= 0).
+// Four consecutive rows sit in the lanes of a double vector.
+//
+// Exactness. A primitive is taken only when, for every plane, |n| <= 2^51 in the first row and in
+// the last row a batch computes (n is linear in the row, so in every row between) and
+// |d| * (max(|x0|, |x1|) + 2) <= 2^51 for its visit columns [x0, x1]: then every n, every
+// n + gx * u for u in [x0 - 2, x1 + 2] and every row step is an integer below 2^53, exact in
+// double (the FMA rounds once, an exact value not at all), so each test n + gx * u < 0 is the exact
+// path's E <= 0. The candidate c = ceil(q) or floor(q), q = n * (-1 / gx) rounded twice, is within
+// 2^43 * 3 * 2^-53 < 1 of -n / gx (|n / gx| <= 2^51 / 256), so within one of the bound; clamped to
+// [x0 - 1, x1 + 1] and corrected by the plane's own test at c -/+ 1 and c (row_columns_avx2.hpp's
+// argument), max(x0, L) and min(x1, U) are the exact interval. The sample grid: sample_point's
+// fixed offsets and floats (px as float, plus the sample's x offset: the same conversion and add).
+//
+// Depth. A covered (column, sample) gets z = fl(FMA?(dzdy, y, FMA?(dzdx, x, a0)) + o), clamped and
+// converted (avx2_depth.hpp: sample_depth's operations, one intrinsic each, at sample_point's x and
+// y), is tested against the stored value (depth_passes: depth_test_passes' predicates), and a
+// passing one is written as write_covered_sample writes it. A batch or step holds samples of one
+// primitive only, all distinct, so reading its stored values before writing any reads what the
+// exact path's sample by sample order reads.
+#include <immintrin.h>
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cstdint>
+#include <cstdlib>
+
+#include "cpu_raster/fast/avx2_depth.hpp"
+#include "cpu_raster/fast/cpu_features.hpp"
+#include "cpu_raster/fast/exact_rows.hpp"
+#include "cpu_raster/fast/format_dispatch.hpp"
+
+namespace rastercmp::cpu::fast {
+namespace {
+
+constexpr int64_t kExactBound = int64_t(1) << 51;
+
+// A primitive's planes for the rows of its samples, four rows per step, grouped by the bound they
+// give: [0, lower) bound the columns below, [lower, upper) above, [upper, count) are flat. n[s]
+// holds sample s's values in the next step's four rows (from start_sample on).
+struct PlaneRows {
+  __m256d n[4][8], step[8], gx[8], inv[8];
+  double dy[8];
+  double first[4][8];
+  uint32_t lower = 0, upper = 0, count = 0;
+};
+
+// The planes of p for rows y0, y0 + 1, ... of each tested sample; false when a value leaves the
+// bounds above (rows up to y1 + 3 are checked: the last step may compute them; |dcdx|, |dcdy| <=
+// 2^30 and |x| <= 2^20 keep the checks themselves inside int64).
+RASTERCMP_AVX2 bool init_plane_rows(PlaneRows& rows, const RasterPrimitive& p, uint32_t samples, int32_t y0,
+                                    int32_t y1) {
+  constexpr int64_t kDeltaBound = int64_t(1) << 30;
+  const int64_t widest = std::max<int64_t>(std::abs(int64_t(p.visit.x0)), std::abs(int64_t(p.visit.x1))) + 2;
+  if (widest > (int64_t(1) << 20)) return false;  // then |d| * widest below stays within int64
+  const int64_t span = (int64_t(y1) + 3 - y0) * kFixedOne;
+  uint32_t group[3][8], size[3] = {0, 0, 0};  // bounds below (d < 0), above (d > 0), flat
+  for (uint32_t i = 0; i < p.planes.count; ++i) {
+    const EdgePlane& plane = p.planes.plane[i];
+    if (plane.dcdx > kDeltaBound || plane.dcdx < -kDeltaBound || plane.dcdy > kDeltaBound || plane.dcdy < -kDeltaBound)
+      return false;
+    const int64_t d = plane.dcdx * kFixedOne;
+    if ((d < 0 ? -d : d) * widest > kExactBound) return false;
+    const uint32_t g = d < 0 ? 0 : d > 0 ? 1 : 2;
+    group[g][size[g]++] = i;
+  }
+  int64_t sample_x[4], sample_y[4];  // sample_point(0, y0, s, p.per_sample)'s fixed coordinates
+  for (uint32_t s = 0; s < samples; ++s) {
+    sample_x[s] = p.per_sample ? kStandardSamples4x[s].x_fixed : 0;
+    sample_y[s] = int64_t(y0) * kFixedOne + (p.per_sample ? kStandardSamples4x[s].y_fixed : 0);
+  }
+  rows.lower = size[0];
+  rows.upper = size[0] + size[1];
+  rows.count = rows.upper + size[2];
+  uint32_t e = 0;
+  for (uint32_t g = 0; g < 3; ++g) {
+    for (uint32_t k = 0; k < size[g]; ++k, ++e) {
+      const EdgePlane& plane = p.planes.plane[group[g][k]];
+      for (uint32_t s = 0; s < samples; ++s) {
+        const int64_t first = edge_value(plane, sample_x[s], sample_y[s]) - 1;
+        const int64_t last = first + plane.dcdy * span;
+        if (first > kExactBound || first < -kExactBound || last > kExactBound || last < -kExactBound) return false;
+        rows.first[s][e] = double(first);  // exact integers, as every value below
+      }
+      rows.dy[e] = double(plane.dcdy * kFixedOne);
+      rows.step[e] = _mm256_set1_pd(4.0 * rows.dy[e]);
+      const double gx = -double(plane.dcdx * kFixedOne);
+      rows.gx[e] = _mm256_set1_pd(gx);
+      rows.inv[e] = _mm256_set1_pd(gx != 0 ? -1.0 / gx : 0.0);
+    }
+  }
+  return true;
+}
+
+// The values of sample s in rows y0 to y0 + 3.
+RASTERCMP_AVX2 inline void start_sample(PlaneRows& rows, uint32_t s) {
+  const __m256d lanes = _mm256_setr_pd(0, 1, 2, 3);
+  for (uint32_t e = 0; e < rows.count; ++e)
+    rows.n[s][e] = _mm256_fmadd_pd(_mm256_set1_pd(rows.dy[e]), lanes, _mm256_set1_pd(rows.first[s][e]));
+}
+
+// The covered columns [u0[k], u1[k]] (u0 > u1: none) of sample s in the step's four rows, then the
+// sample's next step.
+RASTERCMP_AVX2 inline void next_plane_rows(PlaneRows& rows, uint32_t s, __m256d first, __m256d last, int32_t* u0,
+                                           int32_t* u1) {
+  __m256d* n = rows.n[s];
+  const __m256d zero = _mm256_setzero_pd(), one = _mm256_set1_pd(1.0);
+  const __m256d clamp_lo = _mm256_sub_pd(first, one), clamp_hi = _mm256_add_pd(last, one);
+  __m256d lo = first, hi = last;
+  for (uint32_t e = 0; e < rows.lower; ++e) {  // L = c - 1 + [G(c-1) < 0] + [G(c) < 0]
+    const __m256d c =
+        _mm256_min_pd(_mm256_max_pd(_mm256_ceil_pd(_mm256_mul_pd(n[e], rows.inv[e])), clamp_lo), clamp_hi);
+    const __m256d outer = _mm256_sub_pd(c, one);
+    const __m256d out_fails = _mm256_cmp_pd(_mm256_fmadd_pd(rows.gx[e], outer, n[e]), zero, _CMP_LT_OQ);
+    const __m256d c_fails = _mm256_cmp_pd(_mm256_fmadd_pd(rows.gx[e], c, n[e]), zero, _CMP_LT_OQ);
+    lo = _mm256_max_pd(lo,
+                       _mm256_add_pd(outer, _mm256_add_pd(_mm256_and_pd(out_fails, one), _mm256_and_pd(c_fails, one))));
+    n[e] = _mm256_add_pd(n[e], rows.step[e]);
+  }
+  for (uint32_t e = rows.lower; e < rows.upper; ++e) {  // U = c + 1 - [G(c+1) < 0] - [G(c) < 0]
+    const __m256d c =
+        _mm256_min_pd(_mm256_max_pd(_mm256_floor_pd(_mm256_mul_pd(n[e], rows.inv[e])), clamp_lo), clamp_hi);
+    const __m256d outer = _mm256_add_pd(c, one);
+    const __m256d out_fails = _mm256_cmp_pd(_mm256_fmadd_pd(rows.gx[e], outer, n[e]), zero, _CMP_LT_OQ);
+    const __m256d c_fails = _mm256_cmp_pd(_mm256_fmadd_pd(rows.gx[e], c, n[e]), zero, _CMP_LT_OQ);
+    hi = _mm256_min_pd(hi,
+                       _mm256_sub_pd(outer, _mm256_add_pd(_mm256_and_pd(out_fails, one), _mm256_and_pd(c_fails, one))));
+    n[e] = _mm256_add_pd(n[e], rows.step[e]);
+  }
+  for (uint32_t e = rows.upper; e < rows.count; ++e) {  // flat: the whole row (n >= 0) or none
+    lo = _mm256_blendv_pd(lo, clamp_hi, _mm256_cmp_pd(n[e], zero, _CMP_LT_OQ));
+    n[e] = _mm256_add_pd(n[e], rows.step[e]);
+  }
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(u0), _mm256_cvttpd_epi32(lo));
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(u1), _mm256_cvttpd_epi32(hi));
+}
+
+// Calls run(py, s, x0, x1) for each sample row of rows [y0, y1] with a covered column (its covered
+// columns [x0, x1]); false, having called nothing, when the planes leave the exact bounds.
+template <class Run>
+RASTERCMP_AVX2 bool for_each_run(const RasterPrimitive& p, int32_t y0, int32_t y1, uint32_t tested_samples, Run&& run) {
+  PlaneRows planes;
+  if (!init_plane_rows(planes, p, tested_samples, y0, y1)) return false;
+  const __m256d first = _mm256_set1_pd(double(p.visit.x0)), last = _mm256_set1_pd(double(p.visit.x1));
+  alignas(16) int32_t u0[4], u1[4];
+  for (uint32_t s = 0; s < tested_samples; ++s) {
+    start_sample(planes, s);
+    for (int32_t y = y0; y <= y1; y += 4) {
+      next_plane_rows(planes, s, first, last, u0, u1);
+      const int32_t rows = std::min(4, y1 - y + 1);
+      for (int32_t k = 0; k < rows; ++k)
+        if (u0[k] <= u1[k]) run(y + k, s, u0[k], u1[k]);
+    }
+  }
+  return true;
+}
+
+constexpr int32_t kBatch = 256;
+
+// The covered samples of a primitive waiting for their depth: index into the targets (sample s,
+// or 0 for a pixel-centre primitive), and the depth interpolation point.
+struct Fragments {
+  alignas(32) int32_t index[kBatch + 8];
+  alignas(32) float x[kBatch + 8], y[kBatch + 8];
+};
+
+// Fragments [0, count): raw depth, test against the stored values, writes.
+template <DepthFormat F, CompareOp Op>
+RASTERCMP_AVX2 void flush_fragments(const Fragments& f, int32_t count, const RasterPrimitive& p, const KernelDepth& d,
+                                    RenderTargets& targets) {
+  const __m256 a0 = _mm256_set1_ps(p.depth.a0), dzdx = _mm256_set1_ps(p.depth.dzdx);
+  const __m256 dzdy = _mm256_set1_ps(p.depth.dzdy), offset = _mm256_set1_ps(p.offset.offset);
+  const __m256i lanes = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+  uint32_t* depth = targets.depth_raw.data();
+  uint32_t* owner = targets.owner.data();
+  const uint32_t samples = targets.samples, id = p.owner;
+  const bool per_sample = p.per_sample, write = d.write;
+  alignas(32) uint32_t raw_lanes[8];
+  for (int32_t i = 0; i < count; i += 8) {
+    const __m256i valid = _mm256_cmpgt_epi32(_mm256_set1_epi32(count - i), lanes);
+    const __m256 x = _mm256_load_ps(f.x + i), y = _mm256_load_ps(f.y + i);
+    const __m256i index = _mm256_load_si256(reinterpret_cast<const __m256i*>(f.index + i));
+    const __m256 z = finish_depth8(mul_add8(dzdy, y, mul_add8(dzdx, x, a0, d.fma), d.fma), offset, d);
+    const __m256i raw = to_raw<F>(z);
+    __m256i pass = valid;
+    if constexpr (Op != CompareOp::Always) {
+      const __m256i stored =
+          _mm256_mask_i32gather_epi32(_mm256_setzero_si256(), reinterpret_cast<const int*>(depth), index, valid, 4);
+      pass = _mm256_and_si256(valid, depth_passes<F, Op>(z, raw, stored));
+    }
+    uint32_t bits = uint32_t(_mm256_movemask_ps(_mm256_castsi256_ps(pass)));
+    if (bits == 0) continue;
+    _mm256_store_si256(reinterpret_cast<__m256i*>(raw_lanes), raw);
+    for (; bits != 0; bits &= bits - 1) {
+      const int k = std::countr_zero(bits);
+      const size_t at = size_t(uint32_t(f.index[i + k]));
+      if (write) depth[at] = raw_lanes[k];
+      if (per_sample) {
+        owner[at] = id;
+      } else {
+        for (uint32_t t = 0; t < samples; ++t) owner[at + t] = id;
+      }
+    }
+  }
+}
+
+// With an active depth test: each covered run of a sample row queued (index, x and y of each
+// column, eight at a time), its depth and owner lines prefetched (they are read and written when
+// the batch is flushed; a line's rows lie in different lines of the attachments), and the batch
+// flushed when full and at the end.
+template <DepthFormat F, CompareOp Op>
+RASTERCMP_AVX2 bool depth_rows(const RasterPrimitive& p, int32_t y0, int32_t y1, const KernelDepth& d,
+                               RenderTargets& targets) {
+  const uint32_t tested = p.per_sample ? targets.samples : 1;
+  PlaneRows planes;
+  if (!init_plane_rows(planes, p, tested, y0, y1)) return false;
+  Fragments f;  // written before read
+  int32_t count = 0;
+  const int32_t stride = int32_t(targets.samples), row_stride = int32_t(targets.width) * stride;
+  const uint32_t* depth = targets.depth_raw.data();
+  const uint32_t* owner = targets.owner.data();
+  const __m256i lanes = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7), column_step = _mm256_set1_epi32(stride);
+  const __m256d first = _mm256_set1_pd(double(p.visit.x0)), last = _mm256_set1_pd(double(p.visit.x1));
+  alignas(16) int32_t u0[4], u1[4];
+  for (uint32_t s = 0; s < tested; ++s) {
+    start_sample(planes, s);
+    // sample_point's floats: float(px) and float(py) plus the sample's offsets; a pixel-centre
+    // primitive adds +0 to x, which leaves an integer-valued float (never -0) unchanged
+    const float sx = p.per_sample ? kStandardSamples4x[s].x : 0.0f;
+    const __m256 x_offset = _mm256_set1_ps(sx);
+    const int32_t sample = p.per_sample ? int32_t(s) : 0;
+    const float sy = p.per_sample ? kStandardSamples4x[s].y : 0.0f;
+    for (int32_t y = y0; y <= y1; y += 4) {
+      next_plane_rows(planes, s, first, last, u0, u1);
+      const int32_t rows = std::min(4, y1 - y + 1);
+      // A thin primitive's four rows, each run at most eight columns: every row's eight lanes
+      // stored at the end of the queue so far (an empty row's lanes, past it, are overwritten
+      // by the next row's or lie past the queue's end), without a branch on the runs.
+      const __m128i runs = _mm_max_epi32(
+          _mm_sub_epi32(_mm_load_si128(reinterpret_cast<const __m128i*>(u1)),
+                        _mm_sub_epi32(_mm_load_si128(reinterpret_cast<const __m128i*>(u0)), _mm_set1_epi32(1))),
+          _mm_setzero_si128());
+      if (rows == 4 && count <= kBatch - 32 &&
+          _mm_movemask_ps(_mm_castsi128_ps(_mm_cmpgt_epi32(runs, _mm_set1_epi32(8)))) == 0) {
+        alignas(16) int32_t length[4];
+        _mm_store_si128(reinterpret_cast<__m128i*>(length), runs);
+        for (int32_t k = 0; k < 4; ++k) {
+          const int32_t py = y + k, x0 = u0[k], base = py * row_stride + sample;  // targets.index(0, py, sample)
+          const float fy = p.per_sample ? float(py) + sy : float(py);
+          const __m256i px = _mm256_add_epi32(_mm256_set1_epi32(x0), lanes);
+          _mm256_storeu_si256(reinterpret_cast<__m256i*>(f.index + count),
+                              _mm256_add_epi32(_mm256_set1_epi32(base), _mm256_mullo_epi32(px, column_step)));
+          _mm256_storeu_ps(f.x + count, _mm256_add_ps(_mm256_cvtepi32_ps(px), x_offset));
+          _mm256_storeu_ps(f.y + count, _mm256_set1_ps(fy));
+          if (length[k] > 0) {
+            _mm_prefetch(reinterpret_cast<const char*>(depth + base + x0 * stride), _MM_HINT_T0);
+            _mm_prefetch(reinterpret_cast<const char*>(owner + base + x0 * stride), _MM_HINT_T0);
+          }
+          count += length[k];
+        }
+        continue;
+      }
+      for (int32_t k = 0; k < rows; ++k) {
+        const int32_t x0 = u0[k], x1 = u1[k];
+        if (x0 > x1) continue;
+        const int32_t py = y + k, base = py * row_stride + sample;  // targets.index(0, py, sample)
+        const float fy = p.per_sample ? float(py) + sy : float(py);
+        const int32_t at0 = base + x0 * stride, at1 = base + x1 * stride;
+        _mm_prefetch(reinterpret_cast<const char*>(depth + at0), _MM_HINT_T0);
+        _mm_prefetch(reinterpret_cast<const char*>(owner + at0), _MM_HINT_T0);
+        _mm_prefetch(reinterpret_cast<const char*>(depth + at1), _MM_HINT_T0);
+        _mm_prefetch(reinterpret_cast<const char*>(owner + at1), _MM_HINT_T0);
+        const __m256i base_v = _mm256_set1_epi32(base);
+        const __m256 y_v = _mm256_set1_ps(fy);
+        for (int32_t x = x0; x <= x1; x += 8) {
+          if (count > kBatch - 8) {
+            flush_fragments<F, Op>(f, count, p, d, targets);
+            count = 0;
+          }
+          const __m256i px = _mm256_add_epi32(_mm256_set1_epi32(x), lanes);
+          _mm256_storeu_si256(reinterpret_cast<__m256i*>(f.index + count),
+                              _mm256_add_epi32(base_v, _mm256_mullo_epi32(px, column_step)));
+          _mm256_storeu_ps(f.x + count, _mm256_add_ps(_mm256_cvtepi32_ps(px), x_offset));
+          _mm256_storeu_ps(f.y + count, y_v);
+          count += std::min(8, x1 - x + 1);
+        }
+      }
+    }
+  }
+  flush_fragments<F, Op>(f, count, p, d, targets);
+  return true;
+}
+
+// With an active depth test, a per-sample primitive in a 4x frame: one pixel row of the four
+// samples is a contiguous run of the attachments, eight values (two pixels) per step, lane l holding
+// column px + l / 4 and sample l % 4; a lane is covered when its column lies in its sample's covered
+// columns. Each step loads the stored values (masked at the row's ends), tests, and writes the
+// passing lanes back blended with the values it loaded (masked at the row's ends): the other lanes
+// of the step are this worker's row, rewritten unchanged. (In a frame of one sample per pixel the
+// same steps, eight columns wide, were slower on lines_20k than the gathered batches of depth_rows:
+// a line's row touches one or two columns, and a step's 32 bytes its cache lines again.)
+template <DepthFormat F, CompareOp Op>
+RASTERCMP_AVX2 bool sample_span_rows(const RasterPrimitive& p, int32_t y0, int32_t y1, const KernelDepth& d,
+                                     RenderTargets& targets) {
+  constexpr int Samples = 4;
+  constexpr int32_t kPixels = 8 / Samples;
+  PlaneRows planes;
+  if (!init_plane_rows(planes, p, Samples, y0, y1)) return false;
+  for (uint32_t s = 0; s < uint32_t(Samples); ++s) start_sample(planes, s);
+  const int32_t width = int32_t(targets.width);
+  uint32_t* depth = targets.depth_raw.data();
+  uint32_t* owner = targets.owner.data();
+  const __m256i lane_pixel = _mm256_setr_epi32(0, 0, 0, 0, 1, 1, 1, 1);
+  const __m256i lane_sample = _mm256_setr_epi32(0, 1, 2, 3, 0, 1, 2, 3);
+  // sample_point's floats: float(px) + the sample's x offset, float(py) + its y offset
+  const __m256 sx = _mm256_setr_ps(kStandardSamples4x[0].x, kStandardSamples4x[1].x, kStandardSamples4x[2].x,
+                                   kStandardSamples4x[3].x, kStandardSamples4x[0].x, kStandardSamples4x[1].x,
+                                   kStandardSamples4x[2].x, kStandardSamples4x[3].x);
+  const __m256 sy = _mm256_setr_ps(kStandardSamples4x[0].y, kStandardSamples4x[1].y, kStandardSamples4x[2].y,
+                                   kStandardSamples4x[3].y, kStandardSamples4x[0].y, kStandardSamples4x[1].y,
+                                   kStandardSamples4x[2].y, kStandardSamples4x[3].y);
+  const __m256 a0 = _mm256_set1_ps(p.depth.a0), dzdx = _mm256_set1_ps(p.depth.dzdx);
+  const __m256 dzdy = _mm256_set1_ps(p.depth.dzdy), offset = _mm256_set1_ps(p.offset.offset);
+  const __m256i id = _mm256_set1_epi32(int32_t(p.owner)), width_v = _mm256_set1_epi32(width),
+                one = _mm256_set1_epi32(1);
+  const __m256i minus_one = _mm256_set1_epi32(-1);
+  const __m256d first = _mm256_set1_pd(double(p.visit.x0)), last = _mm256_set1_pd(double(p.visit.x1));
+  // The columns of up to kChunkRows rows at a time, every row's lines asked for before the first
+  // is drawn.
+  constexpr int32_t kChunkRows = 64;
+  alignas(16) int32_t u[kChunkRows / 4][2][Samples][4];  // [step][lo, hi][sample][row of the step]
+  for (int32_t chunk = y0; chunk <= y1; chunk += kChunkRows) {
+    const int32_t chunk_end = std::min(y1, chunk + kChunkRows - 1);
+    for (int32_t y = chunk, b = 0; y <= chunk_end; y += 4, ++b) {
+      for (uint32_t s = 0; s < uint32_t(Samples); ++s) next_plane_rows(planes, s, first, last, u[b][0][s], u[b][1][s]);
+      for (int32_t k = 0; k < 4 && y + k <= chunk_end; ++k) {
+        if (u[b][0][0][k] > u[b][1][0][k]) continue;
+        const size_t at = (size_t(y + k) * size_t(width) + size_t(u[b][0][0][k])) * Samples;
+        _mm_prefetch(reinterpret_cast<const char*>(depth + at), _MM_HINT_T0);
+        _mm_prefetch(reinterpret_cast<const char*>(owner + at), _MM_HINT_T0);
+      }
+    }
+    for (int32_t y = chunk, cur = 0; y <= chunk_end; y += 4, ++cur) {
+      const int32_t rows = std::min(4, chunk_end - y + 1);
+      for (int32_t k = 0; k < rows; ++k) {
+        int32_t lo = INT32_MAX, hi = INT32_MIN;
+        alignas(16) int32_t x0[4] = {0, 0, 0, 0}, x1[4] = {-1, -1, -1, -1};
+        for (int s = 0; s < Samples; ++s) {
+          x0[s] = u[cur][0][s][k];
+          x1[s] = u[cur][1][s][k];
+          if (x0[s] > x1[s]) continue;
+          lo = std::min(lo, x0[s]);
+          hi = std::max(hi, x1[s]);
+        }
+        if (lo > hi) continue;
+        // per lane: its sample's first column - 1 and last column + 1
+        const __m256i x0_v = _mm256_permutevar8x32_epi32(
+            _mm256_castsi128_si256(_mm_load_si128(reinterpret_cast<const __m128i*>(x0))), lane_sample);
+        const __m256i x1_v = _mm256_permutevar8x32_epi32(
+            _mm256_castsi128_si256(_mm_load_si128(reinterpret_cast<const __m128i*>(x1))), lane_sample);
+        const __m256i before = _mm256_sub_epi32(x0_v, one), after = _mm256_add_epi32(x1_v, one);
+        const int32_t py = y + k;
+        const __m256 y_v = _mm256_add_ps(_mm256_set1_ps(float(py)), sy);
+        uint32_t* depth_row = depth + size_t(py) * size_t(width) * Samples;
+        uint32_t* owner_row = owner + size_t(py) * size_t(width) * Samples;
+        // steps on 32-byte boundaries of the attachments (both start on one), so a step's values lie
+        // in one cache line: the first may start up to kPixels - 1 columns before the row
+        const int32_t start = lo - int32_t((size_t(py) * size_t(width) + size_t(lo)) & size_t(kPixels - 1));
+        for (int32_t px = start; px <= hi; px += kPixels) {
+          const __m256i pixel = _mm256_add_epi32(_mm256_set1_epi32(px), lane_pixel);
+          const __m256i covered = _mm256_and_si256(_mm256_cmpgt_epi32(pixel, before), _mm256_cmpgt_epi32(after, pixel));
+          const bool row_end = px < 0 || px + kPixels > width;  // lanes outside the row: other rows' values
+          const __m256i in_row =
+              _mm256_and_si256(_mm256_cmpgt_epi32(pixel, minus_one), _mm256_cmpgt_epi32(width_v, pixel));
+          uint32_t* dp = depth_row + ptrdiff_t(px) * Samples;
+          uint32_t* op = owner_row + ptrdiff_t(px) * Samples;
+          const __m256 x = _mm256_add_ps(_mm256_cvtepi32_ps(pixel), sx);
+          const __m256 z = finish_depth8(mul_add8(dzdy, y_v, mul_add8(dzdx, x, a0, d.fma), d.fma), offset, d);
+          const __m256i raw = to_raw<F>(z);
+          const __m256i stored = row_end ? _mm256_maskload_epi32(reinterpret_cast<const int*>(dp), in_row)
+                                         : _mm256_loadu_si256(reinterpret_cast<const __m256i*>(dp));
+          __m256i pass = covered;
+          if constexpr (Op != CompareOp::Always) pass = _mm256_and_si256(covered, depth_passes<F, Op>(z, raw, stored));
+          if (_mm256_testz_si256(pass, pass)) continue;
+          if (row_end) {
+            if (d.write) _mm256_maskstore_epi32(reinterpret_cast<int*>(dp), pass, raw);
+            _mm256_maskstore_epi32(reinterpret_cast<int*>(op), pass, id);
+            continue;
+          }
+          if (d.write) _mm256_storeu_si256(reinterpret_cast<__m256i*>(dp), _mm256_blendv_epi8(stored, raw, pass));
+          const __m256i old = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(op));
+          _mm256_storeu_si256(reinterpret_cast<__m256i*>(op), _mm256_blendv_epi8(old, id, pass));
+        }
+      }
+    }
+  }
+  return true;
+}
+
+template <DepthFormat F, CompareOp Op>
+RASTERCMP_AVX2 bool depth_kernel(const RasterPrimitive& p, int32_t y0, int32_t y1, const KernelDepth& d,
+                                 RenderTargets& targets) {
+  if (p.per_sample && targets.samples == 4) return sample_span_rows<F, Op>(p, y0, y1, d, targets);
+  return depth_rows<F, Op>(p, y0, y1, d, targets);
+}
+
+// Without an active depth test every covered sample is written (the owner only).
+RASTERCMP_AVX2 bool coverage_rows(const RasterPrimitive& p, int32_t y0, int32_t y1, RenderTargets& targets) {
+  uint32_t* owner = targets.owner.data();
+  const uint32_t samples = targets.samples;
+  return for_each_run(p, y0, y1, p.per_sample ? samples : 1, [&](int32_t py, uint32_t s, int32_t x0, int32_t x1) {
+    for (int32_t px = x0; px <= x1; ++px) {
+      if (p.per_sample) {
+        owner[targets.index(px, py, s)] = p.owner;
+      } else {
+        for (uint32_t t = 0; t < samples; ++t) owner[targets.index(px, py, t)] = p.owner;
+      }
+    }
+  });
+}
+
+using DepthRowsFn = bool (*)(const RasterPrimitive&, int32_t, int32_t, const KernelDepth&, RenderTargets&);
+
+struct DepthRowsMaker {
+  template <DepthFormat F, CompareOp Op>
+  static constexpr DepthRowsFn get() {
+    if constexpr (F == DepthFormat::None)
+      return nullptr;
+    else
+      return &depth_kernel<F, Op>;
+  }
+};
+constexpr auto kDepthRows = kernel_table<DepthRowsMaker>();
+
+}  // namespace
+
+bool rasterize_rows_avx2(const RasterPrimitive& p, int32_t y0, int32_t y1, const DepthTestState& depth,
+                         RenderTargets& targets) {
+  if (p.binned || depth.compute_when_inactive || (p.per_sample && targets.samples > kStandardSamples4x.size()))
+    return false;
+  if (uint64_t(targets.width) * targets.height * targets.samples > uint64_t(INT32_MAX)) return false;  // gather indices
+  if (y0 > y1 || p.visit.x0 > p.visit.x1) return true;
+  if (!depth.active) return coverage_rows(p, y0, y1, targets);
+  if (depth.format == DepthFormat::None || targets.depth_raw.empty()) return false;
+  if (depth.op == CompareOp::Never) return true;  // no covered sample passes: nothing is written
+  const KernelDepth d{depth.format,     depth.op,         depth.write, depth.range.clamp,
+                      depth.range.zmin, depth.range.zmax, depth.fma};
+  return select_kernel(kDepthRows, depth.format, depth.op)(p, y0, y1, d, targets);
+}
+
+}  // namespace rastercmp::cpu::fast
