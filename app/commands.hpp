@@ -22,5 +22,6 @@ void add_sweep_command(CLI::App& app, int& exit_code);
 void add_chart_command(CLI::App& app, int& exit_code);
 void add_soak_command(CLI::App& app, int& exit_code);
 void add_reduce_command(CLI::App& app, int& exit_code);
+void add_docs_command(CLI::App& app, int& exit_code);
 
 }  // namespace rastercmp::app

@@ -32,6 +32,7 @@ int main(int argc, char** argv) {
   app::add_bench_command(app, exit_code);
   app::add_sweep_command(app, exit_code);
   app::add_chart_command(app, exit_code);
+  app::add_docs_command(app, exit_code);
   app::add_soak_command(app, exit_code);
   app::add_reduce_command(app, exit_code);
 

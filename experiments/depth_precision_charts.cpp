@@ -7,6 +7,7 @@
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
 
+#include "experiments/doc_table_renderers.hpp"
 #include "experiments/depth_precision.hpp"
 #include "experiments/gnuplot.hpp"
 #include "experiments/html_page.hpp"
@@ -175,7 +176,9 @@ void run_depth_precision(const SweepOptions& options, const DepthPlanes& planes)
                          num(p.w_spacing), flag(p.render_agrees));
     write_text_file_atomic((std::filesystem::path(options.out_dir) / "depth_precision.csv").string(), csv);
   }
-  write_json_file(options.out_dir, "depth_precision.json", json_text(points, series, planes, per_decade));
+  const std::string json = json_text(points, series, planes, per_decade);
+  write_json_file(options.out_dir, "depth_precision.json", json);
+  write_depth_precision_tables(options.out_dir, json);
   std::vector<PageSection> sections{
       {"Method",
        fmt::format("A surface facing the eye at eye distance w stores one raw depth value. Δz(w) is the width of the "

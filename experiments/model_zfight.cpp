@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "experiments/csv_log.hpp"
+#include "experiments/doc_table_renderers.hpp"
 #include "experiments/gnuplot.hpp"
 #include "experiments/html_page.hpp"
 #include "experiments/progress.hpp"
@@ -231,6 +232,7 @@ void run_model_zfight_sweep(const ModelZfightOptions& o) {
                     fmt::format("{:.4f}", s.fractions.empty() ? 0.0 : s.fractions.back())});
   }
   write_json_file(o.sweep.out_dir, "zfight.json", report.dump(2) + "\n");
+  write_zfight_tables(o.sweep.out_dir, report.dump());
   const std::string body =
       "set logscale x 10\nset format x '10^{%L}'\nset key outside right top\nset grid\nset style data linespoints\n"
       "set title " +

@@ -8,6 +8,7 @@
 
 #include "experiments/csv_log.hpp"
 #include "experiments/depth_r.hpp"
+#include "experiments/doc_table_renderers.hpp"
 #include "experiments/gnuplot.hpp"
 #include "experiments/pixel_stats.hpp"
 #include "experiments/progress.hpp"
@@ -228,9 +229,13 @@ void run_polygon_offset_sweep(const SweepOptions& options) {
   }
   progress.done();
   const std::vector<DepthRMeasure> r = measure_depth_r(vk);
-  write_json_file(options.out_dir, "depth_r.json", r_json(r));
-  write_json_file(options.out_dir, "polygon_offset.json",
-                  identical_control_json(read_csv((std::filesystem::path(options.out_dir) / kPolygonOffsetCsv).string())));
+  const std::string depth_r = r_json(r);
+  write_json_file(options.out_dir, "depth_r.json", depth_r);
+  write_depth_r_tables(options.out_dir, depth_r);
+  const std::string controls =
+      identical_control_json(read_csv((std::filesystem::path(options.out_dir) / kPolygonOffsetCsv).string()));
+  write_json_file(options.out_dir, "polygon_offset.json", controls);
+  write_polygon_offset_tables(options.out_dir, controls);
   write_polygon_offset_charts(options.out_dir, r);
 }
 

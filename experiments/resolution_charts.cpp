@@ -8,6 +8,7 @@
 #include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
+#include "experiments/doc_table_renderers.hpp"
 #include "experiments/gnuplot.hpp"
 #include "experiments/html_page.hpp"
 #include "experiments/resolution_sweep.hpp"
@@ -147,7 +148,9 @@ void run_resolution_sweep(const SweepOptions& options) {
     csv += fmt::format("{},{},{},{},{},{},{},{},{}\n", p.family, p.method, p.size, p.samples, p.coverage, p.depth,
                        p.either, num(p.fraction()), flag(p.refused));
   write_text_file_atomic((std::filesystem::path(options.out_dir) / "resolution.csv").string(), csv);
-  write_json_file(options.out_dir, "resolution.json", json_text(fits, sizes));
+  const std::string json = json_text(fits, sizes);
+  write_json_file(options.out_dir, "resolution.json", json);
+  write_resolution_tables(options.out_dir, json);
 
   std::vector<PageSection> sections{
       {"Method",

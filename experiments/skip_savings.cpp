@@ -8,12 +8,14 @@
 
 #include "bench/skip_scenes.hpp"
 #include "experiments/csv_log.hpp"
+#include "experiments/doc_table_renderers.hpp"
 #include "experiments/gnuplot.hpp"
 #include "experiments/html_page.hpp"
 #include "experiments/order_stats.hpp"
 #include "experiments/progress.hpp"
 #include "experiments/scene_make.hpp"
 #include "experiments/scene_needs.hpp"
+#include "experiments/speed_accuracy.hpp"
 #include "model/host.hpp"
 
 namespace rastercmp::experiments {
@@ -154,6 +156,13 @@ void run_scene_needs(const SweepOptions& options, const std::vector<std::pair<st
   std::vector<Saving> savings;
   nlohmann::ordered_json json;
   json["repeats"] = repeats;
+  // Where the timings were taken (as speed_accuracy.json records it).
+  const RunHost host = current_run_host();
+  json["host"] = host.host;
+  json["cpu_model"] = host.cpu_model;
+  json["git_commit"] = host.git_commit;
+  json["git_dirty"] = host.git_dirty;
+  json["load_average_1min_before"] = run_load_average();
   json["timing_scenes"] = nlohmann::ordered_json::array();
   CsvAppender csv((dir / kSkipSavingsCsv).string(),
                   {"scene", "skip", "stages", "on_ms", "off_ms", "ratio", "ratio_ci_low", "ratio_ci_high", "ci_coverage"},
@@ -172,6 +181,7 @@ void run_scene_needs(const SweepOptions& options, const std::vector<std::pair<st
     }
   }
   progress.done();
+  json["load_average_1min_after"] = run_load_average();
   json["suite"] = nlohmann::ordered_json::object();
   json["suite"]["scenes"] = suite.size();
   for (const StageInfo& stage : pipeline_stages()) {
@@ -186,6 +196,7 @@ void run_scene_needs(const SweepOptions& options, const std::vector<std::pair<st
                                {"off_ms", s.off_ms.median}, {"ratio", s.ratio.median}, {"ratio_ci_low", s.ratio.low},
                                {"ratio_ci_high", s.ratio.high}, {"ci_coverage", s.ratio.coverage}});
   write_json_file(options.out_dir, "scene_needs.json", json.dump(2) + "\n");
+  write_scene_needs_tables(options.out_dir, json.dump());
   if (!suite_needs.empty()) chart_suite(options.out_dir, suite_needs);
   chart_savings(options.out_dir, savings);
 

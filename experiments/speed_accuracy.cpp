@@ -226,6 +226,16 @@ void fill_git(RunHost& host) {
 
 }  // namespace
 
+RunHost current_run_host() {
+  RunHost host;
+  host.host = host_name();
+  host.cpu_model = host_cpu_model();
+  fill_git(host);
+  return host;
+}
+
+double run_load_average() { return load_average_1min(); }
+
 const char* to_string(Tier tier) {
   switch (tier) {
     case Tier::Scalar: return "scalar";

@@ -117,6 +117,10 @@ struct RunHost {
   bool git_dirty = false;                    // the checkout had uncommitted changes
   double load_before = -1, load_after = -1;  // 1-minute load average; -1 when unreadable
 };
+// This host, its CPU model and the commit the binary was built from (loads left at -1).
+RunHost current_run_host();
+// The 1-minute load average; -1 when unreadable.
+double run_load_average();
 
 
 struct SceneSetRun {

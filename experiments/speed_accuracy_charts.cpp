@@ -7,6 +7,7 @@
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
 
+#include "experiments/doc_table_renderers.hpp"
 #include "experiments/chart_labels.hpp"
 #include "experiments/gnuplot.hpp"
 #include "experiments/html_page.hpp"
@@ -331,7 +332,9 @@ std::string speed_accuracy_json(const SpeedAccuracyRun& run) {
 }
 
 void write_speed_accuracy_outputs(const std::string& dir, const SpeedAccuracyRun& run) {
-  write_json_file(dir, "speed_accuracy.json", speed_accuracy_json(run));
+  const std::string json = speed_accuracy_json(run);
+  write_json_file(dir, "speed_accuracy.json", json);
+  write_speed_accuracy_tables(dir, json);
   std::vector<PageSection> sections;
   sections.push_back({"Run",
                       fmt::format("Host {}, {}; commit {}{}; 1-minute load average {:.2f} before the timed "

@@ -6,6 +6,7 @@
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
 
+#include "experiments/doc_table_renderers.hpp"
 #include "experiments/failure_boundary.hpp"
 #include "experiments/gnuplot.hpp"
 #include "experiments/method_maps.hpp"
@@ -355,7 +356,9 @@ nlohmann::ordered_json boundary_json(const FailureBoundary& b) {
 
 void write_stability_outputs(const std::string& dir) {
   const CsvTable table = read_csv((std::filesystem::path(dir) / kStabilityCsv).string());
-  write_json_file(dir, "stability.json", summary(table).dump(2) + "\n");
+  const std::string json = summary(table).dump(2) + "\n";
+  write_json_file(dir, "stability.json", json);
+  write_stability_tables(dir, json);
   chart_fight_vs_far_near(dir, table);
   chart_fight_onset_map(dir, table);
   chart_slivers(dir, table);

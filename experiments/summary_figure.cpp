@@ -8,6 +8,7 @@
 #include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
+#include "experiments/doc_table_renderers.hpp"
 #include "experiments/gnuplot.hpp"
 #include "experiments/html_page.hpp"
 #include "model/errors.hpp"
@@ -286,6 +287,7 @@ void run_summary(const SweepOptions& options, const std::vector<std::string>& fr
   }
   json["agree"] = agree;
   write_json_file(options.out_dir, "summary.json", json.dump(2) + "\n");
+  write_summary_tables(options.out_dir, json.dump());
   chart_summary(options.out_dir, rows);
   write_index_html(
       options.out_dir, "Measured boundaries against their predictions",
