@@ -389,17 +389,18 @@ int run_scaling(const BenchArgs& args) {
 }
 
 // --scaling --model: a model of the fast path on N cores, measured on the cores there are. Each
-// render runs with N threads (as render_cpu_fast does: a small scene takes one worker) and records
-// each worker's thread CPU time per phase (RenderProfile); on N free cores a phase would take its busiest worker's time,
-// so the projected render time is the calling thread's serial time plus the busiest worker's per
-// phase, and the projected speed-up at N is projected(1) / projected(N). What it leaves out:
-// waking the workers, memory bandwidth and caches shared by N cores (a core's time here is
-// measured with its working set alone in its cache only when N <= cores). Checked against the
+// render runs with N workers (as render_cpu_fast does: a small scene takes one worker), their jobs
+// run by at most the host's hardware threads one after another (FastConfig::profile_threads), and
+// records each worker's thread CPU time per phase and each queue task's (RenderProfile); on N free
+// cores a phase would take projected_seconds (its busiest worker; a queue phase: its tasks handed
+// in order to the first worker free), so the projected render time is the calling thread's serial
+// time plus that per phase, and the projected speed-up at N is projected(1) / projected(N). What it
+// leaves out: waking the workers, memory bandwidth and caches shared by N cores. Checked against the
 // measured wall time where N <= hardware threads. Median over --reps per N.
 struct ModelPoint {
   double projected = 0, wall = 0;  // seconds per render of the case, medians over the reps
   std::vector<std::pair<std::string, double>> phases;  // per phase: the busiest worker, summed over scenes
-  double worker_spread = 0;        // bands phase: busiest / mean worker time (1 = even)
+  double worker_spread = 0;        // bands phase: projected / mean worker time (1 = even)
 };
 
 ModelPoint model_point(std::vector<Scene>& scenes, std::vector<RenderResult>& results, CpuOptions options,
@@ -408,6 +409,7 @@ ModelPoint model_point(std::vector<Scene>& scenes, std::vector<RenderResult>& re
   cpu::fast::RenderProfile profile;
   cpu::fast::FastConfig config;
   config.profile = &profile;
+  config.profile_threads = std::max(1u, std::thread::hardware_concurrency());
   std::vector<double> projected, wall;
   std::vector<std::vector<std::pair<std::string, double>>> phases;
   std::vector<double> spreads;
@@ -419,7 +421,7 @@ ModelPoint model_point(std::vector<Scene>& scenes, std::vector<RenderResult>& re
       rep_projected += profile.serial_seconds;
       rep_phases.front().second += profile.serial_seconds;
       for (const cpu::fast::PhaseTimes& phase : profile.phases) {
-        const double busiest = *std::max_element(phase.worker_seconds.begin(), phase.worker_seconds.end());
+        const double busiest = cpu::fast::projected_seconds(phase);
         rep_projected += busiest;
         auto it = std::find_if(rep_phases.begin(), rep_phases.end(), [&](const auto& p) { return p.first == phase.phase; });
         if (it == rep_phases.end()) it = rep_phases.insert(rep_phases.end(), {phase.phase, 0.0});
@@ -462,8 +464,10 @@ int run_scaling_model(const BenchArgs& args) {
   fmt::print("CPU: {} ({} hardware threads), fast path kernels: {}\n", cpu_model(), cores, fast_kernels());
   fmt::print("fast path on N workers, projected from each worker's thread CPU time per phase; median of {} reps\n",
              args.reps);
-  fmt::print("projected = serial + busiest worker per phase; measured: wall time, where N <= {} hardware threads\n\n",
-             cores);
+  fmt::print(
+      "projected = serial + per phase its busiest worker (queue phases: their tasks list-scheduled on N); "
+      "measured: wall time, where N <= {} hardware threads\n\n",
+      cores);
   fmt::print("| scene | N | projected ms | speed-up | measured ms | bands busiest/mean | largest phase |\n");
   fmt::print("|---|---:|---:|---:|---:|---:|---|\n");
   nlohmann::ordered_json j;

@@ -211,6 +211,37 @@ TEST(FastRowBalance, WorkCrowdedIntoOneTileRowMatchesExactPath) {
     expect_fast_matches(crowded_row_scene(seed), seed % 2 == 0, {1u, 2u, 3u, 4u});
 }
 
+// A row over a worker's share is cut into runs of its tiles, which the workers take from a queue
+// (balance_tiles): small lanes across a run's border take the scalar set-up, blocks are set up by
+// the runs their lanes reach, clipped pieces, big triangles, lines (exact rows cut to the run's
+// columns) and the clears go tile by tile. The crowded row of crowded_row_scene at 3-8 workers
+// (with a draw of lines after the mesh), perspective's horizon row at 4 and 16 workers; the band
+// phase is then a queue of units (its tasks in the profile).
+TEST(FastSharedRows, HeavyRowCutIntoRunsOfTilesMatchesExactPath) {
+  for (uint64_t seed = 1; seed <= 8; ++seed) {
+    Scene scene = crowded_row_scene(seed);
+    if (seed <= 4) {
+      Draw lines = bench::lines_scene(400, 200, seed).draws[0];
+      lines.state.depth.compare_op = CompareOp::LessOrEqual;
+      scene.draws.push_back(std::move(lines));
+    }
+    expect_fast_matches(scene, seed % 2 == 0, {3u, 5u, 8u});
+  }
+  expect_fast_matches(bench::perspective_scene(120, 256), true, {4u, 16u});
+  expect_fast_matches(bench::perspective_scene(200, 512), false, {16u});
+  CpuOptions options;
+  options.threads = 4;
+  options.fma = false;
+  cpu::fast::FastConfig config;
+  cpu::fast::RenderProfile profile;
+  config.profile = &profile;
+  config.profile_threads = 1;  // four workers' jobs, one after another on one thread: the same bytes
+  const Scene crowded = crowded_row_scene(3);
+  EXPECT_TRUE(same_bytes(render_exact(crowded, false), cpu::fast::render_fast(crowded, options, config)));
+  ASSERT_EQ(profile.phases.back().phase, "bands");
+  EXPECT_GT(profile.phases.back().tasks.size(), 4u);
+}
+
 // Triangles whose leftmost and topmost corners lie on a pixel's sample or 1/256 px beside it, with a
 // vertical left edge, a horizontal top edge or neither, overlapping in depth: the fast path's
 // rectangle (x0 = (min + 255) >> 8, band_worker.cpp) leaves out only a column or row with no
