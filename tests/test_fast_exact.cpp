@@ -242,6 +242,42 @@ TEST(FastSharedRows, HeavyRowCutIntoRunsOfTilesMatchesExactPath) {
   EXPECT_GT(profile.phases.back().tasks.size(), 4u);
 }
 
+// render_fast_side_by_side (the bench's suite row): scenes rendered side by side on the workers,
+// each on one (a scene worker_count gives several first, with all of them), give each scene the
+// exact path's bytes, into reused results too; the queue holds the one-worker scenes, largest
+// estimate first.
+TEST(FastSideBySide, ScenesSideBySideMatchExactPath) {
+  std::vector<Scene> scenes;
+  for (Scene& scene : bench::load_scene_suite(std::string(RASTERCMP_SOURCE_DIR) + "/scenes")) {
+    try {
+      render_exact(scene, true);
+    } catch (const NotSupportedError&) {
+      continue;
+    }
+    scenes.push_back(std::move(scene));
+    if (scenes.size() == 40) break;
+  }
+  scenes.push_back(bench::grid_scene(60, 256));  // several workers
+  CpuOptions options;
+  options.fma = true;
+  options.threads = 3;
+  const std::vector<size_t> queue = cpu::fast::side_by_side_queue(scenes, options, cpu::fast::FastConfig{});
+  EXPECT_EQ(queue.size(), scenes.size() - 1);
+  const auto estimate = [&](size_t i) {
+    uint64_t vertices = 0;
+    for (const Draw& draw : scenes[i].draws) vertices += draw.vertex_count();
+    return uint64_t(scenes[i].width) * scenes[i].height * scenes[i].samples + 16 * vertices;
+  };
+  for (size_t k = 1; k < queue.size(); ++k) EXPECT_GE(estimate(queue[k - 1]), estimate(queue[k]));
+  std::vector<RenderResult> results;
+  for (int round = 0; round < 2; ++round) {  // new results, then the same reused
+    cpu::fast::render_fast_side_by_side(scenes, options, cpu::fast::FastConfig{}, results);
+    ASSERT_EQ(results.size(), scenes.size());
+    for (size_t i = 0; i < scenes.size(); ++i)
+      EXPECT_TRUE(same_bytes(render_exact(scenes[i], true), results[i])) << scenes[i].name << " round " << round;
+  }
+}
+
 // Triangles whose leftmost and topmost corners lie on a pixel's sample or 1/256 px beside it, with a
 // vertical left edge, a horizontal top edge or neither, overlapping in depth: the fast path's
 // rectangle (x0 = (min + 255) >> 8, band_worker.cpp) leaves out only a column or row with no

@@ -61,6 +61,18 @@ struct FastConfig {
 
 void render_fast_into(const Scene& scene, const CpuOptions& options, const FastConfig& config, RenderResult& result);
 
+// Many scenes on options.threads workers side by side, as `conformance --jobs` renders a suite:
+// the scenes that would take several workers (worker_count) first, one after another, each with
+// all of them; then the others, each on one worker, the workers taking the next scene from a queue
+// that holds them by estimated cost, largest first (samples + 16 per vertex; ties in the given
+// order). results[i] is scenes[i]'s (reused as render_fast_into reuses it; resized to match).
+// With config.profile, profiles[i] is scenes[i]'s profile (render i's own RenderProfile; its
+// workers: 1 for a queued scene), and config.profile_threads caps the threads of the queue.
+void render_fast_side_by_side(const std::vector<Scene>& scenes, const CpuOptions& options, const FastConfig& config,
+                              std::vector<RenderResult>& results, std::vector<RenderProfile>* profiles = nullptr);
+// The scenes render_fast_side_by_side queues (each on one worker) at options.threads, in queue order.
+std::vector<size_t> side_by_side_queue(const std::vector<Scene>& scenes, const CpuOptions& options,
+                                       const FastConfig& config);
 RenderResult render_fast(const Scene& scene, const CpuOptions& options, const FastConfig& config);
 
 }  // namespace cpu::fast
