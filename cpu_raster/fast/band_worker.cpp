@@ -242,7 +242,7 @@ void BandWorker::triangle(uint32_t d, uint32_t primitive, uint32_t a, uint32_t b
 // A triangle that needs clipping: its pieces from the block-row phase's table when it is there
 // (clipped_pieces.hpp; the table is empty with one worker and for draws not set up eight at a
 // time), else the exact path's clipper and set-up here (for_each_piece); the pieces that reach
-// this worker's rows are drawn, in the clipper's order.
+// this worker's tiles are drawn, in the clipper's order.
 void BandWorker::clipped_triangle(uint32_t d, uint32_t primitive, uint32_t a, uint32_t b, uint32_t c) {
   const FastDraw& fd = frame_.draws[d];
   const auto draw_piece = [&](const FastTriangle& t) {

@@ -106,7 +106,7 @@ class BandWorker {
   uint32_t index_;  // the worker, or the queued unit (FastFrame::queued_units), whose tiles it draws
   std::vector<FastTriangle> batch_;
   std::vector<TileTriangle> prepared_;  // flush: the batch's triangles in the current tile
-  // flush: per tile of the batch's union (row-major, this worker's rows), the batch's triangles
+  // flush: per tile of the batch's union (row-major, this worker's tiles), the batch's triangles
   // whose rectangle reaches it, in submission order: tile k's are bin_list_[bin_first_[k],
   // bin_first_[k + 1]).
   std::vector<uint32_t> bin_first_;

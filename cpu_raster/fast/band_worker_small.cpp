@@ -1,4 +1,4 @@
-// BandWorker's small-triangle blocks: drawing a set-up block into the worker's rows, and the
+// BandWorker's small-triangle blocks: drawing a set-up block into the worker's tiles, and the
 // phase before the walks that measures which tile rows each block may reach.
 #include <algorithm>
 #include <bit>
@@ -69,7 +69,7 @@ bool measure_rows(FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end) {
 
 }  // namespace
 
-// One block, lane by lane in primitive order, into this worker's rows.
+// One block, lane by lane in primitive order, into this worker's tiles.
 void BandWorker::draw_block(uint32_t d, const SmallBlock& block) {
   const SmallBlockOutput& out = block.out;
   const DrawRaster& raster = frame_.draws[d].raster;

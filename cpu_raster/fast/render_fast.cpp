@@ -2,9 +2,11 @@
 //  1. frame: the exact path's frame context, the result buffers (not cleared: tiles are cleared
 //     by their workers), per-draw raster state and tiles;
 //  2. vertices: per fast draw, every position transformed and snapped once (in parallel);
-//  3. block rows (several workers): the tile rows each block of 8 small triangles may reach, and
-//     from them which worker draws each tile row (row_balance.hpp);
-//  4. bands: one BandWorker per thread walks all draws and rasterizes its own tile rows.
+//  3. block rows (several workers): the tile rows each block of 8 small triangles may reach, the
+//     trailing runs' denormal checks, and from the rows which worker draws each tile
+//     (row_balance.hpp: whole rows, or runs of a heavy row's tiles in queued units);
+//  4. bands: one BandWorker per worker (or per queued unit) walks all draws and rasterizes its
+//     own tiles.
 #include "cpu_raster/fast/render_fast.hpp"
 
 #include <algorithm>
