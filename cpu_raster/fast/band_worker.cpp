@@ -410,7 +410,7 @@ void BandWorker::walk_exact(uint32_t d) {
   const float margin = lines ? std::max(walk.draw->state.line_width, 1.0f) + 3.0f : 2.0f;
   const uint32_t corners = lines ? 2 : 3;
   for (uint32_t i = 0; i < walk.count; ++i) {
-    if (workers_ > 1 && primitive_setup_denormals(walk, i) == SetupDenormals::Flushed) {
+    if (frame_.workers > 1 && primitive_setup_denormals(walk, i) == SetupDenormals::Flushed) {
       const AssembledPrimitive prim = assemble_primitive(*walk.draw, i);
       std::array<ClipVertex, 3> v;
       for (uint32_t k = 0; k < corners; ++k)
