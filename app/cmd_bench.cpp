@@ -66,7 +66,17 @@ const char* fast_kernels() {
 struct BenchCase {
   std::string name;
   std::vector<Scene> scenes;
+  // The suite: its scenes rendered side by side on the fast path's threads
+  // (cpu::fast::render_fast_side_by_side), as `conformance --jobs` runs them, and timed together.
+  bool side_by_side = false;
 };
+
+// The fast path over a case's scenes into `results` (one per scene) at options.threads: one after
+// another, or side by side (BenchCase::side_by_side); seconds, each render (or the whole
+// side-by-side run) timed by seconds_of. new_buffers: each render into new result buffers
+// (render_cpu_fast; side by side: into `results`, which the caller leaves empty).
+double time_fast_case(const std::vector<Scene>& scenes, bool side_by_side, const CpuOptions& options,
+                      std::vector<RenderResult>& results, bool new_buffers);
 
 struct Target {
   const char* scene;
@@ -109,6 +119,19 @@ void wait_until_other_threads_idle() {
   }
 }
 
+double seconds_of(const std::function<void()>& run);
+
+double time_fast_case(const std::vector<Scene>& scenes, bool side_by_side, const CpuOptions& options,
+                      std::vector<RenderResult>& results, bool new_buffers) {
+  if (side_by_side)
+    return seconds_of([&] { cpu::fast::render_fast_side_by_side(scenes, options, cpu::fast::FastConfig{}, results); });
+  double total = 0;
+  for (size_t i = 0; i < scenes.size(); ++i)
+    total += new_buffers ? seconds_of([&] { render_cpu_fast(scenes[i], options); })
+                         : seconds_of([&] { render_cpu_fast_into(scenes[i], options, results[i]); });
+  return total;
+}
+
 double seconds_of(const std::function<void()>& run) {
   wait_until_other_threads_idle();
   const auto start = std::chrono::steady_clock::now();
@@ -130,7 +153,8 @@ std::vector<BenchCase> make_cases(const BenchArgs& args) {
   const std::vector<std::string> standard = bench::standard_bench_scene_names();
   for (const std::string& name : names) {
     if (name == "suite")
-      cases.push_back({name, bench::load_scene_suite(args.suite_dir.empty() ? default_suite_dir() : args.suite_dir)});
+      cases.push_back(
+          {name, bench::load_scene_suite(args.suite_dir.empty() ? default_suite_dir() : args.suite_dir), true});
     else if (std::find(standard.begin(), standard.end(), name) == standard.end() &&
              (name.ends_with(".json") || std::filesystem::is_regular_file(name)))  // a scene file, named by its stem
       cases.push_back({std::filesystem::path(name).stem().string(), {load_scene_or_model(name)}});
@@ -187,10 +211,9 @@ CaseReport run_case(BenchCase& c, VulkanRenderer& vulkan, const BenchArgs& args,
   for (unsigned rep = 0; rep < args.reps; ++rep) {
     double fast = 0, fast_alloc = 0, lavapipe = 0, exact = 0;
     const auto time_fast = [&] {
-      for (size_t i = 0; i < c.scenes.size(); ++i) {
-        fast += seconds_of([&] { render_cpu_fast_into(c.scenes[i], fast_options, report.fast_results[i]); });
-        fast_alloc += seconds_of([&] { render_cpu_fast(c.scenes[i], fast_options); });
-      }
+      fast += time_fast_case(c.scenes, c.side_by_side, fast_options, report.fast_results, false);
+      std::vector<RenderResult> fresh(c.scenes.size());
+      fast_alloc += time_fast_case(c.scenes, c.side_by_side, fast_options, fresh, true);
     };
     const auto time_lavapipe = [&] {
       for (auto& p : prepared) {
@@ -355,12 +378,8 @@ int run_scaling(const BenchArgs& args) {
     for (uint32_t t : counts) {
       options.threads = t;
       std::vector<double> samples;
-      for (unsigned rep = 0; rep < args.reps; ++rep) {
-        double total = 0;
-        for (size_t i = 0; i < kept.size(); ++i)
-          total += seconds_of([&] { render_cpu_fast_into(kept[i], options, results[i]); });
-        samples.push_back(total);
-      }
+      for (unsigned rep = 0; rep < args.reps; ++rep)
+        samples.push_back(time_fast_case(kept, c.side_by_side, options, results, false));
       const TimingStats s = bench::summarize(samples);
       if (t == 1) one = s.median;
       fmt::print(" {:.2f} ({:.1f}x) |", s.median * 1e3, s.median > 0 ? one / s.median : 0);
@@ -389,37 +408,67 @@ int run_scaling(const BenchArgs& args) {
 }
 
 // --scaling --model: a model of the fast path on N cores, measured on the cores there are. Each
-// render runs with N threads (as render_cpu_fast does: a small scene takes one worker) and records
-// each worker's thread CPU time per phase (RenderProfile); on N free cores a phase would take its busiest worker's time,
-// so the projected render time is the calling thread's serial time plus the busiest worker's per
-// phase, and the projected speed-up at N is projected(1) / projected(N). What it leaves out:
-// waking the workers, memory bandwidth and caches shared by N cores (a core's time here is
-// measured with its working set alone in its cache only when N <= cores). Checked against the
+// render runs with N workers (as render_cpu_fast does: a small scene takes one worker), their jobs
+// run by at most the host's hardware threads one after another (FastConfig::profile_threads), and
+// records each worker's thread CPU time per phase and each queue task's (RenderProfile); on N free
+// cores a phase would take projected_seconds (its busiest worker; a queue phase: its tasks handed
+// in order to the first worker free), so the projected render time is the calling thread's serial
+// time plus that per phase, and the projected speed-up at N is projected(1) / projected(N). What it
+// leaves out: waking the workers, memory bandwidth and caches shared by N cores. Checked against the
 // measured wall time where N <= hardware threads. Median over --reps per N.
 struct ModelPoint {
   double projected = 0, wall = 0;  // seconds per render of the case, medians over the reps
   std::vector<std::pair<std::string, double>> phases;  // per phase: the busiest worker, summed over scenes
-  double worker_spread = 0;        // bands phase: busiest / mean worker time (1 = even)
+  double worker_spread = 0;        // bands phase: projected / mean worker time (1 = even)
 };
 
+// The projection of queued scenes rendered side by side (render_fast_side_by_side) on `workers`
+// free cores: each scene's time on one worker, in queue order (side_by_side_queue), to the first
+// worker free.
+double side_by_side_seconds(const std::vector<double>& scene_seconds, uint32_t workers) {
+  std::vector<double> free(std::max(workers, 1u), 0.0);
+  for (const double t : scene_seconds) *std::min_element(free.begin(), free.end()) += t;
+  return *std::max_element(free.begin(), free.end());
+}
+
 ModelPoint model_point(std::vector<Scene>& scenes, std::vector<RenderResult>& results, CpuOptions options,
-                       uint32_t workers, unsigned reps) {
+                       uint32_t workers, unsigned reps, bool side_by_side) {
   options.threads = workers;
   cpu::fast::RenderProfile profile;
   cpu::fast::FastConfig config;
   config.profile = &profile;
+  config.profile_threads = std::max(1u, std::thread::hardware_concurrency());
   std::vector<double> projected, wall;
   std::vector<std::vector<std::pair<std::string, double>>> phases;
   std::vector<double> spreads;
   for (unsigned rep = 0; rep < reps; ++rep) {
     double rep_projected = 0, rep_wall = 0, busiest_bands = 0, mean_bands = 0;
     std::vector<std::pair<std::string, double>> rep_phases{{"serial", 0.0}};  // summed over the scenes
+    std::vector<cpu::fast::RenderProfile> profiles(scenes.size());
+    if (side_by_side)
+      rep_wall = seconds_of([&] { cpu::fast::render_fast_side_by_side(scenes, options, config, results, &profiles); });
+    // side by side: the queued scenes' times on one worker, in queue order
+    const std::vector<size_t> queue =
+        side_by_side ? cpu::fast::side_by_side_queue(scenes, options, config) : std::vector<size_t>{};
+    std::vector<double> queued;
+    std::vector<bool> in_queue(scenes.size(), false);
+    for (const size_t i : queue) {
+      double total = profiles[i].serial_seconds;
+      for (const cpu::fast::PhaseTimes& phase : profiles[i].phases) total += cpu::fast::projected_seconds(phase);
+      queued.push_back(total);
+      in_queue[i] = true;
+    }
     for (size_t i = 0; i < scenes.size(); ++i) {
-      rep_wall += seconds_of([&] { cpu::fast::render_fast_into(scenes[i], options, config, results[i]); });
+      if (in_queue[i]) continue;
+      if (side_by_side) {
+        profile = profiles[i];
+      } else {
+        rep_wall += seconds_of([&] { cpu::fast::render_fast_into(scenes[i], options, config, results[i]); });
+      }
       rep_projected += profile.serial_seconds;
       rep_phases.front().second += profile.serial_seconds;
       for (const cpu::fast::PhaseTimes& phase : profile.phases) {
-        const double busiest = *std::max_element(phase.worker_seconds.begin(), phase.worker_seconds.end());
+        const double busiest = cpu::fast::projected_seconds(phase);
         rep_projected += busiest;
         auto it = std::find_if(rep_phases.begin(), rep_phases.end(), [&](const auto& p) { return p.first == phase.phase; });
         if (it == rep_phases.end()) it = rep_phases.insert(rep_phases.end(), {phase.phase, 0.0});
@@ -431,6 +480,11 @@ ModelPoint model_point(std::vector<Scene>& scenes, std::vector<RenderResult>& re
           mean_bands += sum / double(phase.worker_seconds.size());
         }
       }
+    }
+    if (!queued.empty()) {
+      const double side = side_by_side_seconds(queued, workers);
+      rep_projected += side;
+      rep_phases.emplace_back("side by side", side);
     }
     projected.push_back(rep_projected);
     wall.push_back(rep_wall);
@@ -462,8 +516,10 @@ int run_scaling_model(const BenchArgs& args) {
   fmt::print("CPU: {} ({} hardware threads), fast path kernels: {}\n", cpu_model(), cores, fast_kernels());
   fmt::print("fast path on N workers, projected from each worker's thread CPU time per phase; median of {} reps\n",
              args.reps);
-  fmt::print("projected = serial + busiest worker per phase; measured: wall time, where N <= {} hardware threads\n\n",
-             cores);
+  fmt::print(
+      "projected = serial + per phase its busiest worker (queue phases: their tasks list-scheduled on N); "
+      "measured: wall time, where N <= {} hardware threads\n\n",
+      cores);
   fmt::print("| scene | N | projected ms | speed-up | measured ms | bands busiest/mean | largest phase |\n");
   fmt::print("|---|---:|---:|---:|---:|---:|---|\n");
   nlohmann::ordered_json j;
@@ -487,7 +543,7 @@ int run_scaling_model(const BenchArgs& args) {
     nlohmann::ordered_json row{{"name", c.name}};
     double one = 0;
     for (const uint32_t n : counts) {
-      const ModelPoint point = model_point(kept, results, options, n, args.reps);
+      const ModelPoint point = model_point(kept, results, options, n, args.reps, c.side_by_side);
       if (n == 1) one = point.projected;
       const double speedup = point.projected > 0 ? one / point.projected : 0;
       const auto largest = std::max_element(point.phases.begin(), point.phases.end(),

@@ -211,6 +211,73 @@ TEST(FastRowBalance, WorkCrowdedIntoOneTileRowMatchesExactPath) {
     expect_fast_matches(crowded_row_scene(seed), seed % 2 == 0, {1u, 2u, 3u, 4u});
 }
 
+// A row over a worker's share is cut into runs of its tiles, which the workers take from a queue
+// (balance_tiles): small lanes across a run's border take the scalar set-up, blocks are set up by
+// the runs their lanes reach, clipped pieces, big triangles, lines (exact rows cut to the run's
+// columns) and the clears go tile by tile. The crowded row of crowded_row_scene at 3-8 workers
+// (with a draw of lines after the mesh), perspective's horizon row at 4 and 16 workers; the band
+// phase is then a queue of units (its tasks in the profile).
+TEST(FastSharedRows, HeavyRowCutIntoRunsOfTilesMatchesExactPath) {
+  for (uint64_t seed = 1; seed <= 8; ++seed) {
+    Scene scene = crowded_row_scene(seed);
+    if (seed <= 4) {
+      Draw lines = bench::lines_scene(400, 200, seed).draws[0];
+      lines.state.depth.compare_op = CompareOp::LessOrEqual;
+      scene.draws.push_back(std::move(lines));
+    }
+    expect_fast_matches(scene, seed % 2 == 0, {3u, 5u, 8u});
+  }
+  expect_fast_matches(bench::perspective_scene(120, 256), true, {4u, 16u});
+  expect_fast_matches(bench::perspective_scene(200, 512), false, {16u});
+  CpuOptions options;
+  options.threads = 4;
+  options.fma = false;
+  cpu::fast::FastConfig config;
+  cpu::fast::RenderProfile profile;
+  config.profile = &profile;
+  config.profile_threads = 1;  // four workers' jobs, one after another on one thread: the same bytes
+  const Scene crowded = crowded_row_scene(3);
+  EXPECT_TRUE(same_bytes(render_exact(crowded, false), cpu::fast::render_fast(crowded, options, config)));
+  ASSERT_EQ(profile.phases.back().phase, "bands");
+  EXPECT_GT(profile.phases.back().tasks.size(), 4u);
+}
+
+// render_fast_side_by_side (the bench's suite row): scenes rendered side by side on the workers,
+// each on one (a scene worker_count gives several first, with all of them), give each scene the
+// exact path's bytes, into reused results too; the queue holds the one-worker scenes, largest
+// estimate first.
+TEST(FastSideBySide, ScenesSideBySideMatchExactPath) {
+  std::vector<Scene> scenes;
+  for (Scene& scene : bench::load_scene_suite(std::string(RASTERCMP_SOURCE_DIR) + "/scenes")) {
+    try {
+      render_exact(scene, true);
+    } catch (const NotSupportedError&) {
+      continue;
+    }
+    scenes.push_back(std::move(scene));
+    if (scenes.size() == 40) break;
+  }
+  scenes.push_back(bench::grid_scene(60, 256));  // several workers
+  CpuOptions options;
+  options.fma = true;
+  options.threads = 3;
+  const std::vector<size_t> queue = cpu::fast::side_by_side_queue(scenes, options, cpu::fast::FastConfig{});
+  EXPECT_EQ(queue.size(), scenes.size() - 1);
+  const auto estimate = [&](size_t i) {
+    uint64_t vertices = 0;
+    for (const Draw& draw : scenes[i].draws) vertices += draw.vertex_count();
+    return uint64_t(scenes[i].width) * scenes[i].height * scenes[i].samples + 16 * vertices;
+  };
+  for (size_t k = 1; k < queue.size(); ++k) EXPECT_GE(estimate(queue[k - 1]), estimate(queue[k]));
+  std::vector<RenderResult> results;
+  for (int round = 0; round < 2; ++round) {  // new results, then the same reused
+    cpu::fast::render_fast_side_by_side(scenes, options, cpu::fast::FastConfig{}, results);
+    ASSERT_EQ(results.size(), scenes.size());
+    for (size_t i = 0; i < scenes.size(); ++i)
+      EXPECT_TRUE(same_bytes(render_exact(scenes[i], true), results[i])) << scenes[i].name << " round " << round;
+  }
+}
+
 // Triangles whose leftmost and topmost corners lie on a pixel's sample or 1/256 px beside it, with a
 // vertical left edge, a horizontal top edge or neither, overlapping in depth: the fast path's
 // rectangle (x0 = (min + 255) >> 8, band_worker.cpp) leaves out only a column or row with no

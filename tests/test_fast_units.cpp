@@ -135,6 +135,14 @@ TEST(FastRenderProfile, EveryPhaseHasEachWorkersTime) {
   }
   EXPECT_EQ(names, (std::vector<std::string>{"vertices", "block rows", "bands"}));
   for (const double t : profile.phases.back().worker_seconds) EXPECT_GT(t, 0.0);
+  // The queue phases list their tasks, each run by one of the workers; the bands own their rows.
+  for (const PhaseTimes& phase : profile.phases) {
+    EXPECT_EQ(phase.tasks.empty(), phase.phase == "bands") << phase.phase;
+    for (const TaskTime& task : phase.tasks) {
+      EXPECT_LT(task.worker, 4u) << phase.phase;
+      EXPECT_GE(task.seconds, 0.0) << phase.phase;
+    }
+  }
   EXPECT_GE(profile.serial_seconds, 0.0);
   // One thread: the same phases on one worker, no pool; a second render refills, not appends.
   options.threads = 1;
@@ -143,6 +151,21 @@ TEST(FastRenderProfile, EveryPhaseHasEachWorkersTime) {
   ASSERT_FALSE(profile.phases.empty());
   for (const PhaseTimes& phase : profile.phases) EXPECT_EQ(phase.worker_seconds.size(), 1u) << phase.phase;
   EXPECT_EQ(profile.phases.size(), 2u);  // vertices and bands: one worker measures no block rows
+}
+
+// A queue phase is projected as its queue would run on free cores: tasks in order, each to the
+// first worker free, after each worker's time outside tasks; other phases: the busiest worker.
+TEST(FastRenderProfile, QueuePhasesAreProjectedByListScheduling) {
+  PhaseTimes owned{"bands", {1.0, 3.0, 2.0}, {}};
+  EXPECT_DOUBLE_EQ(projected_seconds(owned), 3.0);
+  // Here worker 0 ran every task (4 + 1 + 1 + 2) after 0.5 outside them; on two free cores: worker
+  // 0 takes 4 (at 0.5), worker 1 takes 1, 1, 2 (ends at 4): 4.5.
+  PhaseTimes queue{"block rows", {8.5, 0.0}, {{4.0, 0}, {1.0, 0}, {1.0, 0}, {2.0, 0}}};
+  EXPECT_DOUBLE_EQ(projected_seconds(queue), 4.5);
+  // One worker: the sum. No worker: nothing.
+  PhaseTimes alone{"vertices", {3.0}, {{1.0, 0}, {2.0, 0}}};
+  EXPECT_DOUBLE_EQ(projected_seconds(alone), 3.0);
+  EXPECT_DOUBLE_EQ(projected_seconds(PhaseTimes{"vertices", {}, {}}), 0.0);
 }
 
 TEST(FastWorkerPool, EveryJobFlushesDenormals) {
@@ -365,6 +388,46 @@ TEST(FastRowBalance, EveryRowOwnedOnceDeterministicAndBalanced) {
   EXPECT_LT(tile_row_weight(0, 16), tile_row_weight(1, 16));
   EXPECT_LT(tile_row_weight(1, 16), tile_row_weight(2, 16));
   EXPECT_LT(tile_row_weight(3, 8), tile_row_weight(3, 16));
+}
+
+// balance_tiles: rows as balance_rows while no row weighs more than a worker's share; otherwise
+// the heavy rows cut into runs of whole tiles, every tile in exactly one unit, each unit one run of
+// one row, units in order of their estimate, heaviest first.
+TEST(FastRowBalance, HeavyRowsCutIntoRunsOfTiles) {
+  const std::vector<uint64_t> even(16, 5);
+  const TileUnits rows = balance_tiles(even, 16, 4);
+  EXPECT_FALSE(rows.queued);
+  EXPECT_EQ(rows.count, 4u);
+  const std::vector<uint32_t> by_row = balance_rows(even, 4);
+  for (size_t t = 0; t < rows.unit.size(); ++t) EXPECT_EQ(rows.unit[t], by_row[t / 16]);
+  const std::vector<uint64_t> skewed = {1, 1, 1, 1, 1, 1, 40, 880, 460, 170, 140, 120, 100, 100, 100, 100};
+  for (const uint32_t workers : {2u, 4u, 16u}) {
+    SCOPED_TRACE("workers " + std::to_string(workers));
+    const TileUnits cut = balance_tiles(skewed, 16, workers);
+    EXPECT_EQ(cut.queued, workers > 2);  // 880 of 2,221: more than a quarter, not more than half
+    ASSERT_EQ(cut.unit.size(), skewed.size() * 16);
+    EXPECT_EQ(cut, balance_tiles(skewed, 16, workers));
+    for (const uint32_t u : cut.unit) EXPECT_LT(u, cut.count);
+    if (!cut.queued) continue;
+    std::vector<uint64_t> weight(cut.count, 0);
+    std::vector<int> row_of(cut.count, -1);
+    for (size_t t = 0; t < cut.unit.size(); ++t) {
+      const uint32_t u = cut.unit[t];
+      ASSERT_LT(u, cut.count);
+      const int row = int(t / 16);
+      if (row_of[u] < 0) row_of[u] = row;
+      EXPECT_EQ(row_of[u], row);  // one row
+      if (t % 16 > 0 && cut.unit[t - 1] != u) {  // a unit's tiles are one run
+        for (size_t k = t + 1; k < size_t(row + 1) * 16; ++k) EXPECT_NE(cut.unit[k], cut.unit[t - 1]);
+      }
+      weight[u] += skewed[size_t(row)];
+    }
+    const uint64_t share = (std::accumulate(skewed.begin(), skewed.end(), uint64_t{0}) + workers - 1) / workers;
+    uint32_t heavy_units = 0;
+    for (uint32_t u = 0; u < cut.count; ++u) heavy_units += row_of[u] == 7 ? 1 : 0;
+    EXPECT_EQ(heavy_units, std::min<uint64_t>(16, (kPiecesPerShare * 880 + share - 1) / share));
+    for (uint32_t u = 1; u < cut.count; ++u) EXPECT_GE(weight[u - 1] / 16, weight[u] / 16);  // estimates
+  }
 }
 
 // A verdict holds for every fragment and stored value in the ranges (depth_test_passes decides).

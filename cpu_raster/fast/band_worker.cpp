@@ -40,14 +40,20 @@ bool edges_leave_direct_range(const FastVertex& v0, const FastVertex& v1, const 
 
 }  // namespace
 
-BandWorker::BandWorker(FastFrame& frame, uint32_t index) : frame_(frame), index_(index), workers_(frame.workers) {
+BandWorker::BandWorker(FastFrame& frame, uint32_t index) : frame_(frame), index_(index) {
   batch_.reserve(kBatchSize);
   clipped_next_.assign(frame.draws.size(), 0);
-  const size_t rows = size_t(std::max(frame.raster.tiles_y, 0));
-  owned_before_.assign(rows + 1, 0);
-  const bool balanced = frame.row_worker.size() == rows;
-  for (size_t r = 0; r < rows; ++r)
-    owned_before_[r + 1] = owned_before_[r] + ((balanced ? frame.row_worker[r] : r % workers_) == index_ ? 1 : 0);
+  const int32_t rows = std::max(frame.raster.tiles_y, 0), columns = std::max(frame.raster.tiles_x, 0);
+  owned_before_.assign(size_t(rows) + 1, 0);
+  whole_before_.assign(size_t(rows) + 1, 0);
+  row_kind_.assign(size_t(rows), 0);
+  for (int32_t r = 0; r < rows; ++r) {
+    const int32_t owned = owned_tiles(r, 0, columns - 1);
+    row_kind_[size_t(r)] = owned == 0 ? 0 : owned == columns ? 1 : 2;
+    shared_ |= row_kind_[size_t(r)] == 2;
+    owned_before_[size_t(r) + 1] = owned_before_[size_t(r)] + (owned > 0 ? 1 : 0);
+    whole_before_[size_t(r) + 1] = whole_before_[size_t(r)] + (owned == columns ? 1 : 0);
+  }
 }
 
 void BandWorker::run() {
@@ -59,16 +65,31 @@ void BandWorker::run() {
     flush(frame_.draws[d].raster);
   }
   for (int32_t ty = 0; ty < frame_.raster.tiles_y; ++ty)
-    if (owns_tile_row(ty)) clear_tile_row(ty, frame_.raster);
+    if (owns_tile_row(ty)) clear_tile_row(ty, index_, frame_.raster);
   // the rows nobody owns: each taken by one worker, the first to get here taking more
   for (size_t i = frame_.next_unowned++; i < frame_.unowned_rows.size(); i = frame_.next_unowned++)
-    clear_tile_row(frame_.unowned_rows[i], frame_.raster);
+    clear_tile_row(frame_.unowned_rows[i], kUnownedRow, frame_.raster);
 }
 
-bool BandWorker::owns_rows(int32_t y0, int32_t y1) const { return owns_tile_rows(y0 >> kTileOrder, y1 >> kTileOrder); }
+int32_t BandWorker::owned_tiles(int32_t tile_y, int32_t tile_x0, int32_t tile_x1) const {
+  tile_x0 = std::max(tile_x0, 0);
+  tile_x1 = std::min(tile_x1, frame_.raster.tiles_x - 1);
+  int32_t owned = 0;
+  for (int32_t tx = tile_x0; tx <= tile_x1; ++tx) owned += owns_tile(tx, tile_y) ? 1 : 0;
+  return owned;
+}
 
-// Any assignment of rows (not only r % workers, where any workers_ consecutive rows hold one of
-// each worker's): the count of owned rows below t1 + 1 and below t0.
+bool BandWorker::owns_rect(int32_t x0, int32_t y0, int32_t x1, int32_t y1) const {
+  const int32_t ty0 = std::max(y0 >> kTileOrder, 0), ty1 = std::min(y1 >> kTileOrder, frame_.raster.tiles_y - 1);
+  for (int32_t ty = ty0; ty <= ty1; ++ty) {
+    const uint8_t kind = row_kind_[size_t(ty)];
+    if (kind == 1 || (kind == 2 && owned_tiles(ty, x0 >> kTileOrder, x1 >> kTileOrder) > 0)) return true;
+  }
+  return false;
+}
+
+// Any assignment of rows (not only r % workers, where any `workers` consecutive rows hold one of
+// each worker's): the count of rows holding a tile of this worker's below t1 + 1 and below t0.
 bool BandWorker::owns_tile_rows(int32_t t0, int32_t t1) const {
   t0 = std::max(t0, 0);
   t1 = std::min(t1, int32_t(owned_before_.size()) - 2);
@@ -118,11 +139,16 @@ void BandWorker::walk_small_blocks(uint32_t d) {
   const uint32_t blocks = (count + 7) / 8;
   const SmallPairSetupFn pair_setup = frame_.raster.small_pair_setup;
   const uint32_t* const block_rows = fd.block_rows;  // null: one worker owns every row
-  const auto wanted = [&](uint32_t b) {
+  // Whether this worker sets block b up; its corners filled into `slot` when its rows are this
+  // worker's (in a shared row, they decide: wants_block).
+  const auto wanted = [&](uint32_t b, SmallBlock& slot) {
     const uint32_t rows = block_rows ? block_rows[b] : kBlockAnyRow;
-    if (rows == kBlockAnyRow) return true;
-    const int32_t lo = int32_t(rows & 0xFFFFu), hi = int32_t(rows >> 16);
-    return lo <= hi && owns_tile_rows(lo, hi);
+    if (rows != kBlockAnyRow) {
+      const int32_t lo = int32_t(rows & 0xFFFFu), hi = int32_t(rows >> 16);
+      if (lo > hi || !owns_tile_rows(lo, hi)) return false;
+    }
+    fill_block_corners<T, Indexed>(draw.indices.data(), count, b, slot);
+    return !shared_ || wants_block(d, rows, slot);
   };
   fill_block_draw(frame_, d, block_);
   fill_block_draw(frame_, d, next_block_);
@@ -132,10 +158,9 @@ void BandWorker::walk_small_blocks(uint32_t d) {
       b = next_reaching_block_avx2(block_rows, b, blocks);
       if (b == blocks) break;
     }
-    if (!wanted(b)) continue;
-    fill_block_corners<T, Indexed>(draw.indices.data(), count, b, block_);
-    if (pair_setup != nullptr && b + 1 < blocks && wanted(b + 1)) {
-      fill_block_corners<T, Indexed>(draw.indices.data(), count, ++b, next_block_);
+    if (!wanted(b, block_)) continue;
+    if (pair_setup != nullptr && b + 1 < blocks && wanted(b + 1, next_block_)) {
+      ++b;
       pair_setup(block_.in, next_block_.in, block_.out, next_block_.out);
       draw_block(d, block_);
       draw_block(d, next_block_);
@@ -179,11 +204,11 @@ void BandWorker::triangle(uint32_t d, uint32_t primitive, uint32_t a, uint32_t b
   // row that can hold no fragment out of the depth bounds' "values under r" (tile_raster.cpp).
   const int32_t y0 = std::max((std::min({fy[0], fy[1], fy[2]}) + kFixedOne - 1) >> kFixedOrder, region.y0);
   const int32_t y1 = std::min((std::max({fy[0], fy[1], fy[2]}) - 1) >> kFixedOrder, region.y1);
-  if (y0 > y1 || !owns_rows(y0, y1)) return;
+  if (y0 > y1 || !owns_tile_rows(y0 >> kTileOrder, y1 >> kTileOrder)) return;
   const int32_t fx[3] = {snap_fixed(v0.x), snap_fixed(v1.x), snap_fixed(v2.x)};
   const int32_t x0 = std::max((std::min({fx[0], fx[1], fx[2]}) + kFixedOne - 1) >> kFixedOrder, region.x0);
   const int32_t x1 = std::min((std::max({fx[0], fx[1], fx[2]}) - 1) >> kFixedOrder, region.x1);
-  if (x0 > x1) return;
+  if (x0 > x1 || (shared_ && !owns_rect(x0, y0, x1, y1))) return;
   // area = dx01*dy20 - dx20*dy01 (§2.3), int64
   const int64_t area =
       int64_t(fx[0] - fx[1]) * int64_t(fy[2] - fy[0]) - int64_t(fx[2] - fx[0]) * int64_t(fy[0] - fy[1]);
@@ -219,11 +244,11 @@ void BandWorker::triangle(uint32_t d, uint32_t primitive, uint32_t a, uint32_t b
 // A triangle that needs clipping: its pieces from the block-row phase's table when it is there
 // (clipped_pieces.hpp; the table is empty with one worker and for draws not set up eight at a
 // time), else the exact path's clipper and set-up here (for_each_piece); the pieces that reach
-// this worker's rows are drawn, in the clipper's order.
+// this worker's tiles are drawn, in the clipper's order.
 void BandWorker::clipped_triangle(uint32_t d, uint32_t primitive, uint32_t a, uint32_t b, uint32_t c) {
   const FastDraw& fd = frame_.draws[d];
   const auto draw_piece = [&](const FastTriangle& t) {
-    if (!t.rect.empty() && owns_rows(t.rect.y0, t.rect.y1)) submit(t, fd.raster);
+    if (!t.rect.empty() && owns_rect(t.rect.x0, t.rect.y0, t.rect.x1, t.rect.y1)) submit(t, fd.raster);
   };
   const std::vector<ClippedPrimitive>& list = fd.clipped.primitives;
   size_t& next = clipped_next_[d];  // the walk meets a draw's primitives in increasing order
@@ -311,8 +336,9 @@ void BandWorker::bin_batch(int32_t tx0, int32_t ty0, int32_t tx1, int32_t ty1) {
   const auto for_each_tile = [&](const FastTriangle& t, auto&& visit) {
     for (int32_t ty = t.rect.y0 >> kTileOrder; ty <= t.rect.y1 >> kTileOrder; ++ty) {
       if (!owns_tile_row(ty)) continue;
+      const bool shared_row = row_kind_[size_t(ty)] == 2;
       for (int32_t tx = t.rect.x0 >> kTileOrder; tx <= t.rect.x1 >> kTileOrder; ++tx)
-        visit(size_t(ty - ty0) * size_t(columns) + size_t(tx - tx0));
+        if (!shared_row || owns_tile(tx, ty)) visit(size_t(ty - ty0) * size_t(columns) + size_t(tx - tx0));
     }
   };
   for (const FastTriangle& t : batch_) for_each_tile(t, [&](size_t k) { ++bin_first_[k + 1]; });
@@ -384,7 +410,7 @@ void BandWorker::walk_exact(uint32_t d) {
   const float margin = lines ? std::max(walk.draw->state.line_width, 1.0f) + 3.0f : 2.0f;
   const uint32_t corners = lines ? 2 : 3;
   for (uint32_t i = 0; i < walk.count; ++i) {
-    if (workers_ > 1 && primitive_setup_denormals(walk, i) == SetupDenormals::Flushed) {
+    if (frame_.workers > 1 && primitive_setup_denormals(walk, i) == SetupDenormals::Flushed) {
       const AssembledPrimitive prim = assemble_primitive(*walk.draw, i);
       std::array<ClipVertex, 3> v;
       for (uint32_t k = 0; k < corners; ++k)
@@ -418,18 +444,30 @@ bool BandWorker::misses_own_rows(const ClipVertex* v, uint32_t count, float marg
 void BandWorker::raster_exact_in_band(const RasterPrimitive& primitive, const DepthTestState& depth) {
   const PixelRect& visit = primitive.visit;
   if (visit.empty()) return;
+  const int32_t tx_lo = std::max(visit.x0 >> kTileOrder, 0);
+  const int32_t tx_hi = std::min(visit.x1 >> kTileOrder, frame_.raster.tiles_x - 1);
   for (int32_t ty = visit.y0 >> kTileOrder; ty <= visit.y1 >> kTileOrder; ++ty) {
     if (!owns_tile_row(ty)) continue;
     const int32_t y0 = std::max(visit.y0, ty * kTileSize), y1 = std::min(visit.y1, ty * kTileSize + kTileSize - 1);
-    prepare_tiles(PixelRect{visit.x0, y0, visit.x1, y1}, depth.write);
-    if (frame_.raster.avx2 && rasterize_rows_avx2(primitive, y0, y1, depth, frame_.targets)) continue;
     RasterPrimitive band = primitive;
     band.visit.y0 = y0;
     band.visit.y1 = y1;
-    if (band.binned)  // llvmpipe's wrapping set-up: coverage from its bins, not a plane test
-      rasterize_binned_rows(band, depth, frame_.targets, frame_.raster.avx2);
-    else
-      rasterize_primitive_rows(band, depth, frame_.targets, frame_.raster.avx2);
+    // each run of this worker's tiles in the row (the whole visit where the row is its own); a
+    // sample's coverage and depth do not depend on the columns visited beside it
+    for (int32_t tx = tx_lo; tx <= tx_hi; ++tx) {
+      if (!owns_tile(tx, ty)) continue;
+      int32_t last = tx;
+      while (last < tx_hi && owns_tile(last + 1, ty)) ++last;
+      band.visit.x0 = std::max(visit.x0, tx * kTileSize);
+      band.visit.x1 = std::min(visit.x1, last * kTileSize + kTileSize - 1);
+      tx = last;
+      prepare_tiles(band.visit, depth.write);
+      if (frame_.raster.avx2 && rasterize_rows_avx2(band, y0, y1, depth, frame_.targets)) continue;
+      if (band.binned)  // llvmpipe's wrapping set-up: coverage from its bins, not a plane test
+        rasterize_binned_rows(band, depth, frame_.targets, frame_.raster.avx2);
+      else
+        rasterize_primitive_rows(band, depth, frame_.targets, frame_.raster.avx2);
+    }
   }
 }
 
@@ -438,7 +476,7 @@ void BandWorker::prepare_tiles(const PixelRect& r, bool depth_write) {
   for (int32_t ty = r.y0 >> kTileOrder; ty <= r.y1 >> kTileOrder; ++ty) {
     for (int32_t tx = r.x0 >> kTileOrder; tx <= r.x1 >> kTileOrder; ++tx) {
       TileState& tile = frame_.raster.tile(tx, ty);
-      if (!tile.cleared) clear_tile_row(ty, frame_.raster);
+      if (!tile.cleared) clear_tile_row(ty, index_, frame_.raster);
       if (depth_write) tile.bounds.state = BoundsState::Unknown;
     }
   }

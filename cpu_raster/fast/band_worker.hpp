@@ -1,6 +1,7 @@
 // One worker of a fast render: it walks every draw in submission order and rasterizes into the
-// tile rows it owns (frame.row_worker, or r % workers), so each pixel sees its primitives in
-// order, whatever the number of threads (docs/lavapipe-rules.md §2.7: deterministic by construction).
+// tiles it owns (TileState::worker: whole tile rows, or runs of a heavy row's tiles), so each pixel
+// sees its primitives in order, whatever the number of threads (docs/lavapipe-rules.md §2.7:
+// deterministic by construction).
 // Per primitive: assemble → clip-mask test (clipped triangles go through the exact path's clipper
 // and set-up) → rows test → fixed-point area, cull, swap → depth plane → tiles. Triangles the
 // scalar set-up takes are collected (up to kBatchSize, until a small triangle comes) and drawn
@@ -24,17 +25,37 @@ bool measure_block_rows(FastFrame& frame, uint32_t draw_index, uint32_t begin, u
 
 class BandWorker {
  public:
+  // index: the worker, or with FastFrame::queued_units the unit, whose tiles (TileState::worker) it draws.
   BandWorker(FastFrame& frame, uint32_t index);
   void run();
 
   static constexpr size_t kBatchSize = 64;
 
  private:
+  // Some tile of the row is this worker's.
   bool owns_tile_row(int32_t tile_y) const {
     return owned_before_[size_t(tile_y) + 1] != owned_before_[size_t(tile_y)];
   }
-  bool owns_rows(int32_t y0, int32_t y1) const;  // pixel rows
   bool owns_tile_rows(int32_t tile_y0, int32_t tile_y1) const;
+  // Some tile of the pixel rectangle is this worker's.
+  bool owns_rect(int32_t x0, int32_t y0, int32_t x1, int32_t y1) const;
+  bool owns_tile(int32_t tile_x, int32_t tile_y) const { return frame_.raster.tile(tile_x, tile_y).worker == index_; }
+  // How many of tile row tile_y's tiles [tile_x0, tile_x1] (cut to the frame) are this worker's.
+  int32_t owned_tiles(int32_t tile_y, int32_t tile_x0, int32_t tile_x1) const;
+  // Where a small triangle's writes to columns [x0, x1] of rows [row_lo, row_hi] (at most two tile
+  // rows) may go, for this worker: None (no tile of it is this worker's), All (rows cut to those
+  // whose tiles from x0 - lead to x1 are all this worker's), or Mixed (they cross into another
+  // worker's tile: the scalar set-up, tile by tile, draws it). lead: the columns left of x0 that
+  // its kernel may load and store back (kJobLead for an AVX2 kernel job, whose spans may start up
+  // to 7 columns left of x0 and end in x1's tile; 0 for grid lanes and windows, written pixel by
+  // pixel or by masked stores).
+  enum class Reach { None, All, Mixed };
+  static constexpr int32_t kJobLead = 7;
+  Reach small_reach(int32_t x0, int32_t x1, int32_t lead, int32_t& row_lo, int32_t& row_hi) const;
+  Reach row_reach(int32_t tile_y, int32_t x0, int32_t x1, int32_t lead) const;
+  // Whether this worker sets up a block of draw d whose block rows are `rows` (block_rows.hpp), its
+  // corners filled: it may reach one of its tiles (in a shared row: by its lanes' columns).
+  bool wants_block(uint32_t d, uint32_t rows, const SmallBlock& block) const;
 
   template <Topology T, bool Indexed>
   void walk_triangles(uint32_t draw_index);
@@ -47,13 +68,13 @@ class BandWorker {
   template <Topology T, bool Indexed>
   void walk_small_blocks(uint32_t draw_index);
   void draw_block(uint32_t draw_index, const SmallBlock& block);
-  bool draw_grid_block(const SmallBlock& block, uint32_t owner_of_lane_0, const DrawRaster& raster);
+  bool draw_grid_block(uint32_t draw_index, const SmallBlock& block, const DrawRaster& raster);
   bool draw_lanes_in_one_row(const SmallBlock& block, uint32_t owner_of_lane_0, const DrawRaster& raster);
-  void draw_window_block(const SmallBlockOutput& out, uint32_t owner_of_lane_0, const DrawRaster& raster);
-  void draw_small(const SmallBlockOutput& block, int lane, uint32_t owner, const DrawRaster& raster);
+  void draw_window_block(uint32_t draw_index, const SmallBlock& block, const DrawRaster& raster);
+  void draw_small(uint32_t draw_index, const SmallBlock& block, int lane, const DrawRaster& raster);
   void draw_lane(const SmallBlockOutput& block, int lane, uint32_t owner, int32_t row_lo, int32_t row_hi,
                  const DrawRaster& raster);
-  bool owned_row_range(int32_t& row_lo, int32_t& row_hi) const;
+  void lane_triangle(uint32_t draw_index, const SmallBlock& block, int lane);
   void prepare_small_tiles(int32_t x0, int32_t x1, int32_t row_lo, int32_t row_hi, const DrawRaster& raster);
   void triangle(uint32_t draw_index, uint32_t primitive, uint32_t a, uint32_t b, uint32_t c);
   void clipped_triangle(uint32_t draw_index, uint32_t primitive, uint32_t a, uint32_t b, uint32_t c);
@@ -84,19 +105,24 @@ class BandWorker {
   void prepare_tiles(const PixelRect& r, bool depth_write);
 
   FastFrame& frame_;
-  uint32_t index_, workers_;
+  uint32_t index_;  // the worker, or the queued unit (FastFrame::queued_units), whose tiles it draws
   std::vector<FastTriangle> batch_;
   std::vector<TileTriangle> prepared_;  // flush: the batch's triangles in the current tile
-  // flush: per tile of the batch's union (row-major, this worker's rows), the batch's triangles
+  // flush: per tile of the batch's union (row-major, this worker's tiles), the batch's triangles
   // whose rectangle reaches it, in submission order: tile k's are bin_list_[bin_first_[k],
   // bin_first_[k + 1]).
   std::vector<uint32_t> bin_first_;
   std::vector<uint8_t> bin_list_;
   std::vector<uint32_t> bin_next_;  // bin_batch's fill positions
   std::vector<size_t> clipped_next_;  // per draw: the first entry of its ClippedTable not yet walked past
-  // Per r <= tiles_y: how many tile rows below r this worker draws (row r is its own when the count
-  // grows from r to r + 1).
+  // Per r <= tiles_y: how many tile rows below r hold a tile of this worker's (row r holds one when
+  // the count grows from r to r + 1).
   std::vector<uint32_t> owned_before_;
+  // Per tile row: this worker owns every tile of it (1), some (2), none (0). shared_ is whether any
+  // row is 2; whole_before_ counts the rows of 1 below r, as owned_before_.
+  std::vector<uint8_t> row_kind_;
+  std::vector<uint32_t> whole_before_;
+  bool shared_ = false;
   SmallBlock block_, next_block_;       // the small-triangle blocks being set up and drawn
   BoundsAudit audit_;
 };

@@ -1,8 +1,9 @@
-// BandWorker's small-triangle blocks: drawing a set-up block into the worker's rows, and the
+// BandWorker's small-triangle blocks: drawing a set-up block into the worker's tiles, and the
 // phase before the walks that measures which tile rows each block may reach.
 #include <algorithm>
 #include <bit>
 #include <climits>
+#include <cmath>
 
 #include "cpu_raster/fast/band_worker.hpp"
 #include "cpu_raster/fast/block_rows.hpp"
@@ -68,20 +69,97 @@ bool measure_rows(FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end) {
 
 }  // namespace
 
-// One block, lane by lane in primitive order, into this worker's rows.
+// One block, lane by lane in primitive order, into this worker's tiles.
 void BandWorker::draw_block(uint32_t d, const SmallBlock& block) {
   const SmallBlockOutput& out = block.out;
   const DrawRaster& raster = frame_.draws[d].raster;
-  if (out.scalar_mask == 0 && out.job_mask == 0 && draw_grid_block(block, encode_owner(d, block.first), raster)) return;
+  if (out.scalar_mask == 0 && out.job_mask == 0 && draw_grid_block(d, block, raster)) return;
   if (out.scalar_mask == 0 && draw_lanes_in_one_row(block, encode_owner(d, block.first), raster)) return;
   for (uint32_t l = 0; l < block.in.count; ++l) {
     const uint32_t bit = 1u << l;
-    if (out.scalar_mask & bit) {
-      const size_t at = size_t(l) * block.in.stride;  // the block's corners: assemble_primitive's positions
-      triangle(d, block.first + l, block.in.corners[0][at], block.in.corners[1][at], block.in.corners[2][at]);
-    } else if ((out.grid_mask | out.job_mask) & bit)
-      draw_small(out, int(l), encode_owner(d, block.first + l), raster);
+    if (out.scalar_mask & bit)
+      lane_triangle(d, block, int(l));
+    else if ((out.grid_mask | out.job_mask) & bit)
+      draw_small(d, block, int(l), raster);
   }
+}
+
+// Lane l through the scalar set-up (BandWorker::triangle), which draws tile by tile into this
+// worker's tiles: the block's corners are assemble_primitive's positions.
+void BandWorker::lane_triangle(uint32_t d, const SmallBlock& block, int lane) {
+  const size_t at = size_t(lane) * block.in.stride;
+  triangle(d, block.first + uint32_t(lane), block.in.corners[0][at], block.in.corners[1][at], block.in.corners[2][at]);
+}
+
+BandWorker::Reach BandWorker::row_reach(int32_t tile_y, int32_t x0, int32_t x1, int32_t lead) const {
+  const uint8_t kind = row_kind_[size_t(tile_y)];
+  if (kind != 2) return kind == 0 ? Reach::None : Reach::All;
+  const int32_t tx0 = x0 >> kTileOrder, tx1 = x1 >> kTileOrder;
+  if (owned_tiles(tile_y, tx0, tx1) == 0) return Reach::None;
+  const int32_t from = std::max((x0 - lead) >> kTileOrder, 0), to = std::min(tx1, frame_.raster.tiles_x - 1);
+  return owned_tiles(tile_y, from, to) == to - from + 1 ? Reach::All : Reach::Mixed;
+}
+
+BandWorker::Reach BandWorker::small_reach(int32_t x0, int32_t x1, int32_t lead, int32_t& row_lo,
+                                          int32_t& row_hi) const {
+  const int32_t ty0 = row_lo >> kTileOrder, ty1 = row_hi >> kTileOrder;
+  const Reach r0 = row_reach(ty0, x0, x1, lead), r1 = ty1 == ty0 ? r0 : row_reach(ty1, x0, x1, lead);
+  if (r0 == Reach::Mixed || r1 == Reach::Mixed) return Reach::Mixed;
+  if (r0 == Reach::None && r1 == Reach::None) return Reach::None;
+  if (r0 == Reach::None)
+    row_lo = ty1 << kTileOrder;
+  else if (r1 == Reach::None)
+    row_hi = (ty1 << kTileOrder) - 1;
+  return Reach::All;
+}
+
+// In a shared row the block's lanes say which tiles it may reach: an unclipped triangle's pixels
+// lie within its corners' columns, a clipped one's within its pieces' rectangles (the block-row
+// phase's table; one clipped in place: any column); a lane with its corners outside one plane, or
+// one that failed to snap, draws nothing.
+bool BandWorker::wants_block(uint32_t d, uint32_t rows, const SmallBlock& block) const {
+  if (rows == kBlockAnyRow) return true;
+  const int32_t lo = std::max(int32_t(rows & 0xFFFFu), 0), hi = std::min(int32_t(rows >> 16), frame_.raster.tiles_y - 1);
+  if (lo > hi) return false;
+  if (whole_before_[size_t(hi) + 1] != whole_before_[size_t(lo)]) return true;  // a row of its own
+  const SmallBlockInput& in = block.in;
+  const ClippedTable& clipped = frame_.draws[d].clipped;
+  int32_t x0 = INT32_MAX, x1 = INT32_MIN;
+  float x_min = INFINITY, x_max = -INFINITY;
+  for (uint32_t l = 0; l < in.count; ++l) {
+    const size_t at = size_t(l) * in.stride;
+    const uint32_t fa = in.vertices[in.corners[0][at]].flags, fb = in.vertices[in.corners[1][at]].flags,
+                   fc = in.vertices[in.corners[2][at]].flags;
+    if (fa & fb & fc & kVertexClipBits) continue;  // ClipFate::Outside
+    if ((fa | fb | fc) & kVertexClipBits) {
+      const uint32_t primitive = block.first + l;
+      const auto entry = std::lower_bound(clipped.primitives.begin(), clipped.primitives.end(), primitive,
+                                          [](const ClippedPrimitive& p, uint32_t q) { return p.primitive < q; });
+      if (entry == clipped.primitives.end() || entry->primitive != primitive || entry->in_place) return true;
+      for (uint32_t k = entry->first; k < entry->first + entry->count; ++k) {
+        const PixelRect& r = clipped.pieces[k].rect;
+        if (r.empty()) continue;
+        x0 = std::min(x0, r.x0);
+        x1 = std::max(x1, r.x1);
+      }
+      continue;
+    }
+    if ((fa | fb | fc) & kVertexSnapFailed) continue;  // SetupFate::NonFinite
+    for (int k = 0; k < 3; ++k) {
+      const float x = in.vertices[in.corners[k][at]].x;
+      x_min = std::min(x_min, x);
+      x_max = std::max(x_max, x);
+    }
+  }
+  // a snapped position lies within 2^23 px: the conversions are exact enough, with a column of margin
+  if (x_min <= x_max) {
+    x0 = std::min(x0, int32_t(std::floor(x_min)) - 2);
+    x1 = std::max(x1, int32_t(std::ceil(x_max)) + 1);
+  }
+  if (x0 > x1) return false;
+  for (int32_t ty = lo; ty <= hi; ++ty)
+    if (row_kind_[size_t(ty)] == 2 && owned_tiles(ty, x0 >> kTileOrder, x1 >> kTileOrder) > 0) return true;
+  return false;
 }
 
 // A block without scalar lanes whose lanes all lie in one tile row of this worker: the tiles of
@@ -99,7 +177,9 @@ bool BandWorker::draw_lanes_in_one_row(const SmallBlock& block, uint32_t owner_o
   }
   const int32_t ty = y0 >> kTileOrder;
   if (ty != (y1 >> kTileOrder)) return false;
-  if (!owns_tile_row(ty)) return true;
+  int32_t row_lo = y0, row_hi = y1;
+  const Reach reach = small_reach(x0, x1, out.job_mask != 0 ? kJobLead : 0, row_lo, row_hi);
+  if (reach != Reach::All) return reach == Reach::None;  // Mixed: lane by lane
   prepare_small_tiles(x0, x1, y0, y1, raster);
   for (uint32_t bits = lanes; bits != 0; bits &= bits - 1) {
     const int l = std::countr_zero(bits);
@@ -110,43 +190,44 @@ bool BandWorker::draw_lanes_in_one_row(const SmallBlock& block, uint32_t owner_o
 
 // The common case of a mesh: only grid lanes, all in one tile row. The row and tile checks are
 // made once for the block; false when the block needs the lane-by-lane path.
-bool BandWorker::draw_grid_block(const SmallBlock& block, uint32_t owner_of_lane_0, const DrawRaster& raster) {
+bool BandWorker::draw_grid_block(uint32_t d, const SmallBlock& block, const DrawRaster& raster) {
   const SmallBlockOutput& out = block.out;
   if (out.grid_mask == 0) return true;
   if (out.window) {
-    draw_window_block(out, owner_of_lane_0, raster);
+    draw_window_block(d, block, raster);
     return true;
   }
   const int32_t x0 = out.grid_x0, y0 = out.grid_y0, x1 = out.grid_x1, y1 = out.grid_y1;
   const int32_t ty = y0 >> kTileOrder;
   if (ty != (y1 >> kTileOrder)) return false;
-  if (!owns_tile_row(ty)) return true;
+  int32_t row_lo = y0, row_hi = y1;
+  const Reach reach = small_reach(x0, x1, 0, row_lo, row_hi);
+  if (reach != Reach::All) return reach == Reach::None;  // Mixed: lane by lane
   prepare_small_tiles(x0, x1, y0, y1, raster);
-  raster.grid_block_fn(out, owner_of_lane_0, raster.kernel.write, frame_.raster.target);
+  raster.grid_block_fn(out, encode_owner(d, block.first), raster.kernel.write, frame_.raster.target);
   return true;
 }
 
 // A window block (small_window.hpp): its union's rows in this worker's tile rows (at most two
 // tile rows: the union is at most kWindowHeight <= kTileSize rows), their tiles prepared, then the
-// compositor over them.
-void BandWorker::draw_window_block(const SmallBlockOutput& out, uint32_t owner_of_lane_0, const DrawRaster& raster) {
+// compositor over them. A union that crosses into another worker's tile: each lane that reaches
+// this worker's tiles through the scalar set-up, in order (the block has no grid bits to scatter).
+void BandWorker::draw_window_block(uint32_t d, const SmallBlock& block, const DrawRaster& raster) {
   static_assert(kWindowHeight <= kTileSize);
+  const SmallBlockOutput& out = block.out;
   int32_t row_lo = out.grid_y0, row_hi = out.grid_y1;
-  if (!owned_row_range(row_lo, row_hi)) return;
-  prepare_small_tiles(out.grid_x0, out.grid_x1, row_lo, row_hi, raster);
-  raster.window_block_fn(out, owner_of_lane_0, row_lo, row_hi, raster.kernel, frame_.raster.target);
-}
-
-// Cuts rows [row_lo, row_hi], which reach at most two tile rows, to this worker's; false when none is.
-bool BandWorker::owned_row_range(int32_t& row_lo, int32_t& row_hi) const {
-  const int32_t ty0 = row_lo >> kTileOrder, ty1 = row_hi >> kTileOrder;
-  if (!owns_tile_row(ty0)) {
-    if (ty1 == ty0 || !owns_tile_row(ty1)) return false;
-    row_lo = ty1 << kTileOrder;
-  } else if (ty1 != ty0 && !owns_tile_row(ty1)) {
-    row_hi = (ty1 << kTileOrder) - 1;
+  const Reach reach = small_reach(out.grid_x0, out.grid_x1, 0, row_lo, row_hi);
+  if (reach == Reach::None) return;
+  if (reach == Reach::Mixed) {
+    for (uint32_t bits = out.grid_mask & ((1u << block.in.count) - 1u); bits != 0; bits &= bits - 1) {
+      const int l = std::countr_zero(bits);
+      int32_t lo = out.y0[l], hi = out.y1[l];
+      if (small_reach(out.x0[l], out.x1[l], 0, lo, hi) != Reach::None) lane_triangle(d, block, l);
+    }
+    return;
   }
-  return true;
+  prepare_small_tiles(out.grid_x0, out.grid_x1, row_lo, row_hi, raster);
+  raster.window_block_fn(out, encode_owner(d, block.first), row_lo, row_hi, raster.kernel, frame_.raster.target);
 }
 
 // Before small triangles write into columns [x0, x1] of rows [row_lo, row_hi]: earlier batched
@@ -157,7 +238,7 @@ void BandWorker::prepare_small_tiles(int32_t x0, int32_t x1, int32_t row_lo, int
   for (int32_t ty = row_lo >> kTileOrder; ty <= row_hi >> kTileOrder; ++ty) {
     for (int32_t tx = x0 >> kTileOrder; tx <= x1 >> kTileOrder; ++tx) {
       TileState& tile = frame_.raster.tile(tx, ty);
-      if (!tile.cleared) clear_tile_row(ty, frame_.raster);
+      if (!tile.cleared) clear_tile_row(ty, index_, frame_.raster);
       if (raster.depth.write) tile.bounds.state = BoundsState::Unknown;  // before any write lands
     }
   }
@@ -165,12 +246,17 @@ void BandWorker::prepare_small_tiles(int32_t x0, int32_t x1, int32_t row_lo, int
 
 // A small triangle: a grid lane (which may reach into a neighbouring tile row or column: only
 // this worker's rows are written) or a kernel job (the same). Its tiles are cleared first;
-// their depth bounds become unknown when depth is written.
-void BandWorker::draw_small(const SmallBlockOutput& block, int lane, uint32_t owner, const DrawRaster& raster) {
-  int32_t row_lo = block.y0[lane], row_hi = block.y1[lane];  // a lane spans at most two tile rows
-  if (!owned_row_range(row_lo, row_hi)) return;
-  prepare_small_tiles(block.x0[lane], block.x1[lane], row_lo, row_hi, raster);
-  draw_lane(block, lane, owner, row_lo, row_hi, raster);
+// their depth bounds become unknown when depth is written. A lane that reaches another worker's
+// tile in a shared row takes the scalar set-up, which draws tile by tile.
+void BandWorker::draw_small(uint32_t d, const SmallBlock& block, int lane, const DrawRaster& raster) {
+  const SmallBlockOutput& out = block.out;
+  int32_t row_lo = out.y0[lane], row_hi = out.y1[lane];  // a lane spans at most two tile rows
+  const int32_t lead = (out.job_mask >> lane) & 1u ? kJobLead : 0;
+  const Reach reach = small_reach(out.x0[lane], out.x1[lane], lead, row_lo, row_hi);
+  if (reach == Reach::None) return;
+  if (reach == Reach::Mixed) return lane_triangle(d, block, lane);
+  prepare_small_tiles(out.x0[lane], out.x1[lane], row_lo, row_hi, raster);
+  draw_lane(out, lane, encode_owner(d, block.first + uint32_t(lane)), row_lo, row_hi, raster);
 }
 
 // A grid lane or a kernel job in rows [row_lo, row_hi], its tiles prepared.

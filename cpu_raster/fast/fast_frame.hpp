@@ -56,7 +56,7 @@ struct FastDraw {
 // block_rows value of a block that must be set up by every worker.
 inline constexpr uint32_t kBlockAnyRow = 0xFFFFFFFFu;
 
-// FastFrame::row_worker of a row no worker owns (FastFrame::unowned_rows).
+// TileState::worker of the tiles of a row no worker (or unit) owns (FastFrame::unowned_rows).
 inline constexpr uint32_t kUnownedRow = 0xFFFFFFFFu;
 
 struct FastFrame {
@@ -66,16 +66,17 @@ struct FastFrame {
   FrameRaster raster;     // pointers into targets, tiles, dispatch
   std::vector<TileState> tiles;
   std::vector<FastDraw> draws;
-  uint32_t workers = 1;
-  // Per tile row, the worker that draws it (row_balance.hpp), or kUnownedRow; empty: row r
-  // belongs to worker r % workers.
-  std::vector<uint32_t> row_worker;
+  uint32_t workers = 1;  // each tile drawn by one of them: TileState::worker (row_balance.hpp)
+  // 0: TileState::worker is the worker that draws the tile. Otherwise the tiles are in this many
+  // units, TileState::worker the unit, which the workers take from a queue (render_fast.cpp).
+  uint32_t queued_units = 0;
   // The tile rows nothing draws into (render_fast.cpp, balance_tile_rows): no worker owns them;
   // each worker, its walk done, clears the next one not taken yet, so the first to finish clears
   // more of them (a camera's sky: six of perspective's sixteen rows).
   std::vector<int32_t> unowned_rows;
   std::atomic<size_t> next_unowned{0};
   RenderProfile* profile = nullptr;  // FastConfig::profile
+  uint32_t profile_threads = 0;      // FastConfig::profile_threads
   double serial_mark = 0;            // profiled: the calling thread's CPU time when its last phase ended
 };
 

@@ -21,7 +21,7 @@ struct FastTriangle {
   uint32_t owner = 0;
 };
 
-// Tiles are 64x64 pixels (llvmpipe's TILE_SIZE); each tile row belongs to one worker (FastFrame::row_worker).
+// Tiles are 64x64 pixels (llvmpipe's TILE_SIZE); each tile belongs to one worker (TileState::worker).
 inline constexpr int32_t kTileOrder = 6;
 inline constexpr int32_t kTileSize = 1 << kTileOrder;
 

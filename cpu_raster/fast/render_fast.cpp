@@ -2,9 +2,11 @@
 //  1. frame: the exact path's frame context, the result buffers (not cleared: tiles are cleared
 //     by their workers), per-draw raster state and tiles;
 //  2. vertices: per fast draw, every position transformed and snapped once (in parallel);
-//  3. block rows (several workers): the tile rows each block of 8 small triangles may reach, and
-//     from them which worker draws each tile row (row_balance.hpp);
-//  4. bands: one BandWorker per thread walks all draws and rasterizes its own tile rows.
+//  3. block rows (several workers): the tile rows each block of 8 small triangles may reach, the
+//     trailing runs' denormal checks, and from the rows which worker draws each tile
+//     (row_balance.hpp: whole rows, or runs of a heavy row's tiles in queued units);
+//  4. bands: one BandWorker per worker (or per queued unit) walks all draws and rasterizes its
+//     own tiles.
 #include "cpu_raster/fast/render_fast.hpp"
 
 #include <algorithm>
@@ -39,7 +41,10 @@ namespace {
 constexpr size_t kVertexBlock = 4096;  // positions per task of the vertex phase
 
 // job(0) .. job(workers - 1) at once (job(0) on the calling thread; one worker: just job(0)),
-// each one's thread CPU time recorded under `phase` when the render is profiled.
+// each one's thread CPU time recorded under `phase` when the render is profiled. Profiled with
+// FastConfig::profile_threads below `workers`, that many threads run the jobs, each taking the next
+// job not started: no job waits for another inside a phase, so any order gives the same bytes,
+// and each job's time is measured without more threads than cores taking turns.
 void run_phase(FastFrame& frame, const char* phase, uint32_t workers, const std::function<void(uint32_t)>& job) {
   const auto dispatch = [workers](const std::function<void(uint32_t)>& f) {
     if (workers == 1)
@@ -51,21 +56,56 @@ void run_phase(FastFrame& frame, const char* phase, uint32_t workers, const std:
     dispatch(job);
     return;
   }
+  const uint32_t threads = frame.profile_threads > 0 ? std::min(workers, frame.profile_threads) : workers;
   // The calling thread's time since the last phase is serial; its time inside the pool's run
   // outside job(0) (waking the others, spinning until they finish) belongs to no phase: on N free
   // cores it would overlap the busiest worker's.
   const double phase_start = thread_cpu_seconds();
   frame.profile->serial_seconds += phase_start - frame.serial_mark;
-  PhaseTimes times{phase, std::vector<double>(workers, 0.0)};
+  PhaseTimes times{phase, std::vector<double>(workers, 0.0), {}};
   const auto timed = [&](uint32_t w) {
     const double start = thread_cpu_seconds();
     job(w);
     times.worker_seconds[w] = thread_cpu_seconds() - start;
   };
-  dispatch(timed);
+  if (threads == workers) {
+    dispatch(timed);
+  } else {
+    std::atomic<uint32_t> next{0};
+    const std::function<void(uint32_t)> jobs = [&](uint32_t) {
+      for (uint32_t w = next++; w < workers; w = next++) timed(w);
+    };
+    if (threads == 1)
+      jobs(0);
+    else
+      worker_pool(threads).run(jobs);
+  }
   frame.profile->phases.push_back(std::move(times));
   frame.serial_mark = thread_cpu_seconds();
 }
+
+// Times a queue phase's tasks when the render is profiled (PhaseTimes::tasks): run(i, w, f) calls
+// f, task i taken by worker w; attach() hands the times to the phase that just ran.
+class TaskTimes {
+ public:
+  TaskTimes(const FastFrame& frame, size_t tasks) : on_(frame.profile != nullptr) {
+    if (on_) times_.resize(tasks);
+  }
+  template <class F>
+  void run(size_t i, uint32_t w, F&& f) {
+    if (!on_) return f();
+    const double start = thread_cpu_seconds();
+    f();
+    times_[i] = TaskTime{thread_cpu_seconds() - start, w};
+  }
+  void attach(FastFrame& frame) {
+    if (on_ && !frame.profile->phases.empty()) frame.profile->phases.back().tasks = std::move(times_);
+  }
+
+ private:
+  bool on_;
+  std::vector<TaskTime> times_;
+};
 
 // Stored depth values keep the order the bounds rely on (tile_depth_bounds.hpp) in every draw.
 bool frame_bounds_usable(const Scene& scene, const std::vector<FastDraw>& draws) {
@@ -146,6 +186,8 @@ void init_frame(FastFrame& frame, const Scene& scene, const CpuOptions& options,
   tile.bounds = TileBounds{clear, clear, bounds ? BoundsState::Exact : BoundsState::Unknown};
   tile.cleared = scene.samples != 1;
   frame.tiles.assign(size_t(raster.tiles_x) * size_t(raster.tiles_y), tile);
+  for (size_t i = 0; i < frame.tiles.size(); ++i)  // row r to worker r % workers, until balance_tile_rows
+    frame.tiles[i].worker = uint32_t(i / size_t(raster.tiles_x)) % frame.workers;
   raster.tiles = frame.tiles.data();
 }
 
@@ -155,19 +197,29 @@ struct VertexTask {
   uint32_t flags = 0;  // OR of the vertices' flags
 };
 
-// Whether a primitive of the draw's trailing pipelined run (front_end.hpp) meets a denormal or a
-// tiny value in its set-up: the clip and set-up of each, watched (DenormalWatch). Both vertex
-// orders of an unclipped triangle are tried (set-up may swap two vertices). False: every set-up of
-// the run gives the same bits with denormals flushed and kept, so the fast path's set-ups hold.
-bool trailing_setup_meets_denormals(const FastFrame& frame, uint32_t d) {
+// The first primitive of the draw's trailing pipelined run (front_end.hpp), primitive_count(draw)
+// when there is none. A position past the draw's counts as unclipped here: such an index makes the
+// render throw (the profile check) before anything is drawn.
+uint32_t trailing_run_first(const FastFrame& frame, uint32_t d) {
   const FastDraw& fd = frame.draws[d];
   const Draw& draw = frame.scene->draws[d];
-  const auto clipped = [&fd](uint32_t position) { return (fd.vertices[position].flags & kVertexClipBits) != 0; };
-  const TrailingPipelineRun run = trailing_pipeline_run_of(draw, pipelined_chunks_by(draw, clipped), clipped);
-  const uint32_t count = primitive_count(draw);
-  if (run.first >= count) return false;
+  const size_t positions = draw.positions_clip.size();
+  const auto clipped = [&fd, positions](uint32_t position) {
+    return position < positions && (fd.vertices[position].flags & kVertexClipBits) != 0;
+  };
+  return trailing_pipeline_run_of(draw, pipelined_chunks_by(draw, clipped), clipped).first;
+}
+
+// Whether the set-up of a primitive in [begin, end) of the draw's trailing pipelined run meets a
+// denormal or a tiny value: the clip and set-up of each, watched (DenormalWatch, this thread's
+// flags). Both vertex orders of an unclipped triangle are tried (set-up may swap two vertices).
+// False: every set-up of the range gives the same bits with denormals flushed and kept. Primitives
+// with a position past the draw's are left out (the render throws on them).
+bool run_meets_denormals(const FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end) {
+  const FastDraw& fd = frame.draws[d];
+  const Draw& draw = frame.scene->draws[d];
+  const size_t positions = draw.positions_clip.size();
   const DepthBias& bias = draw.state.depth_bias;
-  if (is_denormal(bias.constant_factor) || is_denormal(bias.slope_factor) || is_denormal(bias.clamp)) return true;
   const UnormBiasUnits units = unorm_bias_units(fd.setup.rules);
   const auto window = [&](uint32_t position) {
     const FastVertex& v = fd.vertices[position];
@@ -182,9 +234,10 @@ bool trailing_setup_meets_denormals(const FastFrame& frame, uint32_t d) {
     sink = offset;
   };
   const DenormalWatch watch;
-  for (uint32_t i = run.first; i < count; ++i) {
+  for (uint32_t i = begin; i < end; ++i) {
     const AssembledPrimitive prim = assemble_primitive(draw, i);
     const uint32_t a = prim.position[0], b = prim.position[1], c = prim.position[2];
+    if (a >= positions || b >= positions || c >= positions) continue;
     const uint32_t flags = fd.vertices[a].flags | fd.vertices[b].flags | fd.vertices[c].flags;
     if (flags & kVertexClipBits) {
       if (needs_clipping(fd.vertices[a].flags, fd.vertices[b].flags, fd.vertices[c].flags))
@@ -204,11 +257,24 @@ bool trailing_setup_meets_denormals(const FastFrame& frame, uint32_t d) {
   return watch.met();
 }
 
+// A bias factor that is a denormal meets one in every set-up of a non-empty run.
+bool bias_is_denormal(const DepthBias& bias) {
+  return is_denormal(bias.constant_factor) || is_denormal(bias.slope_factor) || is_denormal(bias.clamp);
+}
+
+// A draw's trailing pipelined run [first, primitive count) whose set-ups the block-row phase
+// checks for denormals (run_meets_denormals), a range of primitives per task.
+struct TrailingCheck {
+  uint32_t draw, first;
+};
+
 // Phase 2: every fast draw's positions transformed and snapped, in blocks shared out between the
 // workers. With several workers, worker 0 first runs the profile check but its index scans
 // (check_pending) while the others start on the vertices, which read no index: everything that
 // does comes after this phase, and the scans come later (check_index_ranges, the block-row phase).
-void transform_all_vertices(FastFrame& frame, bool check_pending) {
+// With several workers the trailing runs' denormal checks are returned, for the block-row phase
+// to share out; with one they are made here.
+std::vector<TrailingCheck> transform_all_vertices(FastFrame& frame, bool check_pending) {
   size_t total = 0;
   for (uint32_t d = 0; d < frame.draws.size(); ++d)
     if (frame.draws[d].fast) total += frame.scene->draws[d].positions_clip.size();
@@ -235,12 +301,15 @@ void transform_all_vertices(FastFrame& frame, bool check_pending) {
     task.flags = pass(job, task.begin, task.end, fd.vertices, fd.tile_rows);
   };
   std::atomic<size_t> next{0};
+  TaskTimes times(frame, tasks.size());
   run_phase(frame, "vertices", tasks.size() <= 1 ? 1 : frame.workers, [&](uint32_t w) {
     if (w == 0 && check_pending) check_lavapipe_profile_support_but_indices(*frame.scene);
-    for (size_t i = next++; i < tasks.size(); i = next++) run(tasks[i]);
+    for (size_t i = next++; i < tasks.size(); i = next++) times.run(i, w, [&] { run(tasks[i]); });
   });
+  times.attach(frame);
   std::vector<uint32_t> draw_flags(frame.draws.size(), 0);
   for (const VertexTask& task : tasks) draw_flags[task.draw] |= task.flags;
+  std::vector<TrailingCheck> checks;
   for (uint32_t d = 0; d < frame.draws.size(); ++d) {
     FastDraw& fd = frame.draws[d];
     if (!fd.fast) continue;
@@ -249,10 +318,18 @@ void transform_all_vertices(FastFrame& frame, bool check_pending) {
     fd.pipelined_chunks.clear();
     // A draw whose last chunks take the draw pipeline has those primitives set up outside lavapipe's
     // denormal mode (SetupDenormals, front_end.hpp). The fast path sets up in the mode; where that
-    // can change a set-up, the exact front end draws the draw.
-    if ((draw_flags[d] & kVertexClipBits) && fd.setup.depth_active() && trailing_setup_meets_denormals(frame, d)) {
-      fd.fast = false;
-      continue;
+    // can change a set-up, the exact front end draws the draw. With several workers the run's
+    // set-ups are checked in the block-row phase (drop_fast_draw then); the draw is taken as fast
+    // until then.
+    if ((draw_flags[d] & kVertexClipBits) && fd.setup.depth_active()) {
+      const uint32_t first = trailing_run_first(frame, d), count = primitive_count(draw);
+      const bool met = first < count && (bias_is_denormal(draw.state.depth_bias) ||
+                                         (!check_pending && run_meets_denormals(frame, d, first, count)));
+      if (met) {
+        fd.fast = false;
+        continue;
+      }
+      if (check_pending && first < count) checks.push_back({d, first});
     }
     // the §1.5 chunk flags, from the vertices' clip bits; read only for the pipeline path's cull
     if ((draw_flags[d] & kVertexClipBits) && draw.state.cull_mode != CullMode::None)
@@ -262,6 +339,17 @@ void transform_all_vertices(FastFrame& frame, bool check_pending) {
     fd.small_blocks = fd.raster.small_fn && fd.raster.vector_ok && !draw.state.depth_bias.enable &&
                       !(fd.any_pipelined() && draw.state.cull_mode != CullMode::None);
   }
+  return checks;
+}
+
+// A draw the block-row phase found a trailing set-up in that meets a denormal: the exact front end
+// draws it (walk_exact), and what the phase measured for it is dropped.
+void drop_fast_draw(FastDraw& fd) {
+  fd.fast = false;
+  fd.small_blocks = false;
+  fd.block_rows = nullptr;
+  fd.clipped = ClippedTable{};
+  fd.pipelined_chunks.clear();
 }
 
 struct RowTask {
@@ -308,9 +396,9 @@ bool count_block_rows(const uint32_t* block_rows, uint32_t n, size_t tiles_y, in
   return any_row;
 }
 
-// Which worker draws each tile row, from the blocks that reach each row (`reach`:
-// `tasks` arrays of tiles_y + 1 differences) and the row's width (tile_row_weight), whole rows
-// shared out by balance_rows. No block reaching any row: r % workers, as before. When every draw
+// Which worker draws each tile, from the blocks that reach each row (`reach`: `tasks` arrays of
+// tiles_y + 1 differences) and the row's width (tile_row_weight): whole rows, or runs of a heavy
+// row's tiles, shared out by balance_tiles. No block reaching any row: row r to r % workers. When every draw
 // is one of small blocks and each block's rows are known (`rows_known`), a row no block reaches is
 // one nothing draws into (the blocks' rows hold their triangles' and pieces' rectangles): it goes
 // to FastFrame::unowned_rows, cleared by whichever worker finishes first. Clearing costs more
@@ -335,8 +423,12 @@ void balance_tile_rows(FastFrame& frame, const std::vector<int32_t>& reach, size
     weights[r] =
         unowned && weights[r] == 0 ? 0 : tile_row_weight(weights[r], uint32_t(std::max(frame.raster.tiles_x, 0)));
   }
-  frame.row_worker = balance_rows(weights, frame.workers);
-  for (const int32_t r : empty_rows) frame.row_worker[size_t(r)] = kUnownedRow;
+  const uint32_t tiles_x = uint32_t(std::max(frame.raster.tiles_x, 0));
+  const TileUnits units = balance_tiles(weights, tiles_x, frame.workers);
+  for (size_t i = 0; i < frame.tiles.size(); ++i) frame.tiles[i].worker = units.unit[i];
+  frame.queued_units = units.queued ? units.count : 0;
+  for (const int32_t r : empty_rows)
+    for (uint32_t tx = 0; tx < tiles_x; ++tx) frame.tiles[size_t(r) * tiles_x + tx].worker = kUnownedRow;
   frame.unowned_rows = std::move(empty_rows);
 }
 
@@ -347,24 +439,34 @@ void balance_tile_rows(FastFrame& frame, const std::vector<int32_t>& reach, size
 // to two workers. Only which thread writes a row changes.
 void contiguous_rows(FastFrame& frame) {
   if (std::any_of(frame.draws.begin(), frame.draws.end(), [](const FastDraw& d) { return d.fast; })) return;
-  const size_t tiles_y = size_t(std::max(frame.raster.tiles_y, 0));
-  frame.row_worker.resize(tiles_y);
-  for (size_t r = 0; r < tiles_y; ++r) frame.row_worker[r] = uint32_t(r * frame.workers / tiles_y);
+  const size_t tiles_x = size_t(std::max(frame.raster.tiles_x, 1)), tiles_y = size_t(std::max(frame.raster.tiles_y, 1));
+  for (size_t i = 0; i < frame.tiles.size(); ++i) frame.tiles[i].worker = uint32_t(i / tiles_x * frame.workers / tiles_y);
 }
 
 // Phase 3 (several workers): which tile rows each block of small triangles may reach, measured
 // once, so that a worker sets up only the blocks it may draw into. Each block's indices are
-// checked before they are read through; a bad one: the full profile check, which throws.
-void measure_all_block_rows(FastFrame& frame) {
-  constexpr uint32_t kRowTaskBlocks = 1024;
+// checked before they are read through; a bad one: the full profile check, which throws. The
+// same phase checks the trailing runs' set-ups for denormals (`checks`, transform_all_vertices),
+// a range of primitives per task; a draw that meets one is dropped from the fast draws
+// (drop_fast_draw) and from the row balance.
+void measure_all_block_rows(FastFrame& frame, const std::vector<TrailingCheck>& checks) {
+  // Tasks small enough to share out between 16 workers (perspective: 40 row tasks, 40 checks).
+  constexpr uint32_t kRowTaskBlocks = 256, kCheckTaskPrimitives = 2048;
+  struct CheckTask {
+    uint32_t draw, begin, end;
+  };
+  std::vector<CheckTask> check_tasks;
+  for (const TrailingCheck& c : checks) {
+    const uint32_t count = primitive_count(frame.scene->draws[c.draw]);
+    for (uint32_t p = c.first; p < count; p += kCheckTaskPrimitives)
+      check_tasks.push_back({c.draw, p, std::min(count, p + kCheckTaskPrimitives)});
+  }
   size_t blocks = 0;
   for (uint32_t d = 0; d < frame.draws.size(); ++d)
     if (frame.draws[d].small_blocks) blocks += (primitive_count(frame.scene->draws[d]) + 7) / 8;
-  if (blocks == 0) {
-    contiguous_rows(frame);
-    return;
-  }
-  uint32_t* rows = thread_word_scratch(blocks);
+  if (blocks == 0) contiguous_rows(frame);
+  if (blocks == 0 && check_tasks.empty()) return;
+  uint32_t* rows = blocks > 0 ? thread_word_scratch(blocks) : nullptr;
   std::vector<RowTask> tasks;
   for (uint32_t d = 0; d < frame.draws.size(); ++d) {
     if (!frame.draws[d].small_blocks) continue;
@@ -378,29 +480,61 @@ void measure_all_block_rows(FastFrame& frame) {
   const size_t tiles_y = size_t(std::max(frame.raster.tiles_y, 0));
   std::vector<int32_t> reach(tasks.size() * (tiles_y + 1), 0);
   std::vector<ClippedTable> clipped(tasks.size());  // the tasks' clipped triangles (clipped_pieces.hpp)
+  std::vector<uint8_t> met(check_tasks.size(), 0);
   std::atomic<size_t> next{0};
   std::atomic<bool> bad_index{false}, any_row{false};
-  run_phase(frame, "block rows", frame.workers, [&](uint32_t) {
-    for (size_t i = next++; i < tasks.size(); i = next++) {
-      const RowTask& task = tasks[i];
-      if (!measure_block_rows(frame, task.draw, task.begin, task.end)) {
-        bad_index = true;
-        continue;
-      }
-      clip_block_triangles(frame, task.draw, task.begin, task.end, clipped[i]);  // narrows kBlockAnyRow
-      if (count_block_rows(frame.draws[task.draw].block_rows + task.begin, task.end - task.begin, tiles_y,
-                           reach.data() + i * (tiles_y + 1)))
-        any_row = true;
+  TaskTimes times(frame, check_tasks.size() + tasks.size());
+  const auto row_task = [&](size_t t) {
+    const RowTask& task = tasks[t];
+    if (!measure_block_rows(frame, task.draw, task.begin, task.end)) {
+      bad_index = true;
+      return;
+    }
+    clip_block_triangles(frame, task.draw, task.begin, task.end, clipped[t]);  // narrows kBlockAnyRow
+    if (count_block_rows(frame.draws[task.draw].block_rows + task.begin, task.end - task.begin, tiles_y,
+                         reach.data() + t * (tiles_y + 1)))
+      any_row = true;
+  };
+  run_phase(frame, "block rows", frame.workers, [&](uint32_t w) {
+    for (size_t i = next++; i < check_tasks.size() + tasks.size(); i = next++) {
+      times.run(i, w, [&] {
+        if (i < check_tasks.size()) {  // the checks first: the longer tasks
+          const CheckTask& c = check_tasks[i];
+          met[i] = run_meets_denormals(frame, c.draw, c.begin, c.end) ? 1 : 0;
+        } else {
+          row_task(i - check_tasks.size());
+        }
+      });
     }
   });
+  times.attach(frame);
   if (bad_index) check_lavapipe_profile_support(*frame.scene);
-  for (size_t i = 0; i < tasks.size(); ++i) append_clipped(frame.draws[tasks[i].draw].clipped, clipped[i]);
+  for (size_t i = 0; i < check_tasks.size(); ++i)
+    if (met[i]) drop_fast_draw(frame.draws[check_tasks[i].draw]);
+  for (size_t t = 0; t < tasks.size(); ++t) {
+    if (!frame.draws[tasks[t].draw].small_blocks) {  // dropped: its blocks count nowhere
+      std::fill_n(reach.begin() + std::ptrdiff_t(t * (tiles_y + 1)), tiles_y + 1, 0);
+      continue;
+    }
+    append_clipped(frame.draws[tasks[t].draw].clipped, clipped[t]);
+  }
   balance_tile_rows(frame, reach, tasks.size(), !any_row);
 }
 
-// Phase 4: every worker walks every draw into its own tile rows.
+// Phase 4: every worker walks every draw into its own tiles; with queued units (balance_tiles),
+// each worker takes the next unit from the queue and walks every draw into that unit's tiles, until
+// none is left.
 void run_workers(FastFrame& frame) {
-  run_phase(frame, "bands", frame.workers, [&frame](uint32_t w) { BandWorker(frame, w).run(); });
+  if (frame.queued_units == 0) {
+    run_phase(frame, "bands", frame.workers, [&frame](uint32_t w) { BandWorker(frame, w).run(); });
+    return;
+  }
+  std::atomic<uint32_t> next{0};
+  TaskTimes times(frame, frame.queued_units);
+  run_phase(frame, "bands", frame.workers, [&](uint32_t w) {
+    for (uint32_t u = next++; u < frame.queued_units; u = next++) times.run(u, w, [&] { BandWorker(frame, u).run(); });
+  });
+  times.attach(frame);
 }
 
 }  // namespace
@@ -424,16 +558,76 @@ void render_fast_into(const Scene& scene, const CpuOptions& options, const FastC
   const DenormalsFlushed ftz_daz;  // as the exact path; the pool sets it in its jobs (rules §7.10)
   FastFrame frame;
   frame.profile = config.profile;
+  frame.profile_threads = config.profile_threads;
   frame.serial_mark = start;
   init_frame(frame, scene, options, config, result);
-  transform_all_vertices(frame, check_pending);
+  const std::vector<TrailingCheck> checks = transform_all_vertices(frame, check_pending);
   if (check_pending) {
     check_index_ranges(frame);
-    measure_all_block_rows(frame);
+    measure_all_block_rows(frame, checks);
   }
   run_workers(frame);
   move_into_result(std::move(frame.targets), lavapipe_profile_device(options), options.fma, result);
   if (config.profile) config.profile->serial_seconds += thread_cpu_seconds() - frame.serial_mark;
+}
+
+double projected_seconds(const PhaseTimes& phase) {
+  std::vector<double> free = phase.worker_seconds;
+  if (free.empty()) return 0;
+  if (phase.tasks.empty()) return *std::max_element(free.begin(), free.end());
+  for (const TaskTime& task : phase.tasks)
+    if (task.worker < free.size()) free[task.worker] -= task.seconds;
+  for (double& f : free) f = std::max(f, 0.0);
+  for (const TaskTime& task : phase.tasks) *std::min_element(free.begin(), free.end()) += task.seconds;
+  return *std::max_element(free.begin(), free.end());
+}
+
+// render_fast_side_by_side's queue order: a vertex weighs as much as this many samples' clears.
+constexpr uint64_t kSideBySideVertexWeight = 16;
+
+std::vector<size_t> side_by_side_queue(const std::vector<Scene>& scenes, const CpuOptions& options,
+                                       const FastConfig& config) {
+  std::vector<size_t> queued;
+  if (options.threads <= 1) return queued;
+  for (size_t i = 0; i < scenes.size(); ++i)
+    if (worker_count(scenes[i], options.threads, config) == 1) queued.push_back(i);
+  // the longest first (longest processing time first): an estimate, each sample's clear and
+  // each vertex's share of the set-up (any order gives the same bytes)
+  const auto estimate = [&](size_t i) {
+    uint64_t vertices = 0;
+    for (const Draw& draw : scenes[i].draws) vertices += draw.vertex_count();
+    return uint64_t(scenes[i].width) * scenes[i].height * scenes[i].samples + kSideBySideVertexWeight * vertices;
+  };
+  std::stable_sort(queued.begin(), queued.end(), [&](size_t a, size_t b) { return estimate(a) > estimate(b); });
+  return queued;
+}
+
+void render_fast_side_by_side(const std::vector<Scene>& scenes, const CpuOptions& options, const FastConfig& config,
+                              std::vector<RenderResult>& results, std::vector<RenderProfile>* profiles) {
+  results.resize(scenes.size());
+  if (profiles) profiles->assign(scenes.size(), RenderProfile{});
+  const auto config_of = [&](size_t i) {
+    FastConfig c = config;
+    c.profile = profiles ? &(*profiles)[i] : nullptr;
+    return c;
+  };
+  const std::vector<size_t> queued = side_by_side_queue(scenes, options, config);
+  std::vector<bool> in_queue(scenes.size(), false);
+  for (const size_t i : queued) in_queue[i] = true;
+  for (size_t i = 0; i < scenes.size(); ++i)
+    if (!in_queue[i]) render_fast_into(scenes[i], options, config_of(i), results[i]);
+  CpuOptions one = options;
+  one.threads = 1;
+  uint32_t threads = uint32_t(std::min<size_t>(std::max(options.threads, 1u), queued.size()));
+  if (profiles && config.profile_threads > 0) threads = std::min(threads, config.profile_threads);
+  std::atomic<size_t> next{0};
+  const std::function<void(uint32_t)> job = [&](uint32_t) {
+    for (size_t k = next++; k < queued.size(); k = next++) render_fast_into(scenes[queued[k]], one, config_of(queued[k]), results[queued[k]]);
+  };
+  if (threads <= 1)
+    job(0);
+  else
+    worker_pool(threads).run(job);
 }
 
 RenderResult render_fast(const Scene& scene, const CpuOptions& options, const FastConfig& config) {

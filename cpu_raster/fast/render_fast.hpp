@@ -25,10 +25,23 @@ namespace cpu::fast {
 // (CLOCK_THREAD_CPUTIME_ID around its share of the phase), and the calling thread's time outside
 // the phases. `bench --scaling --model` runs N workers on the cores there are and projects the
 // time on N cores from it: the serial time plus, per phase, the busiest worker's.
+// A phase whose workers take tasks from a shared queue (vertices, block rows) also records each
+// task's time and the worker that ran it, in queue order: with more workers than cores, who ran
+// which task depended on the scheduler here, so the phase is projected as the queue would run on N
+// free cores (projected_seconds).
+struct TaskTime {
+  double seconds = 0;
+  uint32_t worker = 0;
+};
 struct PhaseTimes {
   std::string phase;
   std::vector<double> worker_seconds;  // one per worker
+  std::vector<TaskTime> tasks;         // queue phases: one per task, in queue order
 };
+// The phase's time on as many free cores as it had workers: its busiest worker's time; for a queue
+// phase, the queue's tasks handed in order to the first worker free (ties: the lower), each worker
+// first busy for its time outside tasks (worker 0: the profile check beside the vertex phase).
+double projected_seconds(const PhaseTimes& phase);
 struct RenderProfile {
   std::vector<PhaseTimes> phases;  // in the order they ran
   double serial_seconds = 0;       // the calling thread's time outside the phases
@@ -40,9 +53,26 @@ struct FastConfig {
   bool every_thread = false;  // true: options.threads workers even where one would do (tests)
   bool allow_avx512 = true;   // false: the AVX2 kernels even on an AVX-512 host
   RenderProfile* profile = nullptr;  // filled when set (cleared first)
+  // With a profile: at most this many threads run a phase's worker jobs, one job after another
+  // (0: one thread per worker). bench --scaling --model sets the host's hardware threads, so that
+  // N workers' jobs are measured without N threads taking turns on fewer cores.
+  uint32_t profile_threads = 0;
 };
 
 void render_fast_into(const Scene& scene, const CpuOptions& options, const FastConfig& config, RenderResult& result);
+
+// Many scenes on options.threads workers side by side, as `conformance --jobs` renders a suite:
+// the scenes that would take several workers (worker_count) first, one after another, each with
+// all of them; then the others, each on one worker, the workers taking the next scene from a queue
+// that holds them by estimated cost, largest first (samples + 16 per vertex; ties in the given
+// order). results[i] is scenes[i]'s (reused as render_fast_into reuses it; resized to match).
+// With config.profile, profiles[i] is scenes[i]'s profile (render i's own RenderProfile; its
+// workers: 1 for a queued scene), and config.profile_threads caps the threads of the queue.
+void render_fast_side_by_side(const std::vector<Scene>& scenes, const CpuOptions& options, const FastConfig& config,
+                              std::vector<RenderResult>& results, std::vector<RenderProfile>* profiles = nullptr);
+// The scenes render_fast_side_by_side queues (each on one worker) at options.threads, in queue order.
+std::vector<size_t> side_by_side_queue(const std::vector<Scene>& scenes, const CpuOptions& options,
+                                       const FastConfig& config);
 RenderResult render_fast(const Scene& scene, const CpuOptions& options, const FastConfig& config);
 
 }  // namespace cpu::fast

@@ -1,6 +1,7 @@
 #include "cpu_raster/fast/row_balance.hpp"
 
 #include <algorithm>
+#include <cstddef>
 #include <numeric>
 
 namespace rastercmp::cpu::fast {
@@ -23,6 +24,45 @@ std::vector<uint32_t> balance_rows(const std::vector<uint64_t>& weights, uint32_
     load[w] += weights[r];
   }
   return owner;
+}
+
+TileUnits balance_tiles(const std::vector<uint64_t>& weights, uint32_t tiles_x, uint32_t workers) {
+  workers = std::max(workers, 1u);
+  tiles_x = std::max(tiles_x, 1u);
+  const uint64_t total = std::accumulate(weights.begin(), weights.end(), uint64_t(0));
+  const uint64_t share = std::max<uint64_t>((total + workers - 1) / workers, 1);
+  TileUnits units;
+  const bool cut = workers > 1 && tiles_x > 1 &&
+                   std::any_of(weights.begin(), weights.end(), [share](uint64_t w) { return w > share; });
+  if (!cut) {  // whole rows, each worker's its own
+    const std::vector<uint32_t> rows = balance_rows(weights, workers);
+    for (const uint32_t w : rows) units.unit.insert(units.unit.end(), tiles_x, w);
+    units.count = workers;
+    return units;
+  }
+  struct Piece {
+    uint32_t row, first, end;  // tiles [first, end) of the row
+    uint64_t weight;
+  };
+  std::vector<Piece> pieces;
+  for (uint32_t r = 0; r < weights.size(); ++r) {
+    const uint64_t k =
+        weights[r] > share ? std::min<uint64_t>((kPiecesPerShare * weights[r] + share - 1) / share, tiles_x) : 1;
+    for (uint64_t p = 0; p < k; ++p) {
+      const uint32_t first = uint32_t(p * tiles_x / k), end = uint32_t((p + 1) * tiles_x / k);
+      pieces.push_back({r, first, end, weights[r] * (end - first) / tiles_x});
+    }
+  }
+  std::stable_sort(pieces.begin(), pieces.end(), [](const Piece& a, const Piece& b) { return a.weight > b.weight; });
+  units.unit.assign(weights.size() * size_t(tiles_x), 0);
+  for (uint32_t u = 0; u < pieces.size(); ++u) {
+    const Piece& p = pieces[u];
+    std::fill(units.unit.begin() + std::ptrdiff_t(size_t(p.row) * tiles_x + p.first),
+              units.unit.begin() + std::ptrdiff_t(size_t(p.row) * tiles_x + p.end), u);
+  }
+  units.count = uint32_t(pieces.size());
+  units.queued = true;
+  return units;
 }
 
 }  // namespace rastercmp::cpu::fast

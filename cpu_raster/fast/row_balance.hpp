@@ -1,6 +1,7 @@
-// Which worker draws each tile row: an estimate of each row's work, then a greedy
-// assignment of whole rows. Any assignment gives the same bytes (each row is drawn by exactly one
-// worker, in submission order); the estimate only decides how evenly the band phase splits.
+// Which worker draws each tile: an estimate of each tile row's work, then a greedy assignment of
+// whole rows, or of runs of a row's tiles where one row holds more than a worker's share. Any
+// assignment gives the same bytes (each tile is drawn by exactly one worker, in submission order);
+// the estimate only decides how evenly the band phase splits.
 #pragma once
 
 #include <cstdint>
@@ -30,5 +31,23 @@ uint64_t tile_row_weight(uint64_t blocks, uint32_t tiles_x);
 // least-loaded worker so far (ties: lower worker). Deterministic; every row gets exactly one of
 // 0..workers-1. workers >= 1.
 std::vector<uint32_t> balance_rows(const std::vector<uint64_t>& weights, uint32_t workers);
+
+// How the band phase shares out the tiles (weights.size() rows of tiles_x tiles, row-major). When
+// no row weighs more than a worker's share (the total / workers): whole rows, unit[t] the worker
+// that draws tile t (balance_rows), count = workers. Otherwise (perspective's horizon row held two
+// fifths of its work: one worker's whole at 16) the rows are cut into pieces: a row over the share
+// into k = ceil(kPiecesPerShare * weight / share) runs of whole tiles (at most tiles_x), each taken
+// to weigh its part of the row by its tiles, every other row one piece; unit[t] is then the
+// piece's place among them by weight, heaviest first (ties: lower row, then left piece first), and
+// the workers take the pieces from a queue in that order (queued): the estimate knows rows, not
+// columns, and a queue evens out what it gets wrong. Deterministic.
+inline constexpr uint64_t kPiecesPerShare = 2;
+struct TileUnits {
+  std::vector<uint32_t> unit;  // per tile
+  uint32_t count = 0;          // units
+  bool queued = false;
+  bool operator==(const TileUnits&) const = default;
+};
+TileUnits balance_tiles(const std::vector<uint64_t>& weights, uint32_t tiles_x, uint32_t workers);
 
 }  // namespace rastercmp::cpu::fast

@@ -30,12 +30,14 @@ struct TileBounds {
   BoundsState state = BoundsState::Unknown;
 };
 
-// A tile of the frame: its depth bounds, and whether its pixels hold the clear values yet ("fast
+// A tile of the frame: its depth bounds, whether its pixels hold the clear values yet ("fast
 // clear": a tile is cleared by its worker when first drawn into, while it is in cache, or not at
-// all when the first triangle overwrites every pixel; untouched tiles are cleared at the end).
+// all when the first triangle overwrites every pixel; untouched tiles are cleared at the end), and
+// the worker that draws it (render_fast.cpp; kUnownedRow in a row no worker owns).
 struct TileState {
   TileBounds bounds;
   bool cleared = false;
+  uint32_t worker = 0;
 };
 
 // Raw depth range of a triangle's samples over rectangle r; false when the plane is not finite

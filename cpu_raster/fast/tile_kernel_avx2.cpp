@@ -163,14 +163,16 @@ RASTERCMP_AVX2 inline bool write_covered(const SpanDepth& s, uint32_t* depth, ui
 // Mid-size triangles (rectangles wider than one span): per row the covered columns from the edges
 // (row_columns_avx2.hpp), then whole 8-pixel spans from the first of them, the last span masked:
 // no edge values per span, and the spans of an 8-60 px triangle mostly full instead of a third
-// full over its rectangle. A span may reach past the rectangle into the next tile of the row (this
-// worker's) or past the row's end (masked loads and stores); only covered lanes are written.
+// full over its rectangle. A span that would reach past the end of the tile of the rectangle's
+// last column, or past the row's end, takes masked loads and stores: the next tile may be another
+// worker's (TileState::worker), and a blended store there would write back what it read.
 template <DepthFormat F, CompareOp Op>
 RASTERCMP_AVX2 bool row_spans(const KernelJob& j, const KernelDepth& d, const TileTarget& t) {
   const SpanDepth s = span_depth(j, d);
+  const int32_t limit = std::min(t.width, (j.rect.x1 | (kTileSize - 1)) + 1);  // columns below it are ours
   const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7), all = _mm256_set1_epi32(-1);
-  const __m256i owner = _mm256_set1_epi32(int32_t(j.owner)), row_width = _mm256_set1_epi32(t.width);
-  const int32_t last_full = t.width - 8;
+  const __m256i owner = _mm256_set1_epi32(int32_t(j.owner)), row_width = _mm256_set1_epi32(limit);
+  const int32_t last_full = limit - 8;
   uint32_t* const owner_base = t.owner;
   uint32_t* const depth_base = t.depth;
   const size_t width = size_t(t.width);

@@ -109,7 +109,7 @@ BoundsUse raster_prepared(const FastTriangle& t, const TileTriangle& prepared, i
     // Fast clear: skipped when this triangle replaces every owner and depth value of the tile.
     const bool overwrites =
         covers_tile && (frame.target.depth == nullptr || (draw.depth.write && verdict == DepthVerdict::AllPass));
-    if (!overwrites) clear_tile_row(tile_y, frame);
+    if (!overwrites) clear_tile_row(tile_y, state.worker, frame);
     state.cleared = true;
   }
   bool wrote;
@@ -133,11 +133,15 @@ BoundsUse raster_prepared(const FastTriangle& t, const TileTriangle& prepared, i
 // spans the width): long runs of stores, which the hardware prefetcher keeps ahead of. Tile by
 // tile, in the order a draw reaches them, the same 8 MiB took 0.23-0.27 ms instead of 0.09-0.10
 // (docs/performance-log.md, 96b2e7d).
-void clear_tile_row(int32_t tile_y, const FrameRaster& frame) {
+void clear_tile_row(int32_t tile_y, uint32_t worker, const FrameRaster& frame) {
+  const auto to_clear = [&](int32_t tx) {
+    const TileState& tile = frame.tile(tx, tile_y);
+    return !tile.cleared && tile.worker == worker;
+  };
   for (int32_t tx = 0; tx < frame.tiles_x; ++tx) {
-    if (frame.tile(tx, tile_y).cleared) continue;
+    if (!to_clear(tx)) continue;
     int32_t last = tx;
-    while (last + 1 < frame.tiles_x && !frame.tile(last + 1, tile_y).cleared) ++last;
+    while (last + 1 < frame.tiles_x && to_clear(last + 1)) ++last;
     const PixelRect first_tile = tile_rect(tx, tile_y, frame.target), last_tile = tile_rect(last, tile_y, frame.target);
     clear_rect(PixelRect{first_tile.x0, first_tile.y0, last_tile.x1, last_tile.y1}, frame);
     for (int32_t k = tx; k <= last; ++k) frame.tile(k, tile_y).cleared = true;

@@ -29,7 +29,7 @@ struct DrawRaster {
 };
 
 // Shared by the workers of a frame; a tile (and its bounds) is only touched by the worker that
-// owns its row, so nothing here needs a lock.
+// owns it (TileState::worker), so nothing here needs a lock.
 struct FrameRaster {
   TileTarget target;
   int32_t tiles_x = 0, tiles_y = 0;
@@ -74,10 +74,11 @@ BoundsUse raster_prepared(const FastTriangle& t, const TileTriangle& prepared, i
                           const DrawRaster& draw, const FrameRaster& frame);
 
 // Before the first write into a tile of row tile_y, and for the rows no primitive reached: the
-// clear values (kOwnerBackground, the packed depth clear) written into every tile of the row not
-// cleared yet, which are then marked cleared. A tile that a later triangle would have covered
-// whole is cleared all the same (its clear is no longer skipped, raster_prepared).
-void clear_tile_row(int32_t tile_y, const FrameRaster& frame);
+// clear values (kOwnerBackground, the packed depth clear) written into every tile of the row that
+// `worker` draws (TileState::worker) and that is not cleared yet, which are then marked cleared. A
+// tile that a later triangle would have covered whole is cleared all the same (its clear is no
+// longer skipped, raster_prepared).
+void clear_tile_row(int32_t tile_y, uint32_t worker, const FrameRaster& frame);
 // The same for every pixel of r (whole tiles): one fill per attachment and pixel row, or one for
 // all of r when its rows span the whole width.
 void clear_rect(const PixelRect& r, const FrameRaster& frame);
