@@ -25,8 +25,8 @@ const fs::path kCaptures = kSourceDir / "tests" / "captures";
 const std::vector<std::string> kReleases = {"22.3.6", "25.0.7", "26.2.6"};
 
 // The sanitizer build (make test's second pass) judges one case in kShards of the suite and of the
-// soak slices: the Release pass judges them all, and a shard takes the sanitizers through the same
-// code (docs/reliability.md, "Cost").
+// soak slices, and a third of the pinning pairs: the Release pass judges them all, and a part takes
+// the sanitizers through the same code (docs/reliability.md, "Cost").
 #ifdef RASTERCMP_SANITIZER_BUILD
 constexpr int kShards = 8;
 #else
@@ -131,6 +131,9 @@ size_t release_index(const std::string& release) {
 TEST(ReleaseCaptures, EachPinningSceneFailsExactlyUnderTheRulesAcrossItsChange) {
   for (const std::string& captured : kReleases) {
     for (const std::string& judged_by : kReleases) {
+      // The sanitizer build judges each release's captures by the next release's rules only (3 of
+      // the 9 pairs, with pins that pass and pins that fail in each); the Release pass judges all.
+      if (kShards > 1 && release_index(judged_by) != (release_index(captured) + 1) % kReleases.size()) continue;
       SCOPED_TRACE(captured + " judged by " + profile_of(judged_by));
       std::vector<std::string> args = {"conformance",
                                        "--suite",
