@@ -19,7 +19,7 @@ SAN_ENV := ASAN_OPTIONS=detect_leaks=1:halt_on_error=1:abort_on_error=0:exitcode
   UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1:exitcode=$(SAN_EXITCODE) \
   LSAN_OPTIONS=suppressions=$(CURDIR)/tests/sanitizer/lsan.supp:print_suppressions=0:exitcode=$(SAN_EXITCODE)
 
-.PHONY: setup build build-app conformance test-debian13 test-unstable test test-unit build-san test-sanitize fuzz bench soak properties clean
+.PHONY: setup build build-app conformance test-debian13 test-unstable test test-unit build-san test-sanitize fuzz bench soak properties docs-tables docs-check clean
 
 setup:
 	@bash scripts/setup.sh
@@ -94,6 +94,22 @@ SOAK_SEED  ?= 1
 SOAK_COUNT ?= 1000000
 soak: build-app
 	@$(BUILD)/app/rastercmp soak --seed $(SOAK_SEED) --count $(SOAK_COUNT) --out $(OUT)/soak
+
+# docs/experiments.md's measured tables (docs/experiments.md, top): each marker's command runs once
+# with this build's rastercmp; docs-tables rewrites the tables in place, docs-check exits 1 listing
+# every cell that drifted (deterministic cells must be equal, timed medians inside the new interval;
+# DOCS_TIMED=report lists timed drift without failing on it).
+DOCS_EXPERIMENTS ?= docs/experiments.md
+DOCS_TIMED ?= fail
+docs-tables: setup
+	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release >/dev/null
+	@cmake --build $(BUILD) -j $(JOBS) --target rastercmp
+	@$(BUILD)/app/rastercmp docs update $(DOCS_EXPERIMENTS)
+
+docs-check: setup
+	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release >/dev/null
+	@cmake --build $(BUILD) -j $(JOBS) --target rastercmp
+	@$(BUILD)/app/rastercmp docs check $(DOCS_EXPERIMENTS) --timed $(DOCS_TIMED)
 
 # rapidcheck's properties with fresh seeds (ctest fixes one, tests/CMakeLists.txt): PROPERTY_RUNS
 # runs of every property binary; each failure's output, with the RC_PARAMS line that replays it,
