@@ -17,7 +17,7 @@
 namespace rastercmp::experiments {
 
 double map_measure(const CsvTable& table, const std::vector<std::string>& row, const std::string& measure) {
-  if (measure == "any_mismatch")
+  if (measure == "any_mismatch" || measure == "excess_mismatch")
     return to_double(row[table.column("coverage_mismatch")]) + to_double(row[table.column("depth_mismatch")]);
   return to_double(row[table.column(measure)]);
 }
@@ -31,7 +31,7 @@ std::vector<FailureBoundary> failure_boundaries(const CsvTable& table) {
     for (const std::string& case_name : distinct(table, "case", {{"experiment", experiment}}))
       for (const std::string& method : distinct(table, "method", {{"experiment", experiment}, {"case", case_name}})) {
         FailureBoundary b{experiment, std::string(e.family), case_name, method, NAN, NAN, 0, 0, 0, {}};
-        double previous = NAN;
+        double previous = NAN, threshold = measure == "excess_mismatch" ? NAN : 0;
         for (const Row& row :
              select_rows(table, {{"experiment", experiment}, {"case", case_name}, {"method", method}})) {
           ++b.points;
@@ -40,8 +40,9 @@ std::vector<FailureBoundary> failure_boundaries(const CsvTable& table) {
             b.refused_values.push_back(to_double(row[param]));
             continue;
           }
-          const double p = to_double(row[param]);
-          if (map_measure(table, row, measure) > 0) {
+          const double p = to_double(row[param]), value = map_measure(table, row, measure);
+          if (std::isnan(threshold)) threshold = value;  // excess_mismatch: the benign end's own mismatch
+          if (value > threshold) {
             ++b.failing;
             if (std::isnan(b.boundary)) {
               b.boundary = p;
@@ -82,6 +83,7 @@ std::optional<OnsetPrediction> predicted_onset(const std::string& case_name, dou
 
 std::optional<BoundaryPrediction> predicted_boundary(const std::string& experiment, const std::string& case_name,
                                                      const std::string& method) {
+  if (auto line_or_cull = method_map_prediction(experiment, case_name, method)) return line_or_cull;
   const double cos30 = std::cos(kOnsetAngleDeg * std::numbers::pi / 180);
   const bool interpolates_the_plane = method == "exact" || method == "depth=no_fma" || method == "depth=bilinear";
   if (experiment == "depth_far_near" && interpolates_the_plane) {

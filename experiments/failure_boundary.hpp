@@ -26,7 +26,8 @@ struct FailureBoundary {
 // Where theory puts a series' boundary (docs/experiments.md "Method maps"), for the series that have
 // a prediction: the D16/D24/D32 z-fighting onset far/near of depth_far_near (usual mapping), the
 // pseudo-depth step per format and far plane, painter's first contact of the cyclic bars (0.081) and
-// the interpenetration depth at the first pixel centre (0.0531). nullopt for every other series.
+// the interpenetration depth at the first pixel centre (0.0531), and the line and cull maps'
+// (method_maps.hpp method_map_prediction). nullopt for every other series.
 struct BoundaryPrediction {
   double value = NAN;
   std::string formula;  // how it was computed, in words
@@ -53,8 +54,9 @@ BracketCheck check_bracket(const FailureBoundary& b, double predicted, bool clea
 double coplanar_discrepancy_steps(DepthFormat format, const std::string& method);
 
 // The measure of one row: "any_mismatch" = samples whose owner or raw depth differs from the
-// reference (coverage_mismatch + depth_mismatch), otherwise the named column (value_cpu: the
-// method's own wrong-surface fraction). NaN for a refused point.
+// reference (coverage_mismatch + depth_mismatch; "excess_mismatch" the same, but a series fails
+// where it exceeds its value at the series' first measured point, not 0), otherwise the named
+// column (value_cpu: the method's own wrong-surface fraction). NaN for a refused point.
 double map_measure(const CsvTable& table, const std::vector<std::string>& row, const std::string& measure);
 
 // Every series of every method map in the table (stability.csv read back), in file order.

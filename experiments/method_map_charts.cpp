@@ -21,10 +21,11 @@ size_t method_style(std::string_view family, const std::string& method) {
   return methods.size() + 1;
 }
 
-// One panel: all parameters positive -> a log axis of the values; otherwise (0, negative w) a
-// symmetric log axis (SymlogAxis), 0 at its tic: every point at its real value, benign on the left.
-// A refused point (not_supported) is a star in the method's colour along the top of the panel; a
-// predicted boundary (predicted_boundary) a dotted vertical line in the method's colour.
+// One panel: a linear axis where the experiment asks for one (angles); else all parameters positive -> a log axis of
+// the values; otherwise (0, negative w) a symmetric log axis (SymlogAxis), 0 at its tic: every point at its real value,
+// benign on the left. A refused point (not_supported) is a star in the method's colour along the top of the panel; a
+// predicted boundary (predicted_boundary) a dotted vertical line in the method's colour, a marked
+// value where no boundary is expected (method_map_expectation) a dashed one.
 // shared_key: many panels (depth_far_near's twelve); the first panel's legend stands for all, at
 // the outer right of the chart, the others have none, and predicted lines are titled without their
 // value (it is in the table and stability.json).
@@ -40,7 +41,10 @@ std::string panel(const CsvTable& table, const MapExperiment& e, const std::stri
     positive = positive && to_double(p) > 0;
   }
   const SymlogAxis symlog(values);
-  const auto x_of = [&](double v) { return positive ? fmt::format("{:.10g}", v) : fmt::format("{:.10g}", symlog.position(v)); };
+  const bool linear = e.linear_axis;
+  const auto x_of = [&](double v) {
+    return positive || linear ? fmt::format("{:.10g}", v) : fmt::format("{:.10g}", symlog.position(v));
+  };
   const size_t param = table.column("param_a"), agree = table.column("cpu_vk_agree");
   const std::vector<std::string> methods = distinct(table, "method", where);
   std::string plot = "plot ", marks;
@@ -65,6 +69,13 @@ std::string panel(const CsvTable& table, const MapExperiment& e, const std::stri
                           gp_quote(method + " refused"), style);
       blocks.push_back(refused);
     }
+    if (const auto expected = method_map_expectation(experiment, case_name, method)) {
+      marks += fmt::format("set arrow from {}, graph 0 to {}, graph 1 nohead lt {} dt 2 lw 2\n", x_of(expected->marked),
+                           x_of(expected->marked), style);
+      plot += fmt::format("keyentry with lines lt {} dt 2 lw 2 title {}, ", style,
+                          gp_quote(fmt::format("{} {:g} (expected: {})", expected->marked_label, expected->marked,
+                                               expected->never_fails ? "no difference" : "differs where drawn")));
+    }
     if (const auto prediction = predicted_boundary(experiment, case_name, method)) {
       marks += fmt::format("set arrow from {}, graph 0 to {}, graph 1 nohead lt {} dt 3 lw 2\n", x_of(prediction->value),
                            x_of(prediction->value), style);
@@ -78,7 +89,14 @@ std::string panel(const CsvTable& table, const MapExperiment& e, const std::stri
   // Benign on the left: a descending sweep gets a reversed axis (explicit bounds, half a step out).
   const std::vector<Row> first = select_rows(table, {{"experiment", experiment}, {"case", case_name}, {"method", methods.front()}});
   const bool descending = to_double(first.front()[param]) > to_double(first.back()[param]);
-  if (positive) {
+  if (linear) {
+    double low = values.front(), high = low;
+    for (double v : values) low = std::min(low, v), high = std::max(high, v);
+    const double pad = (high - low) / 40;
+    axis = "unset logscale x\nset format x '%g'\nunset xtics\nset xtics\n" +
+           (descending ? fmt::format("set xrange [{:g}:{:g}]\n", high + pad, low - pad)
+                       : fmt::format("set xrange [{:g}:{:g}]\n", low - pad, high + pad));
+  } else if (positive) {
     axis = "set logscale x 10\nset format x '10^{%L}'\nunset xtics\nset xtics\n";
     double low = values.front(), high = low;
     for (double v : values) low = std::min(low, v), high = std::max(high, v);
@@ -95,7 +113,8 @@ std::string panel(const CsvTable& table, const MapExperiment& e, const std::stri
   const std::string y = e.measure == "value_cpu"
                             ? std::string("set yrange [-0.02:1.02]\nset ylabel '") +
                                   (shared_key ? "wrong fraction" : "fraction won by the wrong surface") + "'\n"
-                            : "set yrange [-0.5:1<*]\nset ylabel 'samples that differ'\n";
+                        : e.measure == "excess_mismatch" ? "set yrange [-0.5:2<*]\nset ylabel 'samples that differ'\n"
+                                                         : "set yrange [-0.5:1<*]\nset ylabel 'samples that differ'\n";
   const std::string key = !shared_key ? ""
                           : first_panel
                               ? "set key at screen 0.995, screen 0.9 right top vertical maxrows auto font ',9'\n"
@@ -133,14 +152,16 @@ std::vector<PageSection> write_method_map_charts(const std::string& dir, const C
   const std::vector<FailureBoundary> boundaries = failure_boundaries(table);
   for (const MapExperiment& e : method_map_experiments()) {
     chart(dir, table, e);
-    PageSection section{std::string(e.family) + ": " + std::string(e.name),
-                        std::string(e.notes) + ". Parameter: " + std::string(e.parameter) +
-                            ", from the benign end to the hard end. Boundary: the first value at which " +
-                            (e.measure == "value_cpu" ? "the method's own wrong surface wins a pixel"
-                                                      : "a sample's owner or depth differs from lavapipe") +
-                            "; the true boundary lies after the last clean value.",
-                        {"map_" + std::string(e.name)},
-                        {{"case", "method", "last clean", "boundary", "failing points", "refused points"}}};
+    PageSection section{
+        std::string(e.family) + ": " + std::string(e.name),
+        std::string(e.notes) + ". Parameter: " + std::string(e.parameter) +
+            ", from the benign end to the hard end. Boundary: the first value at which " +
+            (e.measure == "value_cpu"         ? "the method's own wrong surface wins a pixel"
+             : e.measure == "excess_mismatch" ? "more samples differ from lavapipe than at the benign end"
+                                              : "a sample's owner or depth differs from lavapipe") +
+            "; the true boundary lies after the last clean value.",
+        {"map_" + std::string(e.name)},
+        {{"case", "method", "last clean", "boundary", "failing points", "refused points"}}};
     for (const FailureBoundary& b : boundaries)
       if (b.experiment == e.name)
         section.table.push_back({b.case_name, b.method, text(b.last_clean), text(b.boundary),

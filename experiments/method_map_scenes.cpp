@@ -120,6 +120,81 @@ Scene make_near_cross_line(double behind) {
   return scene;
 }
 
+namespace {
+
+Scene map_line(const char* name, LineMode mode, glm::dvec2 p0, glm::dvec2 p1) {
+  Scene scene = window_scene(name);
+  scene.width = 272;
+  scene.height = 96;
+  Draw draw = pixel_triangles(scene, {{p0.x, p0.y, 0.5}, {p1.x, p1.y, 0.5}});
+  draw.topology = Topology::LineList;
+  draw.state.line_mode = mode;
+  draw.state.depth.test_enable = false;
+  draw.state.depth.write_enable = false;
+  scene.draws.push_back(draw);
+  return scene;
+}
+
+constexpr glm::dvec2 kLineStart{8.5, 8.5};
+
+}  // namespace
+
+Scene make_line_slope(LineMode mode, double angle_deg) {
+  const double a = angle_deg * std::numbers::pi / 180;
+  const glm::dvec2 run(std::round(40 * std::cos(a)), std::round(40 * std::sin(a)));
+  return map_line("line_slope", mode, kLineStart, kLineStart + run);
+}
+
+Scene make_line_end_offset(LineMode mode, double offset_px) {
+  return map_line("line_end_offset", mode, kLineStart,
+                  kLineStart + glm::dvec2(kLineOffsetRun, kLineOffsetRise + offset_px));
+}
+
+Scene make_line_length(LineMode mode, double length_px) {
+  return map_line("line_length", mode, kLineStart, kLineStart + glm::dvec2(length_px, std::round(length_px / 3)));
+}
+
+namespace {
+
+// The cull camera: 60-degree field of view, square frame, near 0.5, far 100; eye space looks down -z.
+constexpr double kCullNear = 0.5, kCullFar = 100;
+const double kCullFocal = 1 / std::tan(std::numbers::pi / 6);
+
+glm::vec4 cull_clip(const glm::dvec3& eye) {
+  const double w = -eye.z;
+  return {float(kCullFocal * eye.x), float(kCullFocal * eye.y),
+          float(kCullFar * (w - kCullNear) / (kCullFar - kCullNear)), float(w)};
+}
+
+constexpr double kCullDistance = 4, kCullHalfSize = 1.5;
+
+}  // namespace
+
+double cull_edge_on_deg(CullPlace place) { return place == CullPlace::OffAxis ? 90 - kCullOffAxisDeg : 90; }
+
+double cull_face_pixels() { return 2 * kCullHalfSize * kCullFocal / kCullDistance * 32; }
+
+Scene make_cull_face(CullPlace place, double angle_deg) {
+  Scene scene = window_scene("cull_face");
+  const bool near = place == CullPlace::NearClipped;
+  const double distance = near ? 1.5 : kCullDistance, s = near ? 2.5 : kCullHalfSize;
+  const double off = place == CullPlace::OffAxis ? distance * std::tan(kCullOffAxisDeg * std::numbers::pi / 180) : 0;
+  const glm::dvec3 centre(off, 0, -distance);
+  // Normal n = (sin a, 0, cos a): towards the eye (+z) at 0; u, v span the face, u x v = n.
+  const double a = angle_deg * std::numbers::pi / 180;
+  const glm::dvec3 u(std::cos(a), 0, -std::sin(a)), v(0, 1, 0);
+  // Counter-clockwise in the window (y down) while the face looks at the eye.
+  const glm::dvec3 corners[3] = {centre - s * u - 0.6 * s * v, centre + s * v, centre + s * u - 0.6 * s * v};
+  if (place == CullPlace::YFlip)
+    scene.viewport = Viewport{0, float(scene.height), float(scene.width), -float(scene.height), 0, 1};
+  Draw draw;
+  for (const glm::dvec3& c : corners) draw.positions_clip.push_back(cull_clip(c));
+  draw.state.cull_mode = CullMode::Back;
+  draw.state.front_face = FrontFace::CounterClockwise;
+  scene.draws.push_back(draw);
+  return scene;
+}
+
 Scene reversed_z(Scene scene, double near_plane, double far_plane) {
   scene.name += ".reversed_z";
   scene.depth_clear = 0.0f;

@@ -39,6 +39,36 @@ Scene make_near_w_line(float w);
 Scene make_near_cross_triangle(double behind);
 Scene make_near_cross_line(double behind);
 
+// line: a 1-pixel line of `mode` (docs/lavapipe-rules.md §4) from window (8.5, 8.5), a pixel centre, in a
+// frame wide enough for the longest line (272 x 96), drawn with depth test off.
+//   slope:      40 pixels long at `angle_deg` (0 = along +x, 90 = along +y), its end rounded to the
+//               nearest pixel centre, so both ends are integer pixels at centres at every slope
+//   end_offset: to the pixel centre (49.5, 21.5) (41 x 13 pixels, no exact half on any column)
+//               with the end moved by `offset_px` along +y (across the line), off its centre
+//   length:     `length_px` pixels along x and round(length / 3) along y (ends at centres)
+Scene make_line_slope(LineMode mode, double angle_deg);
+Scene make_line_end_offset(LineMode mode, double offset_px);
+Scene make_line_length(LineMode mode, double length_px);
+inline constexpr int kLineOffsetRun = 41, kLineOffsetRise = 13;  // end_offset's line, in pixels
+
+// cull: one triangle seen through a 60-degree perspective camera (near 0.5, far 100, Vulkan's 0..1
+// clip z), back faces culled, counter-clockwise front. Its normal is tilted by `angle_deg` from the
+// view axis (0: facing the eye, 90: along the axis) about the y axis. Cases (CullPlace):
+//   on_axis      centre on the view axis 4 units away (about 42 pixels across face-on)
+//   off_axis     centre kCullOffAxisDeg off the axis: the face is edge-on to the eye's ray at
+//                angle_deg = 90 - kCullOffAxisDeg, where a view-along-the-axis test would say 90
+//   y_flip       on_axis through a viewport of negative height (window y up)
+//   near_clipped centre 1.5 units away, half-size 2.5: near edge-on one vertex lies behind the near
+//                plane (and behind the eye), so the exact path clips it first
+enum class CullPlace { OnAxis, OffAxis, YFlip, NearClipped };
+Scene make_cull_face(CullPlace place, double angle_deg);
+inline constexpr double kCullOffAxisDeg = 5;
+// The angle of the face's normal to the view axis at which it is edge-on to the eye's ray through
+// its centre (N . V = 0 at the centre): 90 - kCullOffAxisDeg off the axis, 90 elsewhere.
+double cull_edge_on_deg(CullPlace place);
+// The face's size across, in pixels, seen face-on (on_axis): the snapping band's scale.
+double cull_face_pixels();
+
 // depth: a scene of a camera with these planes (model/camera.hpp, Vulkan's 0..1 depth), with reversed
 // Z: every clip z replaced by w - z = near (far - w) / (far - near), computed from w, so near maps to
 // 1 and far to 0 (the float format's dense end at the far plane); compare op Greater, depth cleared to 0.

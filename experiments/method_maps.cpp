@@ -1,10 +1,15 @@
 #include "experiments/method_maps.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <numbers>
+
+#include <fmt/core.h>
 
 #include "cpu_raster/classic/method_registry.hpp"
 #include "experiments/method_map_scenes.hpp"
 #include "experiments/scene_make.hpp"
+#include "experiments/table_query.hpp"
 
 namespace rastercmp::experiments {
 namespace {
@@ -33,6 +38,14 @@ const std::vector<MapExperiment> kExperiments{
      "RDS Painter's Algorithm, Hard Cases: cyclic overlap"},
     {"visibility_interpenetration", "visibility", "penetration of one square through another (window depth)",
      "any_mismatch", "RDS Painter's Algorithm, Hard Cases: interpenetration"},
+    {"line_slope", "line", "slope of a 40-pixel line, ends at pixel centres (degrees)", "excess_mismatch",
+     "RDS DDA Algorithm, Bresenham's line drawing algorithm: integer ends, one pixel per column", true},
+    {"line_end_offset", "line", "offset of the line's end from its pixel centre, across the line (sub-pixels)",
+     "excess_mismatch", "RDS DDA, Bresenham: the ends are pixels; the real line moves off them", true},
+    {"line_length", "line", "length of a line of slope 1/3, ends at pixel centres (pixels)", "excess_mismatch",
+     "RDS DDA, Bresenham: both end pixels drawn, against Vulkan's end rules"},
+    {"cull_edge_on", "cull", "angle of the face's normal to the view axis (degrees)", "any_mismatch",
+     "NLC Back Face Removal: N.V <= 0 against the sign of the snapped window area", true},
 };
 
 std::vector<double> pick(bool quick, std::vector<double> small, std::vector<double> full) {
@@ -155,7 +168,107 @@ void add_visibility(std::vector<StabilityPoint>& plan, bool quick) {
              make_interpenetration);
 }
 
+const std::vector<NamedMethod>& line_methods() {
+  static const std::vector<NamedMethod> methods = named({{"line", "dda"}, {"line", "bresenham"}});
+  return methods;
+}
+
+// The two line modes of a 1-pixel line that the exact path models sample by sample (Default draws
+// as rectangular; RectangularSmooth's coverage is an alpha).
+constexpr std::pair<const char*, LineMode> kLineModes[] = {{"bresenham", LineMode::Bresenham},
+                                                           {"rectangular", LineMode::Rectangular}};
+
+void add_line(std::vector<StabilityPoint>& plan, bool quick) {
+  std::vector<double> angles;
+  for (int a = 0; a <= 90; a += quick ? 15 : 5) angles.push_back(a);
+  const std::vector<double> offsets =  // sub-pixels
+      pick(quick, {0, 4, 10, 12, 64, 128}, {0, 1, 2, 4, 8, 10, 11, 12, 16, 32, 64, 96, 128});
+  const std::vector<double> lengths =
+      pick(quick, {1, 2, 4, 16, 64, 256}, {1, 2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 64, 96, 128, 192, 256});
+  for (const auto& [name, mode] : kLineModes) {
+    const LineMode m = mode;
+    add_series(plan, "line_slope", name, line_methods(), angles, [m](double a) { return make_line_slope(m, a); });
+    add_series(plan, "line_end_offset", name, line_methods(), offsets,
+               [m](double d) { return make_line_end_offset(m, d / 256); });
+    add_series(plan, "line_length", name, line_methods(), lengths, [m](double l) { return make_line_length(m, l); });
+  }
+}
+
+constexpr std::pair<const char*, CullPlace> kCullPlaces[] = {{"on_axis", CullPlace::OnAxis},
+                                                             {"off_axis", CullPlace::OffAxis},
+                                                             {"y_flip", CullPlace::YFlip},
+                                                             {"near_clipped", CullPlace::NearClipped}};
+
+void add_cull(std::vector<StabilityPoint>& plan, bool quick) {
+  const std::vector<NamedMethod> methods = named({{"cull", "normal_dot_view"}});
+  for (const auto& [name, place] : kCullPlaces) {
+    // Every 4 degrees from 80 to 100, and closing in on the edge-on angle from both sides.
+    const double edge = cull_edge_on_deg(place);
+    std::vector<double> angles = quick ? std::vector<double>{80, 88} : std::vector<double>{80, 84, 88};
+    for (double d : quick ? std::vector<double>{-0.01, 0, 0.01} : std::vector<double>{-1, -0.1, -0.01, 0, 0.01, 0.1, 1})
+      angles.push_back(edge + d);
+    for (double a : quick ? std::vector<double>{92, 100} : std::vector<double>{92, 96, 100}) angles.push_back(a);
+    std::sort(angles.begin(), angles.end());
+    angles.erase(std::unique(angles.begin(), angles.end()), angles.end());
+    const CullPlace p = place;
+    add_series(plan, "cull_edge_on", name, methods, angles, [p](double a) { return make_cull_face(p, a); });
+  }
+}
+
 }  // namespace
+
+std::optional<BoundaryPrediction> method_map_prediction(const std::string& experiment, const std::string& case_name,
+                                                        const std::string& method) {
+  if (experiment == "line_end_offset" && case_name == "bresenham" &&
+      (method == "line=dda" || method == "line=bresenham")) {
+    double smallest = INFINITY;
+    for (int k = 1; k < kLineOffsetRun; ++k) {
+      const double y = double(kLineOffsetRise) * k / kLineOffsetRun;
+      smallest = std::min(smallest, (std::round(y) + 0.5 - y) * kLineOffsetRun / k);
+    }
+    return BoundaryPrediction{256 * smallest,
+                              "smallest end offset d (sub-pixels) at which the real line crosses half "
+                              "a pixel at a column k between the ends: 256 min_k (round(y_k) + 0.5 - "
+                              "y_k) 41 / k, y_k = 13 k / 41"};
+  }
+  return std::nullopt;
+}
+
+std::optional<MapExpectation> method_map_expectation(const std::string& experiment, const std::string& case_name,
+                                                     const std::string& method) {
+  if (experiment != "cull_edge_on" || method != "cull=normal_dot_view") return std::nullopt;
+  for (const auto& [name, place] : kCullPlaces)
+    if (case_name == name) {
+      const double edge = cull_edge_on_deg(place);
+      if (place == CullPlace::YFlip)
+        return MapExpectation{edge, "edge-on to the eye",
+                              "differs wherever either draws the face: the negative viewport height reverses the "
+                              "window winding, which N.V in clip space cannot see",
+                              false};
+      // Snapping moves a vertex by up to 1/512 px: it can flip the sign of a face F px across only
+      // within about 1 / (256 F) radians of edge-on.
+      const double band = 180 / std::numbers::pi / (256 * cull_face_pixels());
+      return MapExpectation{edge, "edge-on to the eye",
+                            fmt::format("no sample differs: N.V with V from the eye has the sign of the projected "
+                                        "area, so both switch at {:g} degrees (a view-axis V would switch at 90); "
+                                        "snapping could part them only within about {:.2g} degrees of it, where the "
+                                        "face covers no sample",
+                                        edge, band),
+                            true};
+    }
+  return std::nullopt;
+}
+
+bool expectation_holds(const CsvTable& table, const FailureBoundary& b, const MapExpectation& expected) {
+  if (expected.never_fails) return b.failing == 0 && b.refused == 0;
+  const size_t cpu = table.column("value_cpu"), vk = table.column("value_vk");
+  for (const Row& row :
+       select_rows(table, {{"experiment", b.experiment}, {"case", b.case_name}, {"method", b.method}})) {
+    const bool drawn = to_double(row[cpu]) > 0 || to_double(row[vk]) > 0;
+    if (drawn != (map_measure(table, row, "any_mismatch") > 0)) return false;
+  }
+  return true;
+}
 
 const std::vector<MapExperiment>& method_map_experiments() { return kExperiments; }
 
@@ -184,6 +297,8 @@ std::vector<NamedMethod> family_methods(std::string_view family) {
     return out;
   }
   if (family == "visibility") return named({{"visibility", "painter"}, {"visibility", "bsp"}});
+  if (family == "line") return line_methods();
+  if (family == "cull") return named({{"cull", "normal_dot_view"}});
   return {};
 }
 
@@ -205,6 +320,8 @@ void add_method_maps(std::vector<StabilityPoint>& plan, bool quick) {
   add_clip(plan, quick);
   add_depth(plan, quick);
   add_visibility(plan, quick);
+  add_line(plan, quick);
+  add_cull(plan, quick);
 }
 
 }  // namespace rastercmp::experiments

@@ -5,8 +5,9 @@
 //   far_distance  distance from the origin up to the viewportBoundsRange limit (exact path)
 //   near_w        a vertex on the near plane with w approaching 0
 //   non_finite    NaN and infinite vertex components
-//   fill_*, clip_*, depth_far_near, pseudo_depth, coplanar_offset, visibility_*: the method maps of
-//                 every family (method_maps.hpp), with their failure boundaries (failure_boundary.hpp)
+//   fill_*, clip_*, depth_far_near, pseudo_depth, coplanar_offset, visibility_*, line_*, cull_edge_on:
+//                 the method maps of every family (method_maps.hpp), with their failure boundaries
+//                 (failure_boundary.hpp)
 // Output: stability.csv (appended per point), stability.json (thresholds), charts, index.html.
 #pragma once
 

@@ -259,7 +259,16 @@ nlohmann::ordered_json summary(const CsvTable& table) {
     out[experiment] = per_method;
   }
   out["boundaries"] = nlohmann::ordered_json::array();
-  for (const FailureBoundary& b : failure_boundaries(table)) out["boundaries"].push_back(boundary_json(b));
+  for (const FailureBoundary& b : failure_boundaries(table)) {
+    nlohmann::ordered_json entry = boundary_json(b);
+    if (const auto expected = method_map_expectation(b.experiment, b.case_name, b.method)) {
+      entry["expected"] = expected->expected;
+      entry["marked"] = expected->marked;
+      entry["marked_label"] = expected->marked_label;
+      entry["expected_holds"] = expectation_holds(table, b, *expected);
+    }
+    out["boundaries"].push_back(entry);
+  }
   return out;
 }
 

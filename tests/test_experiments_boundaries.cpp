@@ -16,6 +16,7 @@
 #include "experiments/method_map_scenes.hpp"
 #include "experiments/method_maps.hpp"
 #include "experiments/stability.hpp"
+#include "experiments/table_query.hpp"
 
 namespace rastercmp::experiments {
 namespace {
@@ -250,6 +251,66 @@ TEST(ExperimentsBoundaries, ClippersLeaveTheReferenceAsWGoesToZero) {
   EXPECT_EQ(boundary("clip_near_w", "triangle", "clip=weiler_atherton").refused, 3u);
   EXPECT_EQ(boundary("clip_near_w_line", "line", "clip=cohen_sutherland").refused, 2u);
   EXPECT_EQ(boundary("clip_near_cross", "line", "clip=cyrus_beck").refused, 3u);
+}
+
+// The notes' 1-pixel lines against Vulkan's (notes RDS "DDA Algorithm", "Bresenham's line drawing
+// algorithm"). Both classic methods draw both end pixels; Vulkan's Bresenham lines leave out the
+// last one (the line does not leave its diamond), so a Bresenham-mode line differs by exactly one
+// sample at the benign end, and a series fails where more samples differ than there.
+TEST(ExperimentsBoundaries, LineMethodsPartFromVulkansLinesOffPixelCentres) {
+  const CsvTable& t = quick_table();
+  for (const char* method : {"line=dda", "line=bresenham"}) {
+    for (const char* experiment : {"line_slope", "line_end_offset", "line_length"}) {
+      const std::vector<Row> rows =
+          select_rows(t, {{"experiment", experiment}, {"case", "bresenham"}, {"method", method}});
+      ASSERT_FALSE(rows.empty()) << experiment;
+      EXPECT_EQ(map_measure(t, rows.front(), "any_mismatch"), 1.0) << experiment << " " << method << ": the end pixel";
+    }
+    // Integer ends at pixel centres: one pixel per column, as the diamond-exit rule picks it, at
+    // every quick slope (none has an exact half on a column) and every length.
+    expect_never_fails("line_slope", "bresenham", method);
+    expect_never_fails("line_length", "bresenham", method);
+    // An end moved across the line: the first column whose real line crosses half a pixel.
+    expect_boundary("line_end_offset", "bresenham", method, 10, 12);
+    const auto predicted = predicted_boundary("line_end_offset", "bresenham", method);
+    ASSERT_TRUE(predicted.has_value());
+    EXPECT_NEAR(predicted->value, 256 * 0.5 / 11, 1e-9);  // column 11 of 41: y = 143 / 41, 0.5 / 11 px below a half
+    EXPECT_TRUE(check_bracket(boundary("line_end_offset", "bresenham", method), predicted->value).in_bracket);
+    // Rectangular lines cover what a 1-pixel-wide rectangle covers: two samples in some columns of
+    // a slanted line, a different end pixel at every other length.
+    expect_boundary("line_slope", "rectangular", method, 0, 15);
+    expect_boundary("line_length", "rectangular", method, 1, 2);
+    expect_boundary("line_end_offset", "rectangular", method, 12, 64);
+  }
+  expect_never_fails("line_slope", "bresenham", "exact");
+  expect_never_fails("line_end_offset", "rectangular", "exact");
+}
+
+// N.V (notes NLC "Back Face Removal") against the sign of the snapped window area.
+TEST(ExperimentsBoundaries, NormalDotViewCullsAsTheSignedAreaButCannotSeeAFlippedViewport) {
+  const CsvTable& t = quick_table();
+  for (const char* place : {"on_axis", "off_axis", "near_clipped"})
+    expect_never_fails("cull_edge_on", place, "cull=normal_dot_view");
+  expect_boundary("cull_edge_on", "y_flip", "cull=normal_dot_view", kNever, 80);
+  for (const char* place : {"on_axis", "off_axis", "y_flip", "near_clipped"}) {
+    const auto expected = method_map_expectation("cull_edge_on", place, "cull=normal_dot_view");
+    ASSERT_TRUE(expected.has_value()) << place;
+    EXPECT_TRUE(expectation_holds(t, boundary("cull_edge_on", place, "cull=normal_dot_view"), *expected)) << place;
+    EXPECT_FALSE(predicted_boundary("cull_edge_on", place, "cull=normal_dot_view").has_value()) << place;
+  }
+  // The face turns edge-on to the eye 5 degrees before it turns edge-on to the view axis: drawn at
+  // 80, culled at 88 (where a view-axis N.V would still keep it), by both tests.
+  const size_t covered = t.column("value_cpu");
+  for (const char* method : {"exact", "cull=normal_dot_view"})
+    for (const Row& row : select_rows(t, {{"experiment", "cull_edge_on"}, {"case", "off_axis"}, {"method", method}})) {
+      const double angle = to_double(row[t.column("param_a")]);
+      if (angle == 80) {
+        EXPECT_GT(to_double(row[covered]), 0.0) << method;
+      } else if (angle > cull_edge_on_deg(CullPlace::OffAxis)) {
+        EXPECT_EQ(to_double(row[covered]), 0.0) << method << " " << angle;
+      }
+    }
+  EXPECT_EQ(cull_edge_on_deg(CullPlace::OffAxis), 85.0);
 }
 
 }  // namespace
