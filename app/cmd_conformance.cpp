@@ -163,6 +163,18 @@ int run_conformance_command(ConformanceArgs& args) {
   fmt::print("conformance: {} case(s) of {} in the suite (shard {}/{}) → {}\n", plan.cases.size(), plan.suite_size,
              plan.shard.index, plan.shard.count, o.out_dir);
   std::fflush(stdout);
+  // A child killed before its case ended (the run stopped by a failed write or a signal, or the
+  // case past its timeout) leaves the temporary image it was writing: once run_conformance has
+  // reaped every child, whether it returns or throws, their temporaries go too.
+  struct SweepTemporaries {
+    const std::string& out_dir;
+    ~SweepTemporaries() {
+      try {
+        remove_stale_temporaries(out_dir);
+      } catch (const std::exception&) {  // nothing more to do on the way out
+      }
+    }
+  } sweep{o.out_dir};
   const ConformanceResult result = run_conformance(o, plan, g_stop_signal, [](const std::string& line) {
     std::fputs(line.c_str(), stdout);
     std::fflush(stdout);
