@@ -262,6 +262,40 @@ void write_stability_tables(const std::string& dir, const std::string& stability
   }
   pred.rows.push_back({"all", std::to_string(all), std::to_string(in)});
   write_markdown_table(dir, "stability-predictions", pred);
+
+  // The per-point theories (map_theory.hpp), per experiment: series, points, points where theory
+  // and measurement agree, the points among them with a predicted count, and series that hold.
+  struct Tally {
+    int series = 0, points = 0, agreeing = 0, counted = 0, holding = 0;
+  };
+  std::vector<std::string> theory_order;
+  std::map<std::string, Tally> theory;
+  for (const Json& b : r["boundaries"]) {
+    if (!b.contains("expected_points")) continue;
+    const std::string experiment = b["experiment"].get<std::string>();
+    add_unique(theory_order, experiment);
+    Tally& t = theory[experiment];
+    ++t.series;
+    t.holding += b["expected_holds"].get<bool>();
+    for (const Json& point : b["expected_points"]) {
+      ++t.points;
+      t.agreeing += point["agrees"].get<bool>();
+      t.counted += point["agrees"].get<bool>() && point["predicted_coverage_mismatch"].is_number();
+    }
+  }
+  MarkdownTable expect = exact_table(
+      {"experiment", "series", "points", "points as theory says", "of them with a predicted count", "series that hold"});
+  Tally total;
+  for (const std::string& e : theory_order) {
+    const Tally& t = theory[e];
+    expect.rows.push_back({e, std::to_string(t.series), std::to_string(t.points), std::to_string(t.agreeing),
+                           std::to_string(t.counted), std::to_string(t.holding)});
+    total.series += t.series, total.points += t.points, total.agreeing += t.agreeing, total.counted += t.counted,
+        total.holding += t.holding;
+  }
+  expect.rows.push_back({"all", std::to_string(total.series), std::to_string(total.points), std::to_string(total.agreeing),
+                         std::to_string(total.counted), std::to_string(total.holding)});
+  write_markdown_table(dir, "stability-expectations", expect);
 }
 
 void write_scene_needs_tables(const std::string& dir, const std::string& scene_needs_json) {

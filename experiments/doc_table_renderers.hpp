@@ -14,7 +14,8 @@ void write_polygon_offset_tables(const std::string& dir, const std::string& poly
 void write_zfight_tables(const std::string& dir, const std::string& zfight_json);
 // chart speed-accuracy: speed-accuracy-run, speed-accuracy-triangles, speed-accuracy-lines (one per set).
 void write_speed_accuracy_tables(const std::string& dir, const std::string& speed_accuracy_json);
-// sweep stability: stability-fight-onset, stability-boundaries, stability-predictions.
+// sweep stability: stability-fight-onset, stability-boundaries, stability-predictions,
+// stability-expectations.
 void write_stability_tables(const std::string& dir, const std::string& stability_json);
 // chart scene-needs: scene-needs-suite, skip-savings, skip-savings-run.
 void write_scene_needs_tables(const std::string& dir, const std::string& scene_needs_json);

@@ -8,6 +8,7 @@
 
 #include "cpu_raster/classic/method_registry.hpp"
 #include "experiments/method_map_scenes.hpp"
+#include "experiments/map_theory.hpp"
 #include "experiments/method_maps.hpp"
 #include "experiments/pixel_stats.hpp"
 #include "experiments/scene_make.hpp"

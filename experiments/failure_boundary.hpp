@@ -27,7 +27,7 @@ struct FailureBoundary {
 // a prediction: the D16/D24/D32 z-fighting onset far/near of depth_far_near (usual mapping), the
 // pseudo-depth step per format and far plane, painter's first contact of the cyclic bars (0.081) and
 // the interpenetration depth at the first pixel centre (0.0531), and the line and cull maps'
-// (method_maps.hpp method_map_prediction). nullopt for every other series.
+// (map_theory.hpp method_map_prediction). nullopt for every other series.
 struct BoundaryPrediction {
   double value = NAN;
   std::string formula;  // how it was computed, in words

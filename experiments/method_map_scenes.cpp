@@ -31,31 +31,54 @@ void push_quad(std::vector<glm::dvec3>& out, glm::dvec3 a, glm::dvec3 b, glm::dv
   out.insert(out.end(), {a, b, c, a, c, d});
 }
 
+// The scene's vertices are floats: the design keeps them as the scene stores them.
+WindowTriangle on_floats(const WindowTriangle& t) {
+  WindowTriangle out;
+  for (size_t i = 0; i < 3; ++i) out[i] = {double(float(t[i].x)), double(float(t[i].y))};
+  return out;
+}
+
+// One draw of the design's triangles at window depth 0.5.
+Draw design_draw(const Scene& scene, const DesignTriangles& design) {
+  std::vector<glm::dvec3> pixels;
+  for (const WindowTriangle& t : design.triangles)
+    for (const glm::dvec2& v : t) pixels.push_back({v.x, v.y, 0.5});
+  return pixel_triangles(scene, pixels);
+}
+
 // Bar i of make_cyclic_bars: direction at 90 + 120 i degrees, its centre line 8 pixels from the frame
 // centre, half-length 28, half-width 3; window depth mean + tilt * s along it (s in -1..1).
 constexpr double kBarOffset = 8, kBarHalfLength = 28, kBarHalfWidth = 3;
 
 }  // namespace
 
+DesignTriangles sliver_strip_design(double width_subpx) {
+  const double w = width_subpx * kSubpixel;
+  return {{on_floats({glm::dvec2(4.0, 10.5 - 0.3 * w), glm::dvec2(60.0, 10.5 + 0.2 * w), glm::dvec2(4.0, 10.5 + 0.7 * w)})},
+          64,
+          64};
+}
+
 Scene make_sliver_strip(double width_subpx) {
   Scene scene = window_scene("sliver_strip");
-  const double w = width_subpx * kSubpixel;
-  scene.draws.push_back(
-      pixel_triangles(scene, {{4.0, 10.5 - 0.3 * w, 0.5}, {60.0, 10.5 + 0.2 * w, 0.5}, {4.0, 10.5 + 0.7 * w, 0.5}}));
+  scene.draws.push_back(design_draw(scene, sliver_strip_design(width_subpx)));
   return scene;
+}
+
+DesignTriangles fan_design(double offset_subpx) {
+  const glm::dvec2 centre(16.5 + offset_subpx * kSubpixel, 16.5 + offset_subpx * kSubpixel);
+  DesignTriangles design{{}, 64, 64};
+  for (int k = 0; k < 8; ++k) {
+    const double a0 = k * std::numbers::pi / 4, a1 = (k + 1) * std::numbers::pi / 4;
+    design.triangles.push_back(on_floats({centre, glm::dvec2(16.5 + 12 * std::cos(a0), 16.5 + 12 * std::sin(a0)),
+                                          glm::dvec2(16.5 + 12 * std::cos(a1), 16.5 + 12 * std::sin(a1))}));
+  }
+  return design;
 }
 
 Scene make_fan(double offset_subpx) {
   Scene scene = window_scene("fan");
-  const glm::dvec3 centre(16.5 + offset_subpx * kSubpixel, 16.5 + offset_subpx * kSubpixel, 0.5);
-  std::vector<glm::dvec3> pixels;
-  for (int k = 0; k < 8; ++k) {
-    const double a0 = k * std::numbers::pi / 4, a1 = (k + 1) * std::numbers::pi / 4;
-    pixels.insert(pixels.end(), {centre, {16.5 + 12 * std::cos(a0), 16.5 + 12 * std::sin(a0), 0.5},
-                                 {16.5 + 12 * std::cos(a1), 16.5 + 12 * std::sin(a1), 0.5}});
-  }
-  Draw draw = pixel_triangles(scene, pixels);
-  scene.draws.push_back(draw);
+  scene.draws.push_back(design_draw(scene, fan_design(offset_subpx)));
   return scene;
 }
 
@@ -139,10 +162,15 @@ constexpr glm::dvec2 kLineStart{8.5, 8.5};
 
 }  // namespace
 
-Scene make_line_slope(LineMode mode, double angle_deg) {
+glm::dvec2 line_slope_run(double angle_deg) {
   const double a = angle_deg * std::numbers::pi / 180;
-  const glm::dvec2 run(std::round(40 * std::cos(a)), std::round(40 * std::sin(a)));
-  return map_line("line_slope", mode, kLineStart, kLineStart + run);
+  return {std::round(40 * std::cos(a)), std::round(40 * std::sin(a))};
+}
+
+glm::dvec2 line_length_run(double length_px) { return {length_px, std::round(length_px / 3)}; }
+
+Scene make_line_slope(LineMode mode, double angle_deg) {
+  return map_line("line_slope", mode, kLineStart, kLineStart + line_slope_run(angle_deg));
 }
 
 Scene make_line_end_offset(LineMode mode, double offset_px) {
@@ -151,7 +179,7 @@ Scene make_line_end_offset(LineMode mode, double offset_px) {
 }
 
 Scene make_line_length(LineMode mode, double length_px) {
-  return map_line("line_length", mode, kLineStart, kLineStart + glm::dvec2(length_px, std::round(length_px / 3)));
+  return map_line("line_length", mode, kLineStart, kLineStart + line_length_run(length_px));
 }
 
 namespace {

@@ -4,6 +4,11 @@
 // sub-pixels (1/256 pixel, the 24.8 grid of docs/lavapipe-rules.md §2.1).
 #pragma once
 
+#include <utility>
+
+#include <glm/vec2.hpp>
+
+#include "experiments/coverage_model.hpp"
 #include "model/scene.hpp"
 
 namespace rastercmp::experiments {
@@ -13,11 +18,13 @@ namespace rastercmp::experiments {
 // width to the apex, so row 10 leaves the sliver near x = 37.6, at a point that moves with every
 // rounding of the vertices (notes CFZ "Polygon Filling": slivers lose or gain spans).
 Scene make_sliver_strip(double width_subpx);
+DesignTriangles sliver_strip_design(double width_subpx);  // its triangle, for the coverage model
 
 // fill: a fan of 8 triangles around a shared vertex at pixel centre (16.5, 16.5) moved by
 // `offset_subpx` sub-pixels along x and y (0 = on a sample position; a non-integer offset is off the
 // 24.8 grid), outer vertices on a radius-12 circle (notes RDS "Rasterizing a Triangle": shared edges).
 Scene make_fan(double offset_subpx);
+DesignTriangles fan_design(double offset_subpx);
 
 // visibility: three bars around the frame centre, each crossing the other two, at mean window
 // depths 0.4, 0.5, 0.6 and tilted along their length by +-`tilt`. Each bar meets the next one at
@@ -49,6 +56,8 @@ Scene make_near_cross_line(double behind);
 Scene make_line_slope(LineMode mode, double angle_deg);
 Scene make_line_end_offset(LineMode mode, double offset_px);
 Scene make_line_length(LineMode mode, double length_px);
+glm::dvec2 line_slope_run(double angle_deg);    // the slope line's far end minus its start, whole pixels
+glm::dvec2 line_length_run(double length_px);   // the same for the length line
 inline constexpr int kLineOffsetRun = 41, kLineOffsetRise = 13;  // end_offset's line, in pixels
 
 // cull: one triangle seen through a 60-degree perspective camera (near 0.5, far 100, Vulkan's 0..1
@@ -62,6 +71,10 @@ inline constexpr int kLineOffsetRun = 41, kLineOffsetRise = 13;  // end_offset's
 //                plane (and behind the eye), so the exact path clips it first
 enum class CullPlace { OnAxis, OffAxis, YFlip, NearClipped };
 Scene make_cull_face(CullPlace place, double angle_deg);
+inline constexpr std::pair<const char*, CullPlace> kCullPlaces[] = {{"on_axis", CullPlace::OnAxis},
+                                                                    {"off_axis", CullPlace::OffAxis},
+                                                                    {"y_flip", CullPlace::YFlip},
+                                                                    {"near_clipped", CullPlace::NearClipped}};
 inline constexpr double kCullOffAxisDeg = 5;
 // The angle of the face's normal to the view axis at which it is edge-on to the eye's ray through
 // its centre (N . V = 0 at the centre): 90 - kCullOffAxisDeg off the axis, 90 elsewhere.

@@ -2,9 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
-#include <fmt/core.h>
 
 #include "cpu_raster/classic/method_registry.hpp"
 #include "experiments/method_map_scenes.hpp"
@@ -194,11 +192,6 @@ void add_line(std::vector<StabilityPoint>& plan, bool quick) {
   }
 }
 
-constexpr std::pair<const char*, CullPlace> kCullPlaces[] = {{"on_axis", CullPlace::OnAxis},
-                                                             {"off_axis", CullPlace::OffAxis},
-                                                             {"y_flip", CullPlace::YFlip},
-                                                             {"near_clipped", CullPlace::NearClipped}};
-
 void add_cull(std::vector<StabilityPoint>& plan, bool quick) {
   const std::vector<NamedMethod> methods = named({{"cull", "normal_dot_view"}});
   for (const auto& [name, place] : kCullPlaces) {
@@ -216,59 +209,6 @@ void add_cull(std::vector<StabilityPoint>& plan, bool quick) {
 }
 
 }  // namespace
-
-std::optional<BoundaryPrediction> method_map_prediction(const std::string& experiment, const std::string& case_name,
-                                                        const std::string& method) {
-  if (experiment == "line_end_offset" && case_name == "bresenham" &&
-      (method == "line=dda" || method == "line=bresenham")) {
-    double smallest = INFINITY;
-    for (int k = 1; k < kLineOffsetRun; ++k) {
-      const double y = double(kLineOffsetRise) * k / kLineOffsetRun;
-      smallest = std::min(smallest, (std::round(y) + 0.5 - y) * kLineOffsetRun / k);
-    }
-    return BoundaryPrediction{256 * smallest,
-                              "smallest end offset d (sub-pixels) at which the real line crosses half "
-                              "a pixel at a column k between the ends: 256 min_k (round(y_k) + 0.5 - "
-                              "y_k) 41 / k, y_k = 13 k / 41"};
-  }
-  return std::nullopt;
-}
-
-std::optional<MapExpectation> method_map_expectation(const std::string& experiment, const std::string& case_name,
-                                                     const std::string& method) {
-  if (experiment != "cull_edge_on" || method != "cull=normal_dot_view") return std::nullopt;
-  for (const auto& [name, place] : kCullPlaces)
-    if (case_name == name) {
-      const double edge = cull_edge_on_deg(place);
-      if (place == CullPlace::YFlip)
-        return MapExpectation{edge, "edge-on to the eye",
-                              "differs wherever either draws the face: the negative viewport height reverses the "
-                              "window winding, which N.V in clip space cannot see",
-                              false};
-      // Snapping moves a vertex by up to 1/512 px: it can flip the sign of a face F px across only
-      // within about 1 / (256 F) radians of edge-on.
-      const double band = 180 / std::numbers::pi / (256 * cull_face_pixels());
-      return MapExpectation{edge, "edge-on to the eye",
-                            fmt::format("no sample differs: N.V with V from the eye has the sign of the projected "
-                                        "area, so both switch at {:g} degrees (a view-axis V would switch at 90); "
-                                        "snapping could part them only within about {:.2g} degrees of it, where the "
-                                        "face covers no sample",
-                                        edge, band),
-                            true};
-    }
-  return std::nullopt;
-}
-
-bool expectation_holds(const CsvTable& table, const FailureBoundary& b, const MapExpectation& expected) {
-  if (expected.never_fails) return b.failing == 0 && b.refused == 0;
-  const size_t cpu = table.column("value_cpu"), vk = table.column("value_vk");
-  for (const Row& row :
-       select_rows(table, {{"experiment", b.experiment}, {"case", b.case_name}, {"method", b.method}})) {
-    const bool drawn = to_double(row[cpu]) > 0 || to_double(row[vk]) > 0;
-    if (drawn != (map_measure(table, row, "any_mismatch") > 0)) return false;
-  }
-  return true;
-}
 
 const std::vector<MapExperiment>& method_map_experiments() { return kExperiments; }
 

@@ -47,33 +47,6 @@ void add_method_maps(std::vector<StabilityPoint>& plan, bool quick);
 // near-coplanar pair scaled by 0.8 F / 50 at distance 0.8 F, so every vertex's w lies in 25..F.
 PairParams pseudo_depth_pair(double far_distance, DepthFormat format, double separation);
 
-// The predictions of the line and cull maps (failure_boundary.hpp predicted_boundary asks here):
-//   line_end_offset, Bresenham lines, line=dda and line=bresenham: the smallest end offset at which
-//     the real line crosses half a pixel at a column between the ends, so that the pixel it passes
-//     nearest (whose diamond it crosses) is no longer the one the integer line through the end
-//     pixels picks: min over columns k of (round(y_k) + 0.5 - y_k) run / k, in sub-pixels.
-std::optional<BoundaryPrediction> method_map_prediction(const std::string& experiment, const std::string& case_name,
-                                                        const std::string& method);
-
-// A series for which theory expects no boundary but marks a parameter value: cull_edge_on's
-// cull=normal_dot_view, where the face turns edge-on to the eye's ray (cull_edge_on_deg: 90, or
-// 90 - kCullOffAxisDeg off the axis; a test with V along the view axis would switch at 90). N.V with
-// V from the eye has the sign of the projected area, so both tests switch there together and no
-// sample differs; only snapping within about 0.01 degrees of it could part them, where the face
-// covers no sample. y_flip: the negative viewport height reverses the window winding, which clip
-// space cannot see, so every sample the face covers on either side differs. stability.json records
-// `expected` and `expected_holds` beside the measured bracket; the chart draws `marked` dashed.
-struct MapExpectation {
-  double marked = NAN;
-  std::string marked_label, expected;
-  bool never_fails = true;  // false: fails wherever either side covers a sample (y_flip)
-};
-std::optional<MapExpectation> method_map_expectation(const std::string& experiment, const std::string& case_name,
-                                                     const std::string& method);
-// Whether a series holds its expectation: never_fails -> no failing point; otherwise every point
-// at which the reference or the method covers a sample fails, and no other.
-bool expectation_holds(const CsvTable& table, const FailureBoundary& b, const MapExpectation& expected);
-
 // Renders map_<experiment> for every experiment in the table and returns the page sections, each
 // with its table of failure boundaries (method_map_charts.cpp).
 std::vector<PageSection> write_method_map_charts(const std::string& dir, const CsvTable& table);

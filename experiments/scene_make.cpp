@@ -268,18 +268,38 @@ Scene make_sliver_pair(double angle_deg, double length_px) {
   return scene;
 }
 
+namespace {
+
+struct FarTriangle {
+  double far_x, left;  // window x of the far vertex, and of the viewport's left edge
+  float near_x;
+};
+
+FarTriangle far_triangle(double distance_px) {
+  const double far_x = std::min(distance_px, 32767.0);
+  const double left = std::max(0.0, far_x - 16384.0);
+  return {far_x, left, float(left + 0.37)};
+}
+
+}  // namespace
+
+DesignTriangles far_triangle_design(double distance_px) {
+  const FarTriangle f = far_triangle(distance_px);
+  return {{{glm::dvec2(f.near_x, 0.3f), glm::dvec2(float(f.far_x), 1.1f), glm::dvec2(f.near_x, 3.7f)}},
+          kMaxFramebufferSide,
+          4};
+}
+
 Scene make_far_triangle(double distance_px) {
   Scene scene;
   scene.name = "experiments.far_triangle";
   scene.width = kMaxFramebufferSide;
   scene.height = 4;
   scene.depth_format = DepthFormat::D32Sfloat;
-  const double far_x = std::min(distance_px, 32767.0);
-  const double left = std::max(0.0, far_x - 16384.0);
-  scene.viewport = Viewport{float(left), -60, float(far_x - left), 128, 0, 1};
-  const float near_x = float(left + 0.37);
-  scene.draws.push_back(
-      pixel_draw(*scene.viewport, {{near_x, 0.3f, 0.2f, 1}, {float(far_x), 1.1f, 0.9f, 1}, {near_x, 3.7f, 0.4f, 1}}));
+  const FarTriangle f = far_triangle(distance_px);
+  scene.viewport = Viewport{float(f.left), -60, float(f.far_x - f.left), 128, 0, 1};
+  scene.draws.push_back(pixel_draw(*scene.viewport,
+                                   {{f.near_x, 0.3f, 0.2f, 1}, {float(f.far_x), 1.1f, 0.9f, 1}, {f.near_x, 3.7f, 0.4f, 1}}));
   return scene;
 }
 

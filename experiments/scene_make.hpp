@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <string>
 
+#include "experiments/coverage_model.hpp"
 #include "model/scene.hpp"
 
 namespace rastercmp::experiments {
@@ -81,6 +82,7 @@ Scene make_sliver_pair(double angle_deg, double length_px);
 // A long thin triangle reaching window x = distance_px (up to the viewportBoundsRange limit
 // 32767): frame 16384 x 4, the viewport ending at the far vertex.
 Scene make_far_triangle(double distance_px);
+DesignTriangles far_triangle_design(double distance_px);  // its triangle, for the coverage model
 
 // A height-field mesh of cells x cells quads (2 triangles each) seen in perspective, in a
 // size x size frame with D32 depth: the timing scene with many small triangles.

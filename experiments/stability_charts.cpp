@@ -9,6 +9,7 @@
 #include "experiments/doc_table_renderers.hpp"
 #include "experiments/failure_boundary.hpp"
 #include "experiments/gnuplot.hpp"
+#include "experiments/map_theory.hpp"
 #include "experiments/method_maps.hpp"
 #include "experiments/html_page.hpp"
 #include "experiments/stability.hpp"
@@ -262,10 +263,26 @@ nlohmann::ordered_json summary(const CsvTable& table) {
   for (const FailureBoundary& b : failure_boundaries(table)) {
     nlohmann::ordered_json entry = boundary_json(b);
     if (const auto expected = method_map_expectation(b.experiment, b.case_name, b.method)) {
+      const auto number = [](double v) { return std::isnan(v) ? nlohmann::ordered_json() : nlohmann::ordered_json(v); };
       entry["expected"] = expected->expected;
-      entry["marked"] = expected->marked;
-      entry["marked_label"] = expected->marked_label;
-      entry["expected_holds"] = expectation_holds(table, b, *expected);
+      if (!std::isnan(expected->marked)) {
+        entry["marked"] = expected->marked;
+        entry["marked_label"] = expected->marked_label;
+      }
+      nlohmann::ordered_json points = nlohmann::ordered_json::array();
+      size_t agreeing = 0;
+      for (const PointCheck& c : check_expectation(table, b, *expected)) {
+        agreeing += c.agrees;
+        points.push_back({{"param", c.param},
+                          {"predicted", to_string(c.predicted.outcome)},
+                          {"predicted_coverage_mismatch", number(c.predicted.coverage_mismatch)},
+                          {"measured", to_string(c.measured)},
+                          {"measured_coverage_mismatch", number(c.measured_coverage_mismatch)},
+                          {"agrees", c.agrees}});
+      }
+      entry["expected_points_agreeing"] = agreeing;
+      entry["expected_holds"] = agreeing == points.size() && !points.empty();
+      entry["expected_points"] = points;
     }
     out["boundaries"].push_back(entry);
   }

@@ -11,9 +11,11 @@
 #include <gtest/gtest.h>
 
 #include "cpu_raster/classic/method_registry.hpp"
+#include "experiments/coverage_model.hpp"
 #include "experiments/csv_log.hpp"
 #include "experiments/failure_boundary.hpp"
 #include "experiments/method_map_scenes.hpp"
+#include "experiments/map_theory.hpp"
 #include "experiments/method_maps.hpp"
 #include "experiments/stability.hpp"
 #include "experiments/table_query.hpp"
@@ -311,6 +313,64 @@ TEST(ExperimentsBoundaries, NormalDotViewCullsAsTheSignedAreaButCannotSeeAFlippe
       }
     }
   EXPECT_EQ(cull_edge_on_deg(CullPlace::OffAxis), 85.0);
+}
+
+// Theory per point (experiments/map_theory.hpp): every series of the fill, clip, line and cull
+// maps, and the exact path on every map, has an expectation, and it holds at every point.
+TEST(ExperimentsBoundaries, EveryFillClipLineAndCullSeriesHoldsItsTheoryAtEveryPoint) {
+  const CsvTable& t = quick_table();
+  size_t series = 0, counted_points = 0;
+  for (const FailureBoundary& b : failure_boundaries(t)) {
+    const bool covered_family = b.family == "fill" || b.family == "clip" || b.family == "line" || b.family == "cull";
+    const auto expected = method_map_expectation(b.experiment, b.case_name, b.method);
+    if (!covered_family && b.method != "exact") continue;
+    if (covered_family && !expected) {
+      // The two line maps with a predicted boundary: line_end_offset's Bresenham case.
+      EXPECT_TRUE(predicted_boundary(b.experiment, b.case_name, b.method).has_value())
+          << b.experiment << " / " << b.case_name << " / " << b.method << " has no theory";
+      continue;
+    }
+    if (!expected) continue;  // the exact path on the depth maps: their predicted boundaries
+    ++series;
+    for (const PointCheck& c : check_expectation(t, b, *expected)) {
+      EXPECT_TRUE(c.agrees) << b.experiment << " / " << b.case_name << " / " << b.method << " at " << c.param
+                            << ": theory " << to_string(c.predicted.outcome) << " " << c.predicted.coverage_mismatch
+                            << ", measured " << to_string(c.measured) << " " << c.measured_coverage_mismatch;
+      counted_points += std::isnan(c.predicted.coverage_mismatch) ? 0 : 1;
+    }
+  }
+  EXPECT_GE(series, 60u);
+  EXPECT_GT(counted_points, 100u);  // the coverage model predicts counts, not only outcomes
+}
+
+// The coverage model alone, on numbers worked by hand: the sliver's row 10 ends where the snapped
+// lower edge crosses y = 10.5, x = 4 + 56 r3 / (r3 + r2) with r3 = round(0.3 w), r2 = round(0.2 w)
+// (w in sub-pixels), against 37.6 for the real edge.
+TEST(ExperimentsBoundaries, CoverageModelMovesTheSliverEndAsSnappingPredicts) {
+  const CoverageRule real{ModelVertices::Real, ModelTies::TopLeft};
+  EXPECT_EQ(model_mismatch(sliver_strip_design(256), real), 0u);  // 77 / 128: x = 37.69, 34 centres either way
+  EXPECT_EQ(model_mismatch(sliver_strip_design(128), real), 1u);  // 38 / 64: x = 37.25, one centre fewer
+  EXPECT_EQ(model_mismatch(sliver_strip_design(8), real), 6u);    // 2 / 4: x = 32
+  // w = 1: both snapped long edges' ends round onto y = 10.5, a top edge through 56 centres, which
+  // top-left keeps and no tie rule drops.
+  EXPECT_EQ(model_mismatch(sliver_strip_design(1), {ModelVertices::SnapHalfEven, ModelTies::None}), 56u);
+  EXPECT_EQ(model_mismatch(sliver_strip_design(0.5), real), 0u);  // snapped area 0: culled for both
+  // The fan: a shared vertex half a sub-pixel off the centre rounds onto it (halves to even) or off
+  // it (halves away), putting the spokes' samples on edges or not.
+  EXPECT_EQ(model_mismatch(fan_design(0.5), {ModelVertices::SnapHalfAway, ModelTies::TopLeft}), 62u);
+  EXPECT_EQ(model_mismatch(fan_design(0.25), {ModelVertices::SnapHalfAway, ModelTies::TopLeft}), 0u);
+}
+
+// The check can fail: a theory that calls the float edge function clean on the fan is refuted at
+// every point, and the flood fill's superset rule holds on one triangle but not on a fan.
+TEST(ExperimentsBoundaries, AWrongTheoryIsRefuted) {
+  const CsvTable& t = quick_table();
+  MapExpectation clean_everywhere{"wrong on purpose", "clean", [](const PointFacts&) { return PointTheory{}; }, NAN, ""};
+  EXPECT_FALSE(expectation_holds(t, boundary("fill_fan", "fan", "fill=float_edge"), clean_everywhere));
+  const auto superset = method_map_expectation("fill_distance", "far_triangle", "fill=flood");
+  ASSERT_TRUE(superset.has_value());
+  EXPECT_TRUE(expectation_holds(t, boundary("fill_distance", "far_triangle", "fill=flood"), *superset));
+  EXPECT_FALSE(expectation_holds(t, boundary("fill_fan", "fan", "fill=flood"), *superset));
 }
 
 }  // namespace
