@@ -44,7 +44,19 @@ void print_case(const CaseRecord& record) {
   const std::string method = record.cpu_method == "exact" ? "" : " [CPU method " + record.cpu_method + "]";
   fmt::print("{}: {} ({}){}\n", record.name, to_string(record.verdict), record.message, method);
   if (!record.diff) return;
+  // The diff's expected is the CPU render and its actual the device's; a judged CPU method is named
+  // from its side (docs/compare.md "Who is judged"): the device is then the reference.
+  const bool method_judged = record.cpu_method != "exact";
   for (const BadSample& b : record.diff->first_bad) {
+    if (method_judged) {
+      const std::string kind = b.kind == "missing" ? "the method adds" : b.kind == "unexpected" ? "the method lacks" : b.kind;
+      std::string depth;
+      if (b.has_depth)
+        depth = fmt::format(", depth device {:#x} method {:#x}", b.actual_depth_raw, b.expected_depth_raw);
+      fmt::print("  ({}, {}) sample {}: {}: device {}, method {}{}\n", b.at.x, b.at.y, b.at.sample, kind,
+                 owner_text(b.actual_owner), owner_text(b.expected_owner), depth);
+      continue;
+    }
     std::string depth;
     if (b.has_depth)
       depth = fmt::format(", depth expected {:#x} actual {:#x}", b.expected_depth_raw, b.actual_depth_raw);

@@ -150,7 +150,8 @@ std::string capture_mismatch(const RenderResult& expected, const RenderResult& c
 
 void CaseRunner::judge(const Scene& scene, CaseResult& result) const {
   result.diff = diff_results(*result.expected, *result.actual, profile_);
-  const VerdictDecision decision = decide_verdict(result.diff->summary, spec_depth_tolerance_r(scene));
+  const VerdictDecision decision = decide_verdict(result.diff->summary, spec_depth_tolerance_r(scene),
+                                                 result.cpu_method == "exact" ? Judged::Device : Judged::CpuMethod);
   result.verdict = decision.verdict;
   result.message = decision.message;
 }

@@ -19,7 +19,13 @@ constexpr Verdict kAllVerdicts[] = {Verdict::Pass,         Verdict::Fail,       
 // conversion step either way plus one more, and one float binade step either way.
 constexpr double kSpecDepthBaseToleranceR = 2.0;
 
-std::string coverage_counts(const DiffSummary& d) {
+// Named from the judged side: the diff's missing is a sample the CPU render has and the device
+// lacks, so when a classic CPU method is judged it is a sample the method adds (docs/compare.md
+// "Who is judged").
+std::string coverage_counts(const DiffSummary& d, Judged judged) {
+  if (judged == Judged::CpuMethod)
+    return fmt::format("{} the method lacks, {} the method adds, {} wrong owner", d.unexpected, d.missing,
+                       d.wrong_owner);
   return fmt::format("{} missing, {} unexpected, {} wrong owner", d.missing, d.unexpected, d.wrong_owner);
 }
 
@@ -29,10 +35,10 @@ std::string depth_counts(const DiffSummary& d) {
                      d.depth.max_at.y, d.depth.max_at.sample);
 }
 
-VerdictDecision decide_lavapipe(const DiffSummary& d) {
+VerdictDecision decide_lavapipe(const DiffSummary& d, Judged judged) {
   // The lavapipe profile claims bit-exactness: any difference fails (docs/lavapipe-rules.md "Tolerances").
   if (d.coverage_mismatches() == 0 && d.depth.mismatches == 0) return {Verdict::Pass, "bit-exact"};
-  std::string why = coverage_counts(d);
+  std::string why = coverage_counts(d, judged);
   if (d.depth.mismatches != 0) why += "; " + depth_counts(d);
   return {Verdict::Fail, why};
 }
@@ -62,23 +68,23 @@ std::string allowed_counts(const DiffSummary& d) {
   return text;
 }
 
-VerdictDecision decide_spec(const DiffSummary& d, double tolerance_r) {
+VerdictDecision decide_spec(const DiffSummary& d, double tolerance_r, Judged judged) {
   const std::string allowed = allowed_counts(d);
   if (d.missing + d.unexpected != 0) {
-    std::string why = coverage_counts(d) + ", " + allowed;
+    std::string why = coverage_counts(d, judged) + ", " + allowed;
     if (d.depth_outside != 0) why += "; " + outside_counts(d);
     return {Verdict::Fail, why};
   }
-  if (d.depth_outside != 0) return {Verdict::Fail, outside_counts(d) + "; " + coverage_counts(d) + ", " + allowed};
+  if (d.depth_outside != 0) return {Verdict::Fail, outside_counts(d) + "; " + coverage_counts(d, judged) + ", " + allowed};
   if (d.wrong_owner != 0 && d.depth_intervals_checked)
     return {Verdict::QualityWarning,
-            coverage_counts(d) +
+            coverage_counts(d, judged) +
                 " (owners no device computing the spec's equations exactly leaves there: only arithmetic precision "
                 "decides which primitive wins, which the spec leaves to quality, e.g. between coplanar primitives; "
                 "every stored depth lies inside its spec interval), " +
                 allowed};
   if (d.wrong_owner != 0)
-    return {Verdict::QualityWarning, coverage_counts(d) + " (the spec does not fix which primitive wins), " + allowed};
+    return {Verdict::QualityWarning, coverage_counts(d, judged) + " (the spec does not fix which primitive wins), " + allowed};
   if (d.depth_intervals_checked)
     return {Verdict::Pass,
             fmt::format("within the spec: {}, every stored depth inside its spec interval ({} differ from the lavapipe "
@@ -127,9 +133,9 @@ double spec_depth_tolerance_r(const Scene& scene) {
   return kSpecDepthBaseToleranceR + (unorm ? 0.5 * largest_constant : 0.0);
 }
 
-VerdictDecision decide_verdict(const DiffSummary& diff, double depth_tolerance_r) {
-  VerdictDecision decision =
-      diff.profile == CompareProfile::Lavapipe ? decide_lavapipe(diff) : decide_spec(diff, depth_tolerance_r);
+VerdictDecision decide_verdict(const DiffSummary& diff, double depth_tolerance_r, Judged judged) {
+  VerdictDecision decision = diff.profile == CompareProfile::Lavapipe ? decide_lavapipe(diff, judged)
+                                                                      : decide_spec(diff, depth_tolerance_r, judged);
   if (diff.depth_format != DepthFormat::None && !diff.depth_compared)
     decision.message +=
         "; depth not compared (one render carries none, e.g. multisampled depth on a device that cannot sample it)";

@@ -42,6 +42,9 @@ double spec_depth_tolerance_r(const Scene& scene);
 // QualityWarning: only arithmetic precision decides that winner. An allowed owner (one such a
 // device leaves there, RenderResult::owner_alternatives) is a Pass. Without intervals a depth
 // difference beyond `depth_tolerance_r` is a QualityWarning. May samples never count for coverage.
-VerdictDecision decide_verdict(const DiffSummary& diff, double depth_tolerance_r);
+// `judged` names the coverage counts of the message: the device's missing / unexpected, or, when a
+// classic CPU method is judged against the device, what the method lacks / adds.
+enum class Judged { Device, CpuMethod };
+VerdictDecision decide_verdict(const DiffSummary& diff, double depth_tolerance_r, Judged judged = Judged::Device);
 
 }  // namespace rastercmp

@@ -130,6 +130,14 @@ TEST(CliCapture, CapturedSuiteJudgesLikeALiveRun) {
     EXPECT_EQ(judged, live);
     EXPECT_NE(live.find("NotSupported"), std::string::npos);  // point_list, so the run is not all Pass
   }
+  // A classic CPU method judged against the captured device render: the flood fill's outline adds
+  // samples, and the verdict and every sample line name them from the method's side.
+  const RunResult m = run_ok({"compare", (suite / "depth" / "format" / "d16_unorm.json").string(), "--capture",
+                              (captures / "depth" / "format" / "d16_unorm").string(), "--method", "fill=flood"},
+                             1, kNoVulkanDriver);
+  EXPECT_NE(m.out.find("Fail (0 the method lacks, "), std::string::npos) << m.out;
+  EXPECT_NE(m.out.find(": the method adds: device background, method draw "), std::string::npos) << m.out;
+  EXPECT_EQ(m.out.find(": missing: "), std::string::npos) << m.out;
 }
 
 TEST(CliCapture, BrokenCapturesAreResourceErrorsNamingTheFile) {

@@ -89,6 +89,17 @@ void expect_one_owner_difference(PlantCase p, uint32_t x, uint32_t y, uint32_t s
                                                               ? SampleClass::Unexpected
                                                               : SampleClass::WrongOwner);
   EXPECT_EQ(decide_verdict(s, 0).verdict, Verdict::Fail);
+  // The message names the counts from the judged side: the diff's missing (the CPU render has the
+  // sample, the device lacks it) is a sample a judged CPU method adds.
+  const std::string device = decide_verdict(s, 0, Judged::Device).message;
+  const std::string method = decide_verdict(s, 0, Judged::CpuMethod).message;
+  if (std::string(kind) == "missing") {
+    EXPECT_NE(device.find("1 missing, 0 unexpected"), std::string::npos) << device;
+    EXPECT_NE(method.find("0 the method lacks, 1 the method adds"), std::string::npos) << method;
+  } else if (std::string(kind) == "unexpected") {
+    EXPECT_NE(device.find("0 missing, 1 unexpected"), std::string::npos) << device;
+    EXPECT_NE(method.find("1 the method lacks, 0 the method adds"), std::string::npos) << method;
+  }
 }
 
 TEST_P(PlantedDifference, MissingSampleIsReportedExactly) {
