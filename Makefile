@@ -2,6 +2,7 @@
 # (scripts/setup.sh: Debian packages, as root or through sudo) and builds what it needs.
 BUILD      ?= build
 BUILD_SAN  ?= build-sanitize
+BUILD_SAN_ALL ?= build-sanitize-all
 JOBS       ?= $(shell nproc)
 OUT        ?= out
 FUZZ_SECONDS ?= 30
@@ -19,7 +20,7 @@ SAN_ENV := ASAN_OPTIONS=detect_leaks=1:halt_on_error=1:abort_on_error=0:exitcode
   UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1:exitcode=$(SAN_EXITCODE) \
   LSAN_OPTIONS=suppressions=$(CURDIR)/tests/sanitizer/lsan.supp:print_suppressions=0:exitcode=$(SAN_EXITCODE)
 
-.PHONY: setup build build-app conformance test-debian13 test-unstable test test-unit build-san test-sanitize fuzz bench soak properties docs-tables docs-check clean
+.PHONY: setup build build-app conformance test-debian13 test-unstable test test-unit build-san test-sanitize test-sanitize-all fuzz bench soak properties docs-tables docs-check clean
 
 setup:
 	@bash scripts/setup.sh
@@ -39,7 +40,7 @@ conformance: build-app
 	@$(BUILD)/app/rastercmp conformance --suite $(BUILD)/suite --baseline scenes/methods/expected-failures.txt \
 	  --out $(OUT)/conformance
 
-# What CI runs (.ci/run): the test suite (Release), the same suite under ASan + UBSan + LSan,
+# What CI runs (.ci/run): the test suite (Release), the libraries' tests under ASan + UBSan + LSan,
 # then the fuzzers. Two build trees: $(BUILD) and $(BUILD_SAN), which serves both of the last two.
 # The Release tests leave a core idle much of the time (they wait on child processes and the
 # driver), so the sanitizer tree builds beside them; each step's output is printed when it ends.
@@ -50,11 +51,14 @@ test: build
 test-unit: build
 	@cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
-# The sanitizer tree (clang): everything built with ASan + UBSan and libFuzzer's coverage hooks,
-# at -O1 with line tables (for the reports' stack traces), without bench/; the fuzz_* mains link libFuzzer.
+# The sanitizer tree (clang): the libraries, their tests and the fuzzers built with ASan + UBSan and
+# libFuzzer's coverage hooks, at -O1 with line tables (for the reports' stack traces), without
+# bench/, and without the executable and the tests that drive it or link experiments/ and soak/
+# (RASTERCMP_BUILD_APP=OFF; test-sanitize-all has them); the fuzz_* mains link libFuzzer.
+SAN_CMAKE := -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only" -DRASTERCMP_FUZZ=ON -DRASTERCMP_BENCH=OFF
 build-san: setup
-	@cmake -S . -B $(BUILD_SAN) -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-	  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only" -DRASTERCMP_FUZZ=ON -DRASTERCMP_BENCH=OFF >/dev/null
+	@cmake -S . -B $(BUILD_SAN) $(SAN_CMAKE) -DRASTERCMP_BUILD_APP=OFF >/dev/null
 	@cmake --build $(BUILD_SAN) -j $(JOBS)
 
 # The whole test suite under ASan + UBSan (+ LeakSanitizer); any report fails the run.
@@ -64,6 +68,14 @@ build-san: setup
 # lavapipe keeps it loaded, so its blocks stay reachable from its globals or match lsan.supp.
 test-sanitize: build-san
 	@cd $(BUILD_SAN) && $(SAN_ENV) LD_PRELOAD="$$(ls /usr/lib/*/libvulkan_lvp.so 2>/dev/null | head -n 1)" \
+	  ctest --output-on-failure -j $(JOBS)
+
+# The whole test suite under the sanitizers, the executable's tests included (the CLI tests run the
+# sanitized rastercmp), in a tree of its own: a longer run than make test's (docs/reliability.md).
+test-sanitize-all: setup
+	@cmake -S . -B $(BUILD_SAN_ALL) $(SAN_CMAKE) -DRASTERCMP_BUILD_APP=ON >/dev/null
+	@cmake --build $(BUILD_SAN_ALL) -j $(JOBS)
+	@cd $(BUILD_SAN_ALL) && $(SAN_ENV) LD_PRELOAD="$$(ls /usr/lib/*/libvulkan_lvp.so 2>/dev/null | head -n 1)" \
 	  ctest --output-on-failure -j $(JOBS)
 
 # libFuzzer on the scene parser and the clipper, FUZZ_SECONDS each, from the seed corpus, the two
@@ -137,4 +149,4 @@ test-unstable:
 	@bash scripts/debian-root.sh sid
 
 clean:
-	rm -rf $(BUILD) $(BUILD_SAN) $(OUT)
+	rm -rf $(BUILD) $(BUILD_SAN) $(BUILD_SAN_ALL) $(OUT)
