@@ -197,6 +197,33 @@ std::optional<MapExpectation> line_expectation(const std::string& experiment, co
   return std::nullopt;
 }
 
+// ---- depth and visibility: the series without a predicted boundary -------------------------
+
+std::optional<MapExpectation> depth_expectation(const std::string& experiment, const std::string& case_name,
+                                                const std::string& method) {
+  if (experiment != "depth_far_near") return std::nullopt;
+  if (method == "depth=perspective_correct")
+    return expectation(
+        "the wrong surface wins at every far/near: window z is affine in 1/w (A + B/w, B < 0; reversed C/w - D, "
+        "C > 0), and weighting it by 1/w puts sum(l/w^2) / sum(l/w) >= sum(l/w) (Cauchy-Schwarz) in place of 1/w, "
+        "so every triangle is drawn nearer than its plane, the more so the wider its spread of w; the base's "
+        "triangles spread more than the decal's and come out in front",
+        "wrong at every point", [](const PointFacts&) { return PointTheory{Outcome::Differs}; });
+  const bool interpolates_the_plane = method == "exact" || method == "depth=no_fma" || method == "depth=bilinear";
+  if (interpolates_the_plane && case_name.rfind("d32_sfloat_reversed", 0) == 0)
+    return expectation("never fights up to far/near 10^6: reversed D32 stores z ~ n / w, whose float step is "
+                       "relative (2^-24 z), so the pair's gap n dz / w^2 stays about 2^24 dz / w steps",
+                       "no fight", clean);
+  return std::nullopt;
+}
+
+std::optional<MapExpectation> visibility_expectation(const std::string& method) {
+  if (method != "visibility=bsp") return std::nullopt;
+  return expectation("no sample differs: the BSP tree splits every polygon its partition planes cross, so cyclic "
+                     "overlap and interpenetration are drawn back to front piece by piece, as the z-buffer sees them",
+                     "no difference", clean);
+}
+
 // ---- cull ---------------------------------------------------------------------------------------
 
 std::optional<MapExpectation> cull_expectation(const std::string& case_name, const std::string& method) {
@@ -258,7 +285,9 @@ std::optional<BoundaryPrediction> method_map_prediction(const std::string& exper
 std::optional<MapExpectation> method_map_expectation(const std::string& experiment, const std::string& case_name,
                                                      const std::string& method) {
   const MapExperiment* e = find_map_experiment(experiment);
-  if (e == nullptr || e->measure == "value_cpu") return std::nullopt;  // the depth maps: predicted boundaries
+  if (e == nullptr) return std::nullopt;
+  if (e->family == "depth") return depth_expectation(experiment, case_name, method);  // else predicted boundaries
+  if (e->family == "visibility" && method != "exact") return visibility_expectation(method);
   if (method == "exact")
     return expectation("no sample differs: the exact path is lavapipe's model (docs/lavapipe-rules.md)",
                        "no difference", clean);

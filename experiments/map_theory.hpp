@@ -6,7 +6,9 @@
 //   a per-point expectation (MapExpectation): theory's outcome at every point of the series —
 //     clean, differs, refused — and, where a model gives it, the number of samples whose coverage
 //     differs; checked point by point (check_expectation). Every series of the fill, clip, line and
-//     cull maps has one, and so has the exact path on every map measured against lavapipe.
+//     cull maps has one, so has the exact path on every map measured against lavapipe, and so have
+//     the series of the depth and visibility maps that have no predicted boundary (depth_far_near's
+//     perspective_correct and D32 reversed, visibility's bsp).
 // stability.json records both beside the measured bracket; the map charts draw them.
 #pragma once
 

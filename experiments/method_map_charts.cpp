@@ -109,7 +109,8 @@ std::string panel(const CsvTable& table, const std::vector<FailureBoundary>& bou
         if (outcomes[kind].rows.size() == 1) continue;  // the header row alone: theory never says so
         if (outcomes[kind].rows.size() == 2) outcomes[kind].rows.push_back({"NaN", "NaN"});
         plot += fmt::format("DATA index {} using 1:2 axes x1y2 title {} with points lt {} pt {} ps 1.8, ", blocks.size(),
-                            gp_quote(outcomes[kind].title + " (" + expected->legend + ")"), style, kOutcomePoint[kind]);
+                            gp_quote(shared_key ? outcomes[kind].title : outcomes[kind].title + " (" + expected->legend + ")"),
+                            style, kOutcomePoint[kind]);
         blocks.push_back(outcomes[kind]);
       }
     }
