@@ -155,15 +155,15 @@ int docs_main(const DocsOptions& o, bool update) {
   size_t timed = 0;
   for (const CellDrift& d : drifts) timed += d.timed;
   const size_t exact = drifts.size() - timed;
-  fmt::print("docs check: {}: {} tables from {} commands: {} deterministic cells drifted, {} timed cells outside "
-             "their interval\n",
+  fmt::print("docs check: {}: {} tables from {} commands: {} deterministic cells drifted, {} timed cells whose "
+             "interval is apart from the documented one\n",
              o.doc, markers.size(), commands.size(), exact, timed);
   if (exact) {
     fmt::print("deterministic drift (the documented value is not what the command measures):\n");
     print_drifts(drifts, false);
   }
   if (timed) {
-    fmt::print("timed drift (the documented median lies outside the interval measured here; timings depend on the "
+    fmt::print("timed drift (the interval measured here and the documented one are disjoint; timings depend on the "
                "host and its load: re-measure on a quiet host: make docs-tables):\n");
     print_drifts(drifts, true);
   }

@@ -652,20 +652,29 @@ TEST(DocTables, TableFileKeepsItsColumnKinds) {
   EXPECT_FALSE(usage_error([] { parse_table_file("<!-- columns: timed within b -->\n| a |\n|---|\n", "t.md"); }).empty());
 }
 
-TEST(DocTables, DeterministicCellsMustBeEqualTimedOnesInsideTheMeasuredInterval) {
+TEST(DocTables, DeterministicCellsMustBeEqualTimedIntervalsMustOverlap) {
   const auto markers = parse_doc_markers(kDoc, "doc.md");
   const MarkdownTable doc = documented_table(kDoc, markers[0], "doc.md");
   MarkdownTable measured = speed_measured();
-  // exact 3.800 lies in 3.650 .. 3.850; fast 0.700 in 0.700 .. 0.740 (ends included); host cells differ: ignored.
+  // exact 3.700 .. 3.900 meets 3.650 .. 3.850; fast 0.650 .. 0.760 meets 0.700 .. 0.740; host cells differ: ignored.
   EXPECT_TRUE(compare_tables("speed", doc, measured).empty());
 
-  measured.rows[1][2] = "0.710 .. 0.740";  // now 0.700 lies below the interval
+  measured.rows[1][2] = "0.710 .. 0.740";  // the documented median 0.700 lies below, but the intervals meet
+  EXPECT_TRUE(compare_tables("speed", doc, measured).empty());
+  measured.rows[1][2] = "0.760 .. 0.800";  // the ends touch: not told apart
+  EXPECT_TRUE(compare_tables("speed", doc, measured).empty());
+  measured.rows[1][2] = "0.770 .. 0.800";  // disjoint: the runs differ
   auto drifts = compare_tables("speed", doc, measured);
   ASSERT_EQ(drifts.size(), 1u);
   EXPECT_TRUE(drifts[0].timed);
   EXPECT_EQ(drifts[0].row, "row 2 (fast)");
   EXPECT_EQ(drifts[0].column, "CPU ms (median)");
   EXPECT_EQ(drifts[0].documented, "0.700");
+  // A documented row without its interval is held to the new run's interval alone.
+  MarkdownTable bare = doc;
+  bare.rows[1][2] = "-";
+  measured.rows[1][2] = "0.710 .. 0.740";
+  ASSERT_EQ(compare_tables("speed", bare, measured).size(), 1u);
 
   measured = speed_measured();
   measured.rows[0][0] = "exact2";  // a deterministic cell
