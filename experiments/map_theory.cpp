@@ -14,6 +14,7 @@
 #include "experiments/method_map_scenes.hpp"
 #include "experiments/method_maps.hpp"
 #include "experiments/scene_make.hpp"
+#include "experiments/sweep_common.hpp"
 #include "experiments/table_query.hpp"
 
 namespace rastercmp::experiments {
@@ -97,7 +98,17 @@ bool refused_2d_behind(double behind) { return std::fabs(double(float(behind))) 
 // From |y| >= 2^53 its error reaches half a pixel: between the two, pixels may or may not change.
 double near_window_y(double w) { return 32 + 32 * 0.6 / double(float(w)); }
 
-std::optional<MapExpectation> clip_expectation(const std::string& experiment, const std::string& method) {
+// From Mesa 23.2 lavapipe clips lines against z and w only (lavapipe-rules §8.2): the reference
+// draws the line whole from its window coordinates, and where the far end's passes 32768 px (an
+// edge of 2^23 fixed units) or has none (w <= 0) the integer set-up wraps (§7.5) and its quad is
+// not the line, while every classic clipper draws the line clipped to the frame.
+bool reference_line_leaves_the_setup(double w) {
+  return exact_cpu_options().lavapipe->rules().has(LavapipeRule::LineGuardBand) &&
+         (!(double(float(w)) > 0) || near_window_y(w) >= 32768);
+}
+
+// The clippers' own rules on clip_near_w, clip_near_w_line and clip_near_cross.
+std::optional<MapExpectation> clip_rules(const std::string& experiment, const std::string& method) {
   const bool two_d = method == "clip=weiler_atherton" || method == "clip=cohen_sutherland" || method == "clip=cyrus_beck";
   if (!two_d) {
     if (method != "clip=sutherland_hodgman" && method != "clip=cohen_sutherland_3d" && method != "clip=liang_barsky")
@@ -135,6 +146,24 @@ std::optional<MapExpectation> clip_expectation(const std::string& experiment, co
                      "numerator, the end within 2^-53 of its place)",
                      "refused below FLT_MIN", [](const PointFacts& f) {
                        return refused_2d_w(f.param) ? PointTheory{Outcome::Refused} : same_coverage(f);
+                     });
+}
+
+// The clippers' rules, and on clip_near_w_line, where the release does not clip lines in x and y,
+// a difference wherever the reference's line leaves the set-up's range (the method's own refusal
+// first).
+std::optional<MapExpectation> clip_expectation(const std::string& experiment, const std::string& method) {
+  std::optional<MapExpectation> base = clip_rules(experiment, method);
+  if (!base || experiment != "clip_near_w_line") return base;
+  if (!exact_cpu_options().lavapipe->rules().has(LavapipeRule::LineGuardBand)) return base;
+  return expectation(base->expected + "; and, lines not clipped in x and y by this release (lavapipe-rules §8.2), "
+                                      "differs wherever the reference's line reaches 32768 px or w <= 0, where its "
+                                      "set-up wraps",
+                     base->legend + ", wraps from w = 5.9e-4",
+                     [at = base->at](const PointFacts& f) {
+                       const PointTheory own = at(f);
+                       if (own.outcome == Outcome::Refused || !reference_line_leaves_the_setup(f.param)) return own;
+                       return PointTheory{Outcome::Differs};
                      });
 }
 
