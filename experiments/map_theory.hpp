@@ -31,7 +31,7 @@ namespace rastercmp::experiments {
 std::optional<BoundaryPrediction> method_map_prediction(const std::string& experiment, const std::string& case_name,
                                                         const std::string& method);
 
-enum class Outcome { Clean, Differs, Refused, Either };  // Either: theory leaves it open (a tie)
+enum class Outcome { Clean, Differs, Refused, Either };  // Either: theory leaves it open (a tie, a last bit)
 const char* to_string(Outcome outcome);
 
 // What theory may look at besides the parameter: whether either side covers a sample there, and
@@ -64,7 +64,7 @@ struct PointCheck {
   PointTheory predicted;
   Outcome measured = Outcome::Clean;
   double measured_coverage_mismatch = NAN;
-  bool agrees = false;  // outcomes equal (Either takes Clean or Differs) and counts equal where predicted
+  bool agrees = false;  // outcomes equal (Either takes any) and counts equal where predicted
 };
 std::vector<PointCheck> check_expectation(const CsvTable& table, const FailureBoundary& b,
                                           const MapExpectation& expected);
