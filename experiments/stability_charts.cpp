@@ -204,6 +204,9 @@ PageSection chart_limit(const std::string& dir, const CsvTable& table, const std
   return section;
 }
 
+// A measured or predicted number, null where there is none (NaN).
+nlohmann::ordered_json json_number(double v) { return std::isnan(v) ? nlohmann::ordered_json() : nlohmann::ordered_json(v); }
+
 nlohmann::ordered_json onset_json_number(double v) {
   return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json();
 }
@@ -263,7 +266,6 @@ nlohmann::ordered_json summary(const CsvTable& table) {
   for (const FailureBoundary& b : failure_boundaries(table)) {
     nlohmann::ordered_json entry = boundary_json(b);
     if (const auto expected = method_map_expectation(b.experiment, b.case_name, b.method)) {
-      const auto number = [](double v) { return std::isnan(v) ? nlohmann::ordered_json() : nlohmann::ordered_json(v); };
       entry["expected"] = expected->expected;
       if (!std::isnan(expected->marked)) {
         entry["marked"] = expected->marked;
@@ -275,9 +277,9 @@ nlohmann::ordered_json summary(const CsvTable& table) {
         agreeing += c.agrees;
         points.push_back({{"param", c.param},
                           {"predicted", to_string(c.predicted.outcome)},
-                          {"predicted_coverage_mismatch", number(c.predicted.coverage_mismatch)},
+                          {"predicted_coverage_mismatch", json_number(c.predicted.coverage_mismatch)},
                           {"measured", to_string(c.measured)},
-                          {"measured_coverage_mismatch", number(c.measured_coverage_mismatch)},
+                          {"measured_coverage_mismatch", json_number(c.measured_coverage_mismatch)},
                           {"agrees", c.agrees}});
       }
       entry["expected_points_agreeing"] = agreeing;
@@ -358,13 +360,12 @@ std::vector<std::vector<std::string>> limit_zero_table(const CsvTable& table, co
 }
 
 nlohmann::ordered_json boundary_json(const FailureBoundary& b) {
-  const auto number = [](double v) { return std::isnan(v) ? nlohmann::ordered_json() : nlohmann::ordered_json(v); };
   nlohmann::ordered_json out{{"experiment", b.experiment},
                              {"family", b.family},
                              {"case", b.case_name},
                              {"method", b.method},
-                             {"last_clean", number(b.last_clean)},
-                             {"boundary", number(b.boundary)},
+                             {"last_clean", json_number(b.last_clean)},
+                             {"boundary", json_number(b.boundary)},
                              {"points", b.points},
                              {"failing", b.failing},
                              {"refused", b.refused},
@@ -373,8 +374,8 @@ nlohmann::ordered_json boundary_json(const FailureBoundary& b) {
     const BracketCheck bracket = check_bracket(b, prediction->value, prediction->clean_at_value);
     out["predicted"] = prediction->value;
     out["predicted_formula"] = prediction->formula;
-    out["measured_low"] = number(bracket.measured_low);
-    out["measured_high"] = number(bracket.measured_high);
+    out["measured_low"] = json_number(bracket.measured_low);
+    out["measured_high"] = json_number(bracket.measured_high);
     out["predicted_in_bracket"] = bracket.in_bracket;
   }
   return out;
