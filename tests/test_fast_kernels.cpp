@@ -593,5 +593,63 @@ TEST(FastExactRows, VectorRowsWriteWhatTheExactRasterizerWrites) {
   EXPECT_GT(per_sample, 500u);
 }
 
+// rasterize_rows_avx2's small per-sample primitives (sample_box_rows, exact_rows_avx2.cpp) against
+// the exact rasterizer: triangles of 0.3-40 px in 4x frames of odd and even widths (a row's first
+// step starts one column before or at the visit), with scissors and viewports that cut them, every
+// depth format and compare op, writes, clamp and bias, each primitive's visit cut into runs of
+// columns and rows as the tiles of several workers cut it.
+TEST(FastExactRows, SmallPerSampleTrianglesWriteWhatTheExactRasterizerWrites) {
+  if (!host_has_avx2_fma()) GTEST_SKIP() << "the host runs no AVX2";
+  uint64_t small = 0;
+  for (uint64_t seed = 1; seed <= 120; ++seed) {
+    fast_test::Random r(seed * 104729);
+    Scene scene = fast_test::random_scene(seed, fast_test::RandomSceneSpec{true, false, 90, 40});
+    scene.samples = 4;
+    for (Draw& draw : scene.draws) {
+      draw.topology = Topology::TriangleList;
+      draw.indices.clear();
+      draw.positions_clip.clear();
+      const double size = r.chance(0.5) ? 0.05 : 0.4;  // in clip units: a few pixels, or up to 40
+      for (uint32_t t = 0, n = 6 + r.below(60); t < n; ++t) {
+        const double cx = r.range(-1.1, 1.1), cy = r.range(-1.1, 1.1), cz = r.range(-0.1, 1.1);
+        for (int k = 0; k < 3; ++k)
+          draw.positions_clip.emplace_back(float(cx + r.range(-size, size)), float(cy + r.range(-size, size)),
+                                           float(cz + r.range(-0.2, 0.2)), 1.0f);
+      }
+    }
+    const bool fma = seed % 3 != 0;
+    const FrameContext frame = make_frame_context(scene, fma, {});
+    RenderTargets exact = make_render_targets(scene);
+    const uint32_t mask = depth_format_info(scene.depth_format).raw_mask;
+    for (uint32_t& raw : exact.depth_raw) raw = r.chance(0.3) ? raw : r.below(1u << 24) & mask;
+    if (is_float(scene.depth_format))
+      for (uint32_t& raw : exact.depth_raw) raw = float_bits(float(r.unit()));
+    RenderTargets vector = exact;
+    for (uint32_t d = 0; d < scene.draws.size(); ++d) {
+      const DepthTestState depth = make_depth_test_state(scene, scene.draws[d], frame.viewport, fma);
+      run_front_end(frame, d, [&](const PrimitiveOutcome& outcome) {
+        if (!outcome.rasterized()) return;
+        const RasterPrimitive& p = outcome.raster;
+        rasterize_primitive(p, depth, exact, WorkSkips{});
+        if (p.visit.empty()) return;
+        small += p.visit.x1 - p.visit.x0 < 24 ? 1 : 0;
+        const int32_t split_y = p.visit.y0 + int32_t(r.below(uint32_t(p.visit.y1 - p.visit.y0 + 1)));
+        const int32_t split_x = p.visit.x0 + int32_t(r.below(uint32_t(p.visit.x1 - p.visit.x0 + 1)));
+        for (const auto& [y0, y1] : {std::pair{p.visit.y0, split_y - 1}, std::pair{split_y, p.visit.y1}}) {
+          for (const auto& [x0, x1] : {std::pair{p.visit.x0, split_x - 1}, std::pair{split_x, p.visit.x1}}) {
+            RasterPrimitive band = p;
+            band.visit = PixelRect{x0, y0, x1, y1};
+            if (band.visit.empty()) continue;
+            if (!rasterize_rows_avx2(band, y0, y1, depth, vector)) rasterize_primitive_rows(band, depth, vector, true);
+          }
+        }
+      });
+      ASSERT_EQ(exact.owner, vector.owner) << "seed " << seed << " draw " << d;
+      ASSERT_EQ(exact.depth_raw, vector.depth_raw) << "seed " << seed << " draw " << d;
+    }
+  }
+  EXPECT_GT(small, 3000u);
+}
+
 }  // namespace
 }  // namespace rastercmp::cpu::fast

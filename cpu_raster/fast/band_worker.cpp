@@ -409,15 +409,35 @@ void BandWorker::walk_exact(uint32_t d) {
   // box and the multisample scissor quirk one row each.
   const float margin = lines ? std::max(walk.draw->state.line_width, 1.0f) + 3.0f : 2.0f;
   const uint32_t corners = lines ? 2 : 3;
+  // A triangle run_triangle would pass unclipped to set-up, without the pipeline's float cull, in
+  // the flushed mode: set up here from its clip vertices (the same calls, without the outcome's
+  // bookkeeping). The clipper returns a triangle with every vertex inside unchanged unless the clip
+  // skip is off (clip_triangle).
+  const bool lean_triangles = !lines && frame.skips.clip_only_when_needed;
+  const bool float_cull = walk.draw->state.cull_mode != CullMode::None;
   for (uint32_t i = 0; i < walk.count; ++i) {
-    if (frame_.workers > 1 && primitive_setup_denormals(walk, i) == SetupDenormals::Flushed) {
-      const AssembledPrimitive prim = assemble_primitive(*walk.draw, i);
-      std::array<ClipVertex, 3> v;
-      for (uint32_t k = 0; k < corners; ++k)
-        v[k] = make_clip_vertex(walk.draw->positions_clip[prim.position[k]], frame.viewport, depth_clip, frame.fma);
-      if (misses_own_rows(v.data(), corners, margin)) continue;
+    if (primitive_setup_denormals(walk, i) != SetupDenormals::Flushed) {
+      run_primitive(frame, walk, i, sink);
+      continue;
     }
-    run_primitive(frame, walk, i, sink);
+    if (frame_.workers == 1 && !lean_triangles) {
+      run_primitive(frame, walk, i, sink);
+      continue;
+    }
+    const AssembledPrimitive prim = assemble_primitive(*walk.draw, i);
+    std::array<ClipVertex, 3> v;
+    for (uint32_t k = 0; k < corners; ++k)
+      v[k] = make_clip_vertex(walk.draw->positions_clip[prim.position[k]], frame.viewport, depth_clip, frame.fma);
+    if (frame_.workers > 1 && misses_own_rows(v.data(), corners, margin)) continue;
+    const bool inside = (v[0].clip_mask | v[1].clip_mask | v[2].clip_mask) == 0;
+    if (!lean_triangles || !inside || (float_cull && walk.pipelined[i / walk.per_chunk])) {
+      run_primitive(frame, walk, i, sink);
+      continue;
+    }
+    const TriangleSetup setup =
+        setup_triangle_in_mode(SetupDenormals::Flushed, {v[0].window, v[1].window, v[2].window},
+                               encode_owner(d, prim.primitive_index), walk.ctx, prim.primitive_index);
+    if (setup.fate == SetupFate::Rasterized) raster_exact_in_band(setup.raster, depth);
   }
 }
 

@@ -408,10 +408,119 @@ RASTERCMP_AVX2 bool sample_span_rows(const RasterPrimitive& p, int32_t y0, int32
   return true;
 }
 
+// A small per-sample primitive in a 4x frame: every sample of its visit rectangle's pixels tested
+// directly, in the steps and lanes of sample_span_rows (two pixels' four samples, on 32-byte
+// boundaries), plane values in int32. n = E - 1 of plane i at lane (column px, sample s) of row py
+// is n0[i][s] + (px - start) * gx[i] + (py - y0) * gy[i] with gx = -dcdx * 256, gy = dcdy * 256:
+// an integer, covered iff n >= 0 for every plane, so iff the OR of the planes' n has its sign bit
+// clear. Exact when every value the steps form fits int32: n is linear in px and py, so its
+// extremes over the columns [start, x1 + 1] and rows [y0, y1] are at the corners, bounded by
+// |n0| + |gx| * (x1 + 2 - start) + |gy| * (y1 - y0) (checked below 2^31 in int64 per plane and
+// sample; start = x0 - 1). Lanes outside [x0, x1] are masked: the exact path visits only those columns. A step
+// with no covered lane computes no depth. False, having written nothing, when a bound fails.
+constexpr int32_t kBoxColumns = 24, kBoxPixels = 256;
+
+// Planes: p.planes.count, or 0 for any count up to 8 (a triangle without scissor planes has 3,
+// kept in registers).
+template <DepthFormat F, CompareOp Op, uint32_t Planes>
+RASTERCMP_AVX2 bool sample_box_rows(const RasterPrimitive& p, int32_t y0, int32_t y1, const KernelDepth& d,
+                                    RenderTargets& targets) {
+  constexpr int Samples = 4;
+  const int32_t x0 = p.visit.x0, x1 = p.visit.x1, width = int32_t(targets.width);
+  const uint32_t planes = Planes != 0 ? Planes : p.planes.count;
+  // a row's first step starts on an even pixel of the attachments (a 32-byte boundary): at x0 - 1
+  // or x0, after the parity of the row's first pixel
+  const int32_t start = x0 - 1;
+  const int64_t reach_x = int64_t(x1) + 2 - start, reach_y = int64_t(y1) - y0;
+  __m256i row_n[8], gx1[8], gx2[8], gy[8];
+  for (uint32_t i = 0; i < planes; ++i) {
+    const EdgePlane& plane = p.planes.plane[i];
+    const int64_t gx = -plane.dcdx * kFixedOne, dy = plane.dcdy * kFixedOne;
+    alignas(32) int32_t lane[8];
+    for (int s = 0; s < Samples; ++s) {
+      const int64_t n0 = edge_value(plane, int64_t(start) * kFixedOne + kStandardSamples4x[s].x_fixed,
+                                    int64_t(y0) * kFixedOne + kStandardSamples4x[s].y_fixed) -
+                         1;
+      const int64_t bound = (n0 < 0 ? -n0 : n0) + (gx < 0 ? -gx : gx) * reach_x + (dy < 0 ? -dy : dy) * reach_y;
+      if (bound >= (int64_t(1) << 31)) return false;
+      lane[s] = int32_t(n0);
+      lane[s + Samples] = int32_t(n0 + gx);  // the step's second pixel
+    }
+    row_n[i] = _mm256_load_si256(reinterpret_cast<const __m256i*>(lane));
+    gx1[i] = _mm256_set1_epi32(int32_t(gx));
+    gx2[i] = _mm256_set1_epi32(int32_t(2 * gx));
+    gy[i] = _mm256_set1_epi32(int32_t(dy));
+  }
+  uint32_t* depth = targets.depth_raw.data();
+  uint32_t* owner = targets.owner.data();
+  const __m256i lane_pixel = _mm256_setr_epi32(0, 0, 0, 0, 1, 1, 1, 1);
+  const __m256 sx = _mm256_setr_ps(kStandardSamples4x[0].x, kStandardSamples4x[1].x, kStandardSamples4x[2].x,
+                                   kStandardSamples4x[3].x, kStandardSamples4x[0].x, kStandardSamples4x[1].x,
+                                   kStandardSamples4x[2].x, kStandardSamples4x[3].x);
+  const __m256 sy = _mm256_setr_ps(kStandardSamples4x[0].y, kStandardSamples4x[1].y, kStandardSamples4x[2].y,
+                                   kStandardSamples4x[3].y, kStandardSamples4x[0].y, kStandardSamples4x[1].y,
+                                   kStandardSamples4x[2].y, kStandardSamples4x[3].y);
+  const __m256 a0 = _mm256_set1_ps(p.depth.a0), dzdx = _mm256_set1_ps(p.depth.dzdx);
+  const __m256 dzdy = _mm256_set1_ps(p.depth.dzdy), offset = _mm256_set1_ps(p.offset.offset);
+  const __m256i id = _mm256_set1_epi32(int32_t(p.owner));
+  const __m256i before = _mm256_set1_epi32(x0 - 1), after = _mm256_set1_epi32(x1 + 1);
+  for (int32_t py = y0; py <= y1; ++py) {
+    const int32_t first = x0 - int32_t((size_t(py) * size_t(width) + size_t(x0)) & 1u);  // start or start + 1
+    __m256i n[8];
+    for (uint32_t i = 0; i < planes; ++i) {
+      n[i] = first == start ? row_n[i] : _mm256_add_epi32(row_n[i], gx1[i]);
+      row_n[i] = _mm256_add_epi32(row_n[i], gy[i]);
+    }
+    const __m256 y_v = _mm256_add_ps(_mm256_set1_ps(float(py)), sy);
+    uint32_t* depth_row = depth + size_t(py) * size_t(width) * Samples;
+    uint32_t* owner_row = owner + size_t(py) * size_t(width) * Samples;
+    for (int32_t px = first; px <= x1; px += 2) {
+      __m256i any_out = n[0];
+      n[0] = _mm256_add_epi32(n[0], gx2[0]);
+      for (uint32_t i = 1; i < planes; ++i) {
+        any_out = _mm256_or_si256(any_out, n[i]);
+        n[i] = _mm256_add_epi32(n[i], gx2[i]);
+      }
+      const __m256i pixel = _mm256_add_epi32(_mm256_set1_epi32(px), lane_pixel);
+      const __m256i inside = _mm256_and_si256(_mm256_cmpgt_epi32(pixel, before), _mm256_cmpgt_epi32(after, pixel));
+      const __m256i covered = _mm256_andnot_si256(_mm256_srai_epi32(any_out, 31), inside);
+      if (_mm256_testz_si256(covered, covered)) continue;
+      const bool row_end = px < 0 || px + 2 > width;  // lanes outside the row: other rows' values
+      uint32_t* dp = depth_row + ptrdiff_t(px) * Samples;
+      uint32_t* op = owner_row + ptrdiff_t(px) * Samples;
+      const __m256 x = _mm256_add_ps(_mm256_cvtepi32_ps(pixel), sx);
+      const __m256 z = finish_depth8(mul_add8(dzdy, y_v, mul_add8(dzdx, x, a0, d.fma), d.fma), offset, d);
+      const __m256i raw = to_raw<F>(z);
+      // covered lanes lie in [x0, x1], inside the row
+      const __m256i stored = row_end ? _mm256_maskload_epi32(reinterpret_cast<const int*>(dp), covered)
+                                     : _mm256_loadu_si256(reinterpret_cast<const __m256i*>(dp));
+      __m256i pass = covered;
+      if constexpr (Op != CompareOp::Always) pass = _mm256_and_si256(covered, depth_passes<F, Op>(z, raw, stored));
+      if (_mm256_testz_si256(pass, pass)) continue;
+      if (row_end) {
+        if (d.write) _mm256_maskstore_epi32(reinterpret_cast<int*>(dp), pass, raw);
+        _mm256_maskstore_epi32(reinterpret_cast<int*>(op), pass, id);
+        continue;
+      }
+      if (d.write) _mm256_storeu_si256(reinterpret_cast<__m256i*>(dp), _mm256_blendv_epi8(stored, raw, pass));
+      const __m256i old = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(op));
+      _mm256_storeu_si256(reinterpret_cast<__m256i*>(op), _mm256_blendv_epi8(old, id, pass));
+    }
+  }
+  return true;
+}
+
 template <DepthFormat F, CompareOp Op>
 RASTERCMP_AVX2 bool depth_kernel(const RasterPrimitive& p, int32_t y0, int32_t y1, const KernelDepth& d,
                                  RenderTargets& targets) {
-  if (p.per_sample && targets.samples == 4) return sample_span_rows<F, Op>(p, y0, y1, d, targets);
+  if (p.per_sample && targets.samples == 4) {
+    const int32_t columns = p.visit.x1 - p.visit.x0 + 1;
+    if (columns <= kBoxColumns && columns * (y1 - y0 + 1) <= kBoxPixels &&
+        (p.planes.count == 3 ? sample_box_rows<F, Op, 3>(p, y0, y1, d, targets)
+                             : sample_box_rows<F, Op, 0>(p, y0, y1, d, targets)))
+      return true;
+    return sample_span_rows<F, Op>(p, y0, y1, d, targets);
+  }
   return depth_rows<F, Op>(p, y0, y1, d, targets);
 }
 
