@@ -116,8 +116,7 @@ bool frame_bounds_usable(const Scene& scene, const std::vector<FastDraw>& draws)
                      [](const FastDraw& d) { return !d.raster.depth.write || depth_values_ordered(d.raster.depth); });
 }
 
-// The attachments, in `result`'s buffers. Multisampled frames (drawn by the exact rasterizer
-// alone) are cleared here at once; single-sampled ones tile by tile.
+// The attachments, in `result`'s buffers, not cleared: the workers clear them tile by tile.
 void init_targets(FastFrame& frame, const Scene& scene, RenderResult& result) {
   RenderTargets& t = frame.targets;
   t.width = scene.width;
@@ -133,10 +132,6 @@ void init_targets(FastFrame& frame, const Scene& scene, RenderResult& result) {
   else
     t.depth_raw.clear();
   frame.raster.depth_clear_raw = scene.has_depth() ? clear_depth_raw(scene.depth_format, scene.depth_clear) : 0;
-  if (scene.samples != 1) {
-    std::fill(t.owner.begin(), t.owner.end(), kOwnerBackground);
-    std::fill(t.depth_raw.begin(), t.depth_raw.end(), frame.raster.depth_clear_raw);
-  }
 }
 
 // Workers for this scene: options.threads, or 1 when a second worker would have nothing to do
@@ -173,7 +168,7 @@ void init_frame(FastFrame& frame, const Scene& scene, const CpuOptions& options,
   for (FastDraw& fd : frame.draws) fd.raster = make_draw_raster(fd.raster.depth, bounds, avx2, avx512);
   FrameRaster& raster = frame.raster;
   raster.target = TileTarget{frame.targets.owner.data(), scene.has_depth() ? frame.targets.depth_raw.data() : nullptr,
-                             int32_t(scene.width), int32_t(scene.height)};
+                             int32_t(scene.width), int32_t(scene.height), int32_t(scene.samples)};
   raster.tiles_x = int32_t((scene.width + kTileSize - 1) / kTileSize);
   raster.tiles_y = int32_t((scene.height + kTileSize - 1) / kTileSize);
   raster.avx2 = avx2;
@@ -184,7 +179,6 @@ void init_frame(FastFrame& frame, const Scene& scene, const CpuOptions& options,
   const uint32_t clear = raster.depth_clear_raw;
   TileState tile;
   tile.bounds = TileBounds{clear, clear, bounds ? BoundsState::Exact : BoundsState::Unknown};
-  tile.cleared = scene.samples != 1;
   frame.tiles.assign(size_t(raster.tiles_x) * size_t(raster.tiles_y), tile);
   for (size_t i = 0; i < frame.tiles.size(); ++i)  // row r to worker r % workers, until balance_tile_rows
     frame.tiles[i].worker = uint32_t(i / size_t(raster.tiles_x)) % frame.workers;

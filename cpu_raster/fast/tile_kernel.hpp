@@ -18,6 +18,7 @@ struct TileTarget {
   uint32_t* owner = nullptr;
   uint32_t* depth = nullptr;  // null without a depth attachment
   int32_t width = 0, height = 0;
+  int32_t samples = 1;  // values per pixel, contiguous (the kernels draw frames of one sample)
 };
 
 // A draw's depth state as the kernels use it; format None: no depth test (and no depth writes).

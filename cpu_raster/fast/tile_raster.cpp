@@ -158,14 +158,15 @@ void fill_words(uint32_t* p, size_t count, uint32_t value, bool avx2) {
 }
 }  // namespace
 
-// Rows that span the whole width are one contiguous run of pixels, filled at once.
+// Rows that span the whole width are one contiguous run of pixels, filled at once (a pixel's
+// samples are contiguous: a run of pixels is a run of values).
 void clear_rect(const PixelRect& r, const FrameRaster& frame) {
-  const size_t width = size_t(frame.target.width);
+  const size_t width = size_t(frame.target.width), samples = size_t(frame.target.samples);
   const bool whole_rows = r.x0 == 0 && size_t(r.x1) + 1 == width;
-  const size_t count = whole_rows ? width * size_t(r.y1 - r.y0 + 1) : size_t(r.x1 - r.x0 + 1);
+  const size_t count = (whole_rows ? width * size_t(r.y1 - r.y0 + 1) : size_t(r.x1 - r.x0 + 1)) * samples;
   const int32_t y_end = whole_rows ? r.y0 : r.y1;
   for (int32_t y = r.y0; y <= y_end; ++y) {
-    const size_t row = size_t(y) * width + size_t(r.x0);
+    const size_t row = (size_t(y) * width + size_t(r.x0)) * samples;
     fill_words(frame.target.owner + row, count, kOwnerBackground, frame.avx2);
     if (frame.target.depth) fill_words(frame.target.depth + row, count, frame.depth_clear_raw, frame.avx2);
   }
