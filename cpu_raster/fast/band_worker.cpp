@@ -415,6 +415,10 @@ void BandWorker::walk_exact(uint32_t d) {
   // skip is off (clip_triangle).
   const bool lean_triangles = !lines && frame.skips.clip_only_when_needed;
   const bool float_cull = walk.draw->state.cull_mode != CullMode::None;
+  // the vertex phase's window positions and clip bits (fast_vertices.hpp: make_clip_vertex's
+  // operations), where it ran for this draw
+  const FastVertex* transformed = frame_.draws[d].vertices;
+  const size_t positions = walk.draw->positions_clip.size();
   for (uint32_t i = 0; i < walk.count; ++i) {
     if (primitive_setup_denormals(walk, i) != SetupDenormals::Flushed) {
       run_primitive(frame, walk, i, sink);
@@ -426,8 +430,16 @@ void BandWorker::walk_exact(uint32_t d) {
     }
     const AssembledPrimitive prim = assemble_primitive(*walk.draw, i);
     std::array<ClipVertex, 3> v;
-    for (uint32_t k = 0; k < corners; ++k)
-      v[k] = make_clip_vertex(walk.draw->positions_clip[prim.position[k]], frame.viewport, depth_clip, frame.fma);
+    for (uint32_t k = 0; k < corners; ++k) {
+      const uint32_t position = prim.position[k];
+      if (transformed && position < positions) {
+        const FastVertex& t = transformed[position];
+        v[k].window = WindowVertex{t.x, t.y, t.z};
+        v[k].clip_mask = t.flags & kVertexClipBits;
+      } else {
+        v[k] = make_clip_vertex(walk.draw->positions_clip[position], frame.viewport, depth_clip, frame.fma);
+      }
+    }
     if (frame_.workers > 1 && misses_own_rows(v.data(), corners, margin)) continue;
     const bool inside = (v[0].clip_mask | v[1].clip_mask | v[2].clip_mask) == 0;
     if (!lean_triangles || !inside || (float_cull && walk.pipelined[i / walk.per_chunk])) {

@@ -269,14 +269,19 @@ struct TrailingCheck {
 // With several workers the trailing runs' denormal checks are returned, for the block-row phase
 // to share out; with one they are made here.
 std::vector<TrailingCheck> transform_all_vertices(FastFrame& frame, bool check_pending) {
+  // the fast draws, and the triangle draws the exact front end walks (BandWorker::walk_exact reads
+  // their unclipped triangles' window positions here instead of transforming each corner per worker)
+  const auto transformed = [&frame](uint32_t d) {
+    return frame.draws[d].fast || is_triangle_topology(frame.scene->draws[d].topology);
+  };
   size_t total = 0;
   for (uint32_t d = 0; d < frame.draws.size(); ++d)
-    if (frame.draws[d].fast) total += frame.scene->draws[d].positions_clip.size();
+    if (transformed(d)) total += frame.scene->draws[d].positions_clip.size();
   FastVertex* scratch = thread_vertex_scratch().acquire(total);
   int16_t* rows = thread_row_scratch(total);
   std::vector<VertexTask> tasks;
   for (uint32_t d = 0; d < frame.draws.size(); ++d) {
-    if (!frame.draws[d].fast) continue;
+    if (!transformed(d)) continue;
     const size_t n = frame.scene->draws[d].positions_clip.size();
     frame.draws[d].vertices = scratch;
     frame.draws[d].tile_rows = rows;
