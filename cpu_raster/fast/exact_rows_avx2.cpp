@@ -481,6 +481,7 @@ RASTERCMP_AVX2 bool sample_box_rows(const RasterPrimitive& p, int32_t y0, int32_
         any_out = _mm256_or_si256(any_out, n[i]);
         n[i] = _mm256_add_epi32(n[i], gx2[i]);
       }
+      if (_mm256_movemask_ps(_mm256_castsi256_ps(any_out)) == 0xFF) continue;  // every lane outside a plane
       const __m256i pixel = _mm256_add_epi32(_mm256_set1_epi32(px), lane_pixel);
       const __m256i inside = _mm256_and_si256(_mm256_cmpgt_epi32(pixel, before), _mm256_cmpgt_epi32(after, pixel));
       const __m256i covered = _mm256_andnot_si256(_mm256_srai_epi32(any_out, 31), inside);
