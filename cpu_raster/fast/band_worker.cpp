@@ -476,6 +476,18 @@ bool BandWorker::misses_own_rows(const ClipVertex* v, uint32_t count, float marg
 void BandWorker::raster_exact_in_band(const RasterPrimitive& primitive, const DepthTestState& depth) {
   const PixelRect& visit = primitive.visit;
   if (visit.empty()) return;
+  // Most often the visit lies in one tile row, all of it this worker's: drawn whole (the visit lies
+  // in the framebuffer, so the cut below would leave it as it is).
+  const int32_t ty_lo = visit.y0 >> kTileOrder;
+  if (ty_lo == visit.y1 >> kTileOrder && ty_lo >= 0 && row_kind_[size_t(ty_lo)] == 1) {
+    prepare_tiles(visit, depth.write);
+    if (frame_.raster.avx2 && rasterize_rows_avx2(primitive, visit.y0, visit.y1, depth, frame_.targets)) return;
+    if (primitive.binned)
+      rasterize_binned_rows(primitive, depth, frame_.targets, frame_.raster.avx2);
+    else
+      rasterize_primitive_rows(primitive, depth, frame_.targets, frame_.raster.avx2);
+    return;
+  }
   const int32_t tx_lo = std::max(visit.x0 >> kTileOrder, 0);
   const int32_t tx_hi = std::min(visit.x1 >> kTileOrder, frame_.raster.tiles_x - 1);
   for (int32_t ty = visit.y0 >> kTileOrder; ty <= visit.y1 >> kTileOrder; ++ty) {
