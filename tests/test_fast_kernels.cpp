@@ -22,6 +22,7 @@
 #include "cpu_raster/fast/cpu_features.hpp"
 #include "cpu_raster/fast/exact_rows.hpp"
 #include "cpu_raster/fast/fast_vertices.hpp"
+#include "cpu_raster/fast/lean_setup.hpp"
 #include "cpu_raster/fast/small_triangles.hpp"
 #include "cpu_raster/fast/small_window.hpp"
 #include "cpu_raster/fast/tile_edges.hpp"
@@ -534,6 +535,100 @@ TEST(FastClippedPieces, LeanSetUpGivesTheExactPathsTriangle) {
   EXPECT_GT(drawn, 12000);  // 16943, 18703 and 4354 of the 40000
   EXPECT_GT(dropped, 12000);
   EXPECT_GT(full, 2500);
+}
+
+// setup_triangle_lean (lean_setup.hpp) against setup_triangle on random triangles in 1x and 4x
+// frames: snapped to nearest even or half away (not lean), past the direct range, NaN, degenerate,
+// culled, around and across scissored regions (the scissor planes, the multisample quirk, the
+// sample-exact scissor of later releases), with and without depth and bias. Drawn must give
+// setup_triangle's raster field by field, Dropped a fate other than Rasterized, Full whatever it is.
+TEST(FastLeanSetup, LeanSetupEqualsSetupTriangle) {
+  if (!host_has_avx2_fma()) GTEST_SKIP() << "the host runs no AVX2";
+  fast_test::Random r(41);
+  int drawn = 0, dropped = 0, full = 0;
+  RasterPrimitive lean;  // reused, as BandWorker reuses it
+  const DenormalsFlushed ftz_daz;
+  for (int trial = 0; trial < 40000; ++trial) {
+    RasterState state;
+    state.cull_mode = r.chance(0.5) ? CullMode::None : CullMode(r.below(4));
+    state.front_face = r.chance(0.5) ? FrontFace::CounterClockwise : FrontFace::Clockwise;
+    state.depth.test_enable = r.chance(0.8);
+    state.depth_bias =
+        DepthBias{r.chance(0.3), float(r.range(-4, 4)), float(r.range(-2, 2)), float(r.range(-0.01, 0.01))};
+    SetupContext ctx;
+    ctx.framebuffer = PixelRect{0, 0, 255, 191};
+    const int32_t x0 = int32_t(r.below(200)), y0 = int32_t(r.below(150));
+    const int32_t x1 = x0 + int32_t(r.below(256 - uint32_t(x0))), y1 = y0 + int32_t(r.below(192 - uint32_t(y0)));
+    ctx.region = r.chance(0.3) ? ctx.framebuffer : PixelRect{x0, y0, x1, y1};
+    ctx.state = &state;
+    ctx.depth_format = DepthFormat(r.below(4));
+    ctx.multisample = r.chance(0.5);
+    if (r.chance(0.05)) ctx.methods.snap = SnapRounding::HalfAwayFromZero;
+    if (r.chance(0.1)) ctx.skips.depth_only_when_attached = false;
+    std::array<WindowVertex, 3> window;
+    const double spread = r.chance(0.1) ? 3e7 : r.chance(0.3) ? 400.0 : r.chance(0.5) ? 12.0 : 2.0;
+    // the scissor planes of 26.2 (sample-exact); its set-up refuses the wrapping one
+    if (spread < 1e6 && r.chance(0.2)) ctx.rules = LavapipeRules::of(MesaVersion{26, 2, 6});
+    const bool near_region = r.chance(0.7);
+    const double cx = near_region ? r.range(ctx.region.x0 - 4, ctx.region.x1 + 4) : r.range(-40, 300);
+    const double cy = near_region ? r.range(ctx.region.y0 - 4, ctx.region.y1 + 4) : r.range(-40, 230);
+    for (WindowVertex& v : window) {
+      // a quarter on the 1/256 grid and its half steps (ties of the rounding)
+      const double x = cx + r.range(-spread, spread), y = cy + r.range(-spread, spread);
+      v = r.chance(0.25) ? WindowVertex{float(std::round(x * 512) / 512), float(std::round(y * 512) / 512), 0.5f}
+                         : WindowVertex{float(x), float(y), float(r.range(-0.2, 1.2))};
+    }
+    if (r.chance(0.01)) window[r.below(3)].y = std::nanf("");
+    if (r.chance(0.02)) window[1] = window[0];  // degenerate
+    const uint32_t owner = 1 + r.below(1000);
+    const TriangleSetup setup = setup_triangle(window, owner, ctx);
+    switch (setup_triangle_lean(window, owner, ctx, lean)) {
+      case LeanSetup::Drawn: {
+        ++drawn;
+        ASSERT_EQ(setup.fate, SetupFate::Rasterized) << "trial " << trial;
+        const RasterPrimitive& want = setup.raster;
+        ASSERT_FALSE(want.binned) << "trial " << trial;
+        ASSERT_FALSE(lean.binned) << "trial " << trial;
+        ASSERT_EQ(lean.owner, want.owner) << "trial " << trial;
+        ASSERT_EQ(lean.is_line, want.is_line) << "trial " << trial;
+        ASSERT_EQ(lean.edge_count, want.edge_count) << "trial " << trial;
+        ASSERT_EQ(lean.planes.count, want.planes.count) << "trial " << trial;
+        for (uint32_t i = 0; i < want.planes.count; ++i) {
+          ASSERT_EQ(lean.planes.plane[i].c, want.planes.plane[i].c) << "trial " << trial;
+          ASSERT_EQ(lean.planes.plane[i].dcdx, want.planes.plane[i].dcdx) << "trial " << trial;
+          ASSERT_EQ(lean.planes.plane[i].dcdy, want.planes.plane[i].dcdy) << "trial " << trial;
+          ASSERT_EQ(lean.planes.plane[i].inclusive, want.planes.plane[i].inclusive) << "trial " << trial;
+        }
+        for (int k = 0; k < 4; ++k) {
+          ASSERT_EQ(lean.vertex_fixed[k].x.raw, want.vertex_fixed[k].x.raw) << "trial " << trial;
+          ASSERT_EQ(lean.vertex_fixed[k].y.raw, want.vertex_fixed[k].y.raw) << "trial " << trial;
+        }
+        ASSERT_EQ(lean.bbox, want.bbox) << "trial " << trial;
+        ASSERT_EQ(lean.visit, want.visit) << "trial " << trial;
+        ASSERT_EQ(lean.per_sample, want.per_sample) << "trial " << trial;
+        ASSERT_EQ(lean.has_depth, want.has_depth) << "trial " << trial;
+        ASSERT_EQ(std::bit_cast<uint32_t>(lean.depth.a0), std::bit_cast<uint32_t>(want.depth.a0)) << "trial " << trial;
+        ASSERT_EQ(std::bit_cast<uint32_t>(lean.depth.dzdx), std::bit_cast<uint32_t>(want.depth.dzdx))
+            << "trial " << trial;
+        ASSERT_EQ(std::bit_cast<uint32_t>(lean.depth.dzdy), std::bit_cast<uint32_t>(want.depth.dzdy))
+            << "trial " << trial;
+        ASSERT_EQ(lean.offset.computed, want.offset.computed) << "trial " << trial;
+        ASSERT_EQ(std::bit_cast<uint32_t>(lean.offset.offset), std::bit_cast<uint32_t>(want.offset.offset))
+            << "trial " << trial;
+        break;
+      }
+      case LeanSetup::Dropped:
+        ++dropped;
+        ASSERT_NE(setup.fate, SetupFate::Rasterized) << "trial " << trial;
+        break;
+      case LeanSetup::Full:
+        ++full;
+        break;
+    }
+  }
+  EXPECT_GT(drawn, 12000);
+  EXPECT_GT(dropped, 8000);
+  EXPECT_GT(full, 2000);
 }
 
 // rasterize_rows_avx2 (exact_rows.hpp) against the exact rasterizer, primitive by primitive on the

@@ -14,6 +14,7 @@
 #include "cpu_raster/fast/block_rows.hpp"
 #include "cpu_raster/fast/clipped_pieces.hpp"
 #include "cpu_raster/fast/exact_rows.hpp"
+#include "cpu_raster/fast/lean_setup.hpp"
 #include "cpu_raster/fast/small_block_input.hpp"
 #include "cpu_raster/fast/tile_depth_bounds.hpp"
 #include "cpu_raster/fast/tile_edges.hpp"
@@ -446,9 +447,14 @@ void BandWorker::walk_exact(uint32_t d) {
       run_primitive(frame, walk, i, sink);
       continue;
     }
+    const std::array<WindowVertex, 3> window{v[0].window, v[1].window, v[2].window};
+    const uint32_t owner = encode_owner(d, prim.primitive_index);
+    // the workers run with denormals flushed (WorkerPool::call, render_fast_into)
+    const LeanSetup lean = frame_.raster.avx2 ? setup_triangle_lean(window, owner, walk.ctx, lean_) : LeanSetup::Full;
+    if (lean == LeanSetup::Drawn) raster_exact_in_band(lean_, depth);
+    if (lean != LeanSetup::Full) continue;
     const TriangleSetup setup =
-        setup_triangle_in_mode(SetupDenormals::Flushed, {v[0].window, v[1].window, v[2].window},
-                               encode_owner(d, prim.primitive_index), walk.ctx, prim.primitive_index);
+        setup_triangle_in_mode(SetupDenormals::Flushed, window, owner, walk.ctx, prim.primitive_index);
     if (setup.fate == SetupFate::Rasterized) raster_exact_in_band(setup.raster, depth);
   }
 }

@@ -121,6 +121,7 @@ class BandWorker {
   // Per tile row: this worker owns every tile of it (1), some (2), none (0). shared_ is whether any
   // row is 2; whole_before_ counts the rows of 1 below r, as owned_before_.
   std::vector<uint8_t> row_kind_;
+  RasterPrimitive lean_;  // walk_exact: the triangle setup_triangle_lean set up last
   std::vector<uint32_t> whole_before_;
   bool shared_ = false;
   SmallBlock block_, next_block_;       // the small-triangle blocks being set up and drawn
