@@ -212,13 +212,21 @@ LineSetup setup_line_in_mode(SetupDenormals mode, const std::array<WindowVertex,
 
 DrawWalk begin_draw(const FrameContext& frame, uint32_t draw_index) {
   const Draw& draw = frame.scene->draws[draw_index];
+  std::vector<bool> pipelined = pipelined_chunks(draw, draw.state.depth_clip_enabled());  // §1.5
+  const TrailingPipelineRun run = trailing_pipeline_run(draw, pipelined);                 // §7.11
+  return begin_draw(frame, draw_index, std::move(pipelined), run);
+}
+
+DrawWalk begin_draw(const FrameContext& frame, uint32_t draw_index, std::vector<bool> pipelined,
+                    const TrailingPipelineRun& run) {
+  const Draw& draw = frame.scene->draws[draw_index];
   DrawWalk walk;
   walk.draw = &draw;
   walk.ctx = make_setup_context(frame, draw_index);
   walk.base.draw_index = draw_index;
   walk.base.is_line = is_line_topology(draw.topology);
-  walk.pipelined = pipelined_chunks(draw, draw.state.depth_clip_enabled());  // §1.5
-  walk.run = trailing_pipeline_run(draw, walk.pipelined);                   // §7.11
+  walk.pipelined = std::move(pipelined);
+  walk.run = run;
   walk.count = primitive_count(draw);
   walk.per_chunk = primitives_per_chunk(draw);
   return walk;

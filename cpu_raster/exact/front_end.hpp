@@ -141,6 +141,10 @@ struct DrawWalk {
   PrimitiveOutcome base;
 };
 DrawWalk begin_draw(const FrameContext& frame, uint32_t draw_index);
+// The same with the draw's §1.5 chunk flags and §7.11 trailing run given (formed by
+// pipelined_chunks_by and trailing_pipeline_run_of from a clip test made elsewhere).
+DrawWalk begin_draw(const FrameContext& frame, uint32_t draw_index, std::vector<bool> pipelined,
+                    const TrailingPipelineRun& run);
 SetupDenormals primitive_setup_denormals(const DrawWalk& walk, uint32_t primitive);
 void run_primitive(const FrameContext& frame, const DrawWalk& walk, uint32_t primitive, const OutcomeSink& sink);
 

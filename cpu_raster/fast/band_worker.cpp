@@ -9,6 +9,7 @@
 #include "cpu_raster/exact/clip_vertex.hpp"
 #include "cpu_raster/exact/front_end.hpp"
 #include "cpu_raster/exact/depth_plane.hpp"
+#include "cpu_raster/exact/draw_chunks.hpp"
 #include "cpu_raster/exact/pipeline_cull.hpp"
 #include "cpu_raster/exact/triangle_setup.hpp"
 #include "cpu_raster/fast/block_rows.hpp"
@@ -400,7 +401,11 @@ size_t BandWorker::first_visible(const PixelRect& tile, const uint8_t* list, siz
 void BandWorker::walk_exact(uint32_t d) {
   const FrameContext& frame = frame_.exact;
   const DepthTestState& depth = frame_.draws[d].raster.depth;
-  const DrawWalk walk = begin_draw(frame, d);
+  // the vertex phase's window positions and clip bits (fast_vertices.hpp: make_clip_vertex's
+  // operations), where it ran for this draw; its clip bits also give the chunk flags
+  const FastVertex* transformed = frame_.draws[d].vertices;
+  const size_t positions = frame_.scene->draws[d].positions_clip.size();
+  const DrawWalk walk = transformed ? begin_draw_transformed(d) : begin_draw(frame, d);
   const OutcomeSink sink = [&](const PrimitiveOutcome& outcome) {
     if (outcome.rasterized()) raster_exact_in_band(outcome.raster, depth);
   };
@@ -416,10 +421,6 @@ void BandWorker::walk_exact(uint32_t d) {
   // skip is off (clip_triangle).
   const bool lean_triangles = !lines && frame.skips.clip_only_when_needed;
   const bool float_cull = walk.draw->state.cull_mode != CullMode::None;
-  // the vertex phase's window positions and clip bits (fast_vertices.hpp: make_clip_vertex's
-  // operations), where it ran for this draw
-  const FastVertex* transformed = frame_.draws[d].vertices;
-  const size_t positions = walk.draw->positions_clip.size();
   for (uint32_t i = 0; i < walk.count; ++i) {
     if (primitive_setup_denormals(walk, i) != SetupDenormals::Flushed) {
       run_primitive(frame, walk, i, sink);
@@ -457,6 +458,21 @@ void BandWorker::walk_exact(uint32_t d) {
         setup_triangle_in_mode(SetupDenormals::Flushed, window, owner, walk.ctx, prim.primitive_index);
     if (setup.fate == SetupFate::Rasterized) raster_exact_in_band(setup.raster, depth);
   }
+}
+
+// begin_draw with the chunk flags and trailing run formed from the vertex phase's clip bits (as
+// for the fast draws, render_fast.cpp). A position past the draw's counts as unclipped: such an
+// index makes the render throw (the profile check) before any walk.
+DrawWalk BandWorker::begin_draw_transformed(uint32_t d) const {
+  const Draw& draw = frame_.scene->draws[d];
+  const FastVertex* vertices = frame_.draws[d].vertices;
+  const size_t positions = draw.positions_clip.size();
+  const auto clipped = [vertices, positions](uint32_t position) {
+    return position < positions && (vertices[position].flags & kVertexClipBits) != 0;
+  };
+  std::vector<bool> pipelined = pipelined_chunks_by(draw, clipped);
+  const TrailingPipelineRun run = trailing_pipeline_run_of(draw, pipelined, clipped);
+  return begin_draw(frame_.exact, d, std::move(pipelined), run);
 }
 
 // Whether a primitive whose set-up runs with denormals flushed (where set-up cannot throw but for

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "cpu_raster/exact/clip_vertex.hpp"
+#include "cpu_raster/exact/front_end.hpp"
 #include "cpu_raster/fast/fast_frame.hpp"
 #include "cpu_raster/fast/small_triangles.hpp"
 
@@ -61,6 +62,7 @@ class BandWorker {
   void walk_triangles(uint32_t draw_index);
   void walk_fast(uint32_t draw_index);
   void walk_exact(uint32_t draw_index);
+  DrawWalk begin_draw_transformed(uint32_t draw_index) const;
   bool misses_own_rows(const ClipVertex* vertices, uint32_t count, float margin) const;
   // The exact rasterizer for one primitive, on this worker's tile rows.
   void raster_exact_in_band(const RasterPrimitive& primitive, const DepthTestState& depth);
