@@ -6,6 +6,8 @@
 #include <cmath>
 
 #include "cpu_raster/exact/assemble.hpp"
+#include "cpu_raster/exact/clip_line.hpp"
+#include "cpu_raster/exact/clip_test.hpp"
 #include "cpu_raster/exact/clip_vertex.hpp"
 #include "cpu_raster/exact/front_end.hpp"
 #include "cpu_raster/exact/depth_plane.hpp"
@@ -415,18 +417,18 @@ void BandWorker::walk_exact(uint32_t d) {
   // box and the multisample scissor quirk one row each.
   const float margin = lines ? std::max(walk.draw->state.line_width, 1.0f) + 3.0f : 2.0f;
   const uint32_t corners = lines ? 2 : 3;
-  // A triangle run_triangle would pass unclipped to set-up, without the pipeline's float cull, in
-  // the flushed mode: set up here from its clip vertices (the same calls, without the outcome's
-  // bookkeeping). The clipper returns a triangle with every vertex inside unchanged unless the clip
-  // skip is off (clip_triangle).
+  // Lines: run_line's calls (clip, set-up in the primitive's mode) without the outcome's
+  // bookkeeping. A triangle run_triangle would pass unclipped to set-up, without the pipeline's
+  // float cull, in the flushed mode: the lean set-up (lean_setup.hpp) from its corners. The
+  // clipper returns a triangle with every vertex inside unchanged unless the clip skip is off
+  // (clip_triangle); anything else takes run_primitive.
   const bool lean_triangles = !lines && frame.skips.clip_only_when_needed;
   const bool float_cull = walk.draw->state.cull_mode != CullMode::None;
+  const uint32_t inside_planes = frame.skips.clip_only_when_needed ? 0 : tested_clip_planes(depth_clip);
+  const LineXyClip line_xy = frame.rules.has(LavapipeRule::LineGuardBand) ? LineXyClip::GuardBand : LineXyClip::Clip;
   for (uint32_t i = 0; i < walk.count; ++i) {
-    if (primitive_setup_denormals(walk, i) != SetupDenormals::Flushed) {
-      run_primitive(frame, walk, i, sink);
-      continue;
-    }
-    if (frame_.workers == 1 && !lean_triangles) {
+    const SetupDenormals mode = primitive_setup_denormals(walk, i);
+    if (!lines && (mode != SetupDenormals::Flushed || (frame_.workers == 1 && !lean_triangles))) {
       run_primitive(frame, walk, i, sink);
       continue;
     }
@@ -434,7 +436,7 @@ void BandWorker::walk_exact(uint32_t d) {
     std::array<ClipVertex, 3> v;
     for (uint32_t k = 0; k < corners; ++k) {
       const uint32_t position = prim.position[k];
-      if (transformed && position < positions) {
+      if (!lines && transformed && position < positions) {
         const FastVertex& t = transformed[position];
         v[k].window = WindowVertex{t.x, t.y, t.z};
         v[k].clip_mask = t.flags & kVertexClipBits;
@@ -442,14 +444,22 @@ void BandWorker::walk_exact(uint32_t d) {
         v[k] = make_clip_vertex(walk.draw->positions_clip[position], frame.viewport, depth_clip, frame.fma);
       }
     }
-    if (frame_.workers > 1 && misses_own_rows(v.data(), corners, margin)) continue;
+    if (mode == SetupDenormals::Flushed && frame_.workers > 1 && misses_own_rows(v.data(), corners, margin)) continue;
+    const uint32_t owner = encode_owner(d, prim.primitive_index);
+    if (lines) {
+      const ClippedLine clipped = clip_line({v[0], v[1]}, frame.viewport, inside_planes, line_xy);
+      if (clipped.fate == ClipFate::Outside || clipped.fate == ClipFate::Discarded) continue;
+      const LineSetup setup = setup_line_in_mode(mode, {clipped.line[0].window, clipped.line[1].window}, owner,
+                                                 walk.ctx, prim.primitive_index);
+      if (setup.fate == SetupFate::Rasterized) raster_exact_in_band(setup.raster, depth);
+      continue;
+    }
     const bool inside = (v[0].clip_mask | v[1].clip_mask | v[2].clip_mask) == 0;
     if (!lean_triangles || !inside || (float_cull && walk.pipelined[i / walk.per_chunk])) {
       run_primitive(frame, walk, i, sink);
       continue;
     }
     const std::array<WindowVertex, 3> window{v[0].window, v[1].window, v[2].window};
-    const uint32_t owner = encode_owner(d, prim.primitive_index);
     // the workers run with denormals flushed (WorkerPool::call, render_fast_into)
     const LeanSetup lean = frame_.raster.avx2 ? setup_triangle_lean(window, owner, walk.ctx, lean_) : LeanSetup::Full;
     if (lean == LeanSetup::Drawn) raster_exact_in_band(lean_, depth);
