@@ -411,13 +411,14 @@ RASTERCMP_AVX2 bool sample_span_rows(const RasterPrimitive& p, int32_t y0, int32
 // A small per-sample primitive in a 4x frame: every sample of its visit rectangle's pixels tested
 // directly, in the steps and lanes of sample_span_rows (two pixels' four samples, on 32-byte
 // boundaries), plane values in int32. n = E - 1 of plane i at lane (column px, sample s) of row py
-// is n0[i][s] + (px - start) * gx[i] + (py - y0) * gy[i] with gx = -dcdx * 256, gy = dcdy * 256:
-// an integer, covered iff n >= 0 for every plane, so iff the OR of the planes' n has its sign bit
-// clear. Exact when every value the steps form fits int32: n is linear in px and py, so its
-// extremes over the columns [start, x1 + 1] and rows [y0, y1] are at the corners, bounded by
-// |n0| + |gx| * (x1 + 2 - start) + |gy| * (y1 - y0) (checked below 2^31 in int64 per plane and
-// sample; start = x0 - 1). Lanes outside [x0, x1] are masked: the exact path visits only those columns. A step
-// with no covered lane computes no depth. False, having written nothing, when a bound fails.
+// is c + (dcdy * sy[s] - dcdx * sx[s]) + (px - start) * gx + (py - y0) * gy, with c its value at
+// the corner of pixel (start, y0), gx = -dcdx * 256, gy = dcdy * 256 and the sample offsets sx, sy
+// in (0, 256): an integer, covered iff n >= 0 for every plane, so iff the OR of the planes' n has
+// its sign bit clear. Exact when every value the steps form fits int32: over the columns
+// [start, x1 + 1] and rows [y0, y1] (start = x0 - 1), |n| < |c| + |gx| * (x1 + 2 - start) +
+// |gy| * (y1 - y0 + 1), checked below 2^31 in int64 per plane (the row step past y1 may wrap; it
+// is never read). Lanes outside [x0, x1] are masked: the exact path visits only those columns. A
+// step with no covered lane computes no depth. False, having written nothing, when a bound fails.
 constexpr int32_t kBoxColumns = 24, kBoxPixels = 256;
 
 // Planes: p.planes.count, or 0 for any count up to 8 (a triangle without scissor planes has 3,
@@ -431,29 +432,37 @@ RASTERCMP_AVX2 bool sample_box_rows(const RasterPrimitive& p, int32_t y0, int32_
   // a row's first step starts on an even pixel of the attachments (a 32-byte boundary): at x0 - 1
   // or x0, after the parity of the row's first pixel
   const int32_t start = x0 - 1;
-  const int64_t reach_x = int64_t(x1) + 2 - start, reach_y = int64_t(y1) - y0;
+  const int64_t reach_x = int64_t(x1) + 2 - start, reach_y = int64_t(y1) - y0 + 1;
+  const __m256i lane_pixel = _mm256_setr_epi32(0, 0, 0, 0, 1, 1, 1, 1);
+  const __m256i lane_x = _mm256_setr_epi32(kStandardSamples4x[0].x_fixed, kStandardSamples4x[1].x_fixed,
+                                           kStandardSamples4x[2].x_fixed, kStandardSamples4x[3].x_fixed,
+                                           kStandardSamples4x[0].x_fixed, kStandardSamples4x[1].x_fixed,
+                                           kStandardSamples4x[2].x_fixed, kStandardSamples4x[3].x_fixed);
+  const __m256i lane_y = _mm256_setr_epi32(kStandardSamples4x[0].y_fixed, kStandardSamples4x[1].y_fixed,
+                                           kStandardSamples4x[2].y_fixed, kStandardSamples4x[3].y_fixed,
+                                           kStandardSamples4x[0].y_fixed, kStandardSamples4x[1].y_fixed,
+                                           kStandardSamples4x[2].y_fixed, kStandardSamples4x[3].y_fixed);
   __m256i row_n[8], gx1[8], gx2[8], gy[8];
   for (uint32_t i = 0; i < planes; ++i) {
+    // lane (pixel k, sample s) of the first step: n at the pixel's corner, plus the sample's offset
+    // (below 256 fixed units each way) and k pixels; every term and sum within the bound
     const EdgePlane& plane = p.planes.plane[i];
     const int64_t gx = -plane.dcdx * kFixedOne, dy = plane.dcdy * kFixedOne;
-    alignas(32) int32_t lane[8];
-    for (int s = 0; s < Samples; ++s) {
-      const int64_t n0 = edge_value(plane, int64_t(start) * kFixedOne + kStandardSamples4x[s].x_fixed,
-                                    int64_t(y0) * kFixedOne + kStandardSamples4x[s].y_fixed) -
-                         1;
-      const int64_t bound = (n0 < 0 ? -n0 : n0) + (gx < 0 ? -gx : gx) * reach_x + (dy < 0 ? -dy : dy) * reach_y;
-      if (bound >= (int64_t(1) << 31)) return false;
-      lane[s] = int32_t(n0);
-      lane[s + Samples] = int32_t(n0 + gx);  // the step's second pixel
-    }
-    row_n[i] = _mm256_load_si256(reinterpret_cast<const __m256i*>(lane));
+    const int64_t corner = edge_value(plane, int64_t(start) * kFixedOne, int64_t(y0) * kFixedOne) - 1;
+    const int64_t bound = (corner < 0 ? -corner : corner) + (gx < 0 ? -gx : gx) * reach_x +
+                          (dy < 0 ? -dy : dy) * reach_y;
+    if (bound >= (int64_t(1) << 31)) return false;  // then also |dcdx|, |dcdy| * 256 < 2^31
+    const __m256i offsets =
+        _mm256_sub_epi32(_mm256_mullo_epi32(_mm256_set1_epi32(int32_t(plane.dcdy)), lane_y),
+                         _mm256_mullo_epi32(_mm256_set1_epi32(int32_t(plane.dcdx)), lane_x));
     gx1[i] = _mm256_set1_epi32(int32_t(gx));
+    row_n[i] = _mm256_add_epi32(_mm256_add_epi32(_mm256_set1_epi32(int32_t(corner)), offsets),
+                                _mm256_mullo_epi32(gx1[i], lane_pixel));
     gx2[i] = _mm256_set1_epi32(int32_t(2 * gx));
     gy[i] = _mm256_set1_epi32(int32_t(dy));
   }
   uint32_t* depth = targets.depth_raw.data();
   uint32_t* owner = targets.owner.data();
-  const __m256i lane_pixel = _mm256_setr_epi32(0, 0, 0, 0, 1, 1, 1, 1);
   const __m256 sx = _mm256_setr_ps(kStandardSamples4x[0].x, kStandardSamples4x[1].x, kStandardSamples4x[2].x,
                                    kStandardSamples4x[3].x, kStandardSamples4x[0].x, kStandardSamples4x[1].x,
                                    kStandardSamples4x[2].x, kStandardSamples4x[3].x);
