@@ -520,6 +520,42 @@ TEST(FastIndexCheck, SameErrorAsTheExactPath) {
   }
 }
 
+// The NotSupportedError message a render throws ("" when it throws none).
+template <class Render>
+std::string not_supported_message(Render render) {
+  try {
+    render();
+  } catch (const NotSupportedError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// Exact draws (a 4x frame) whose set-ups throw: a trailing pipelined run longer than one batch,
+// each set-up meeting a denormal that changes it (rules §7.11), laid out bottom to top over four
+// tile rows so that on several workers each meets a different first failure of its own rows (the
+// workers leave out the primitives outside them). The render throws the exact path's error, the
+// first failing primitive in submission order, at every worker count.
+TEST(FastFailures, FirstFailingPrimitiveOfTheExactPathOnEveryWorkerCount) {
+  Scene scene = fast_test::denormal_setup_batch_scene(60, false);
+  scene.height = 256;
+  scene.samples = 4;
+  for (size_t k = 0; k < scene.draws[0].positions_clip.size(); ++k) {
+    glm::vec4& v = scene.draws[0].positions_clip[k];
+    if (k < 3) {
+      v.z = 0.0f;  // the clipped first triangle sets up alike in both modes
+      continue;
+    }
+    v.y = 0.9f - (v.y + 0.75f) * 2.6f;  // window rows 13-243, the first primitives at the bottom
+  }
+  const std::string expected = not_supported_message([&] { render_exact(scene, true); });
+  ASSERT_NE(expected.find("draw 0 primitive 1:"), std::string::npos) << expected;
+  for (const uint32_t threads : {1u, 2u, 3u, 4u}) {
+    SCOPED_TRACE("threads=" + std::to_string(threads));
+    EXPECT_EQ(not_supported_message([&] { render_fast(scene, true, threads, fast_test::best_isa()); }), expected);
+  }
+}
+
 TEST(FastBuiltinScenes, NotSupportedStaysNotSupported) {
   const Scene scene = load_scene_file(std::string(RASTERCMP_SOURCE_DIR) + "/scenes/not_supported/point_list.json");
   EXPECT_THROW(render_fast(scene, true, 2, fast_test::best_isa()), NotSupportedError);

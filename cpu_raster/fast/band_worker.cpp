@@ -64,8 +64,8 @@ void BandWorker::run() {
   for (uint32_t d = 0; d < frame_.draws.size(); ++d) {
     if (frame_.draws[d].fast)
       walk_fast(d);
-    else
-      walk_exact(d);
+    else if (!walk_exact(d))
+      return;  // a primitive threw: the render throws it (FastFrame::failure)
     flush(frame_.draws[d].raster);
   }
   for (int32_t ty = 0; ty < frame_.raster.tiles_y; ++ty)
@@ -400,7 +400,7 @@ size_t BandWorker::first_visible(const PixelRect& tile, const uint8_t* list, siz
 // to this worker's tile rows, and the exact rasterizer's evaluation on the same targets (each row's
 // columns cut to the primitive's, exact_rows.hpp). A primitive that cannot reach this worker's
 // rows is left out before its clipping and set-up (misses_own_rows).
-void BandWorker::walk_exact(uint32_t d) {
+bool BandWorker::walk_exact(uint32_t d) {
   const FrameContext& frame = frame_.exact;
   const DepthTestState& depth = frame_.draws[d].raster.depth;
   // the vertex phase's window positions and clip bits (fast_vertices.hpp: make_clip_vertex's
@@ -426,48 +426,58 @@ void BandWorker::walk_exact(uint32_t d) {
   const bool float_cull = walk.draw->state.cull_mode != CullMode::None;
   const uint32_t inside_planes = frame.skips.clip_only_when_needed ? 0 : tested_clip_planes(depth_clip);
   const LineXyClip line_xy = frame.rules.has(LavapipeRule::LineGuardBand) ? LineXyClip::GuardBand : LineXyClip::Clip;
-  for (uint32_t i = 0; i < walk.count; ++i) {
-    const SetupDenormals mode = primitive_setup_denormals(walk, i);
-    if (!lines && (mode != SetupDenormals::Flushed || (frame_.workers == 1 && !lean_triangles))) {
-      run_primitive(frame, walk, i, sink);
-      continue;
-    }
-    const AssembledPrimitive prim = assemble_primitive(*walk.draw, i);
-    std::array<ClipVertex, 3> v;
-    for (uint32_t k = 0; k < corners; ++k) {
-      const uint32_t position = prim.position[k];
-      if (!lines && transformed && position < positions) {
-        const FastVertex& t = transformed[position];
-        v[k].window = WindowVertex{t.x, t.y, t.z};
-        v[k].clip_mask = t.flags & kVertexClipBits;
-      } else {
-        v[k] = make_clip_vertex(walk.draw->positions_clip[position], frame.viewport, depth_clip, frame.fma);
+  // A primitive that throws (set-up in a mode where the two modes disagree, a refused wrapping
+  // set-up) stops this walk; the render throws the first such primitive's error (FastFrame::failure).
+  uint32_t i = 0;
+  try {
+    for (; i < walk.count; ++i) {
+      const SetupDenormals mode = primitive_setup_denormals(walk, i);
+      const bool flushed = mode == SetupDenormals::Flushed;
+      if (!lines && frame_.workers == 1 && (!flushed || !lean_triangles)) {
+        run_primitive(frame, walk, i, sink);
+        continue;
       }
-    }
-    if (mode == SetupDenormals::Flushed && frame_.workers > 1 && misses_own_rows(v.data(), corners, margin)) continue;
-    const uint32_t owner = encode_owner(d, prim.primitive_index);
-    if (lines) {
-      const ClippedLine clipped = clip_line({v[0], v[1]}, frame.viewport, inside_planes, line_xy);
-      if (clipped.fate == ClipFate::Outside || clipped.fate == ClipFate::Discarded) continue;
-      const LineSetup setup = setup_line_in_mode(mode, {clipped.line[0].window, clipped.line[1].window}, owner,
-                                                 walk.ctx, prim.primitive_index);
+      const AssembledPrimitive prim = assemble_primitive(*walk.draw, i);
+      std::array<ClipVertex, 3> v;
+      for (uint32_t k = 0; k < corners; ++k) {
+        const uint32_t position = prim.position[k];
+        if (!lines && transformed && position < positions) {
+          const FastVertex& t = transformed[position];
+          v[k].window = WindowVertex{t.x, t.y, t.z};
+          v[k].clip_mask = t.flags & kVertexClipBits;
+        } else {
+          v[k] = make_clip_vertex(walk.draw->positions_clip[position], frame.viewport, depth_clip, frame.fma);
+        }
+      }
+      if (frame_.workers > 1 && misses_own_rows(v.data(), corners, margin, !flushed)) continue;
+      const uint32_t owner = encode_owner(d, prim.primitive_index);
+      if (lines) {
+        const ClippedLine clipped = clip_line({v[0], v[1]}, frame.viewport, inside_planes, line_xy);
+        if (clipped.fate == ClipFate::Outside || clipped.fate == ClipFate::Discarded) continue;
+        const LineSetup setup = setup_line_in_mode(mode, {clipped.line[0].window, clipped.line[1].window}, owner,
+                                                   walk.ctx, prim.primitive_index);
+        if (setup.fate == SetupFate::Rasterized) raster_exact_in_band(setup.raster, depth);
+        continue;
+      }
+      const bool inside = (v[0].clip_mask | v[1].clip_mask | v[2].clip_mask) == 0;
+      if (!flushed || !lean_triangles || !inside || (float_cull && walk.pipelined[i / walk.per_chunk])) {
+        run_primitive(frame, walk, i, sink);
+        continue;
+      }
+      const std::array<WindowVertex, 3> window{v[0].window, v[1].window, v[2].window};
+      // the workers run with denormals flushed (WorkerPool::call, render_fast_into)
+      const LeanSetup lean = frame_.raster.avx2 ? setup_triangle_lean(window, owner, walk.ctx, lean_) : LeanSetup::Full;
+      if (lean == LeanSetup::Drawn) raster_exact_in_band(lean_, depth);
+      if (lean != LeanSetup::Full) continue;
+      const TriangleSetup setup =
+          setup_triangle_in_mode(SetupDenormals::Flushed, window, owner, walk.ctx, prim.primitive_index);
       if (setup.fate == SetupFate::Rasterized) raster_exact_in_band(setup.raster, depth);
-      continue;
     }
-    const bool inside = (v[0].clip_mask | v[1].clip_mask | v[2].clip_mask) == 0;
-    if (!lean_triangles || !inside || (float_cull && walk.pipelined[i / walk.per_chunk])) {
-      run_primitive(frame, walk, i, sink);
-      continue;
-    }
-    const std::array<WindowVertex, 3> window{v[0].window, v[1].window, v[2].window};
-    // the workers run with denormals flushed (WorkerPool::call, render_fast_into)
-    const LeanSetup lean = frame_.raster.avx2 ? setup_triangle_lean(window, owner, walk.ctx, lean_) : LeanSetup::Full;
-    if (lean == LeanSetup::Drawn) raster_exact_in_band(lean_, depth);
-    if (lean != LeanSetup::Full) continue;
-    const TriangleSetup setup =
-        setup_triangle_in_mode(SetupDenormals::Flushed, window, owner, walk.ctx, prim.primitive_index);
-    if (setup.fate == SetupFate::Rasterized) raster_exact_in_band(setup.raster, depth);
+  } catch (...) {
+    frame_.record_failure(d, i, std::current_exception());
+    return false;
   }
+  return true;
 }
 
 // begin_draw with the chunk flags and trailing run formed from the vertex phase's clip bits (as
@@ -485,13 +495,17 @@ DrawWalk BandWorker::begin_draw_transformed(uint32_t d) const {
   return begin_draw(frame_.exact, d, std::move(pipelined), run);
 }
 
-// Whether a primitive whose set-up runs with denormals flushed (where set-up cannot throw but for
-// llvmpipe's wrapping set-up) certainly reaches none of this worker's tile rows: every vertex
-// inside every clip plane (the clipper passes it unchanged, so these window positions are set-up's
-// input), finite, spanning less than 32000 px in x plus y with the margin (so its edges stay in
-// the direct range: no wrapping set-up, lavapipe-rules §7.5), and its window y extent widened by
-// `margin` on each side in no row this worker owns. Leaving it out changes nothing in these rows.
-bool BandWorker::misses_own_rows(const ClipVertex* v, uint32_t count, float margin) const {
+// Whether a primitive certainly reaches none of this worker's tile rows: every vertex inside every
+// clip plane (the clipper passes it unchanged, so these window positions are set-up's input),
+// finite, spanning less than 32000 px in x plus y with the margin (so its edges stay in the direct
+// range: no wrapping set-up, lavapipe-rules §7.5), and its window y extent widened by `margin` on
+// each side in no row this worker owns. Leaving it out changes nothing in these rows. A primitive
+// set up with denormals flushed then cannot throw. One set up in the other mode (`may_throw`)
+// throws where the two modes disagree; it is left out only where its rows meet the frame's tile
+// rows, every one of which some worker owns (row_balance, contiguous_rows): a worker that owns one
+// sets it up, in order, and records its error (walk_exact, FastFrame::failure), which is then
+// the first failing primitive's, as on the exact path.
+bool BandWorker::misses_own_rows(const ClipVertex* v, uint32_t count, float margin, bool may_throw) const {
   float x_lo = v[0].window.x, x_hi = x_lo, y_lo = v[0].window.y, y_hi = y_lo;
   for (uint32_t k = 0; k < count; ++k) {
     if (v[k].clip_mask != 0 || !std::isfinite(v[k].window.x) || !std::isfinite(v[k].window.y)) return false;
@@ -502,6 +516,7 @@ bool BandWorker::misses_own_rows(const ClipVertex* v, uint32_t count, float marg
   }
   if ((x_hi - x_lo) + (y_hi - y_lo) + 4.0f * margin >= 32000.0f || y_lo < -1e7f || y_hi > 1e7f) return false;
   const int32_t row_lo = int32_t(std::floor(y_lo - margin)), row_hi = int32_t(std::floor(y_hi + margin));
+  if (may_throw && (row_hi < 0 || (row_lo >> kTileOrder) >= frame_.raster.tiles_y)) return false;
   return !owns_tile_rows(row_lo >> kTileOrder, row_hi >> kTileOrder);
 }
 

@@ -61,9 +61,9 @@ class BandWorker {
   template <Topology T, bool Indexed>
   void walk_triangles(uint32_t draw_index);
   void walk_fast(uint32_t draw_index);
-  void walk_exact(uint32_t draw_index);
+  bool walk_exact(uint32_t draw_index);  // false: a primitive threw (FastFrame::failure)
   DrawWalk begin_draw_transformed(uint32_t draw_index) const;
-  bool misses_own_rows(const ClipVertex* vertices, uint32_t count, float margin) const;
+  bool misses_own_rows(const ClipVertex* vertices, uint32_t count, float margin, bool may_throw) const;
   // The exact rasterizer for one primitive, on this worker's tile rows.
   void raster_exact_in_band(const RasterPrimitive& primitive, const DepthTestState& depth);
 

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <atomic>
 #include <cstdint>
+#include <exception>
+#include <mutex>
 #include <vector>
 
 #include "cpu_raster/exact/front_end.hpp"
@@ -78,6 +80,20 @@ struct FastFrame {
   RenderProfile* profile = nullptr;  // FastConfig::profile
   uint32_t profile_threads = 0;      // FastConfig::profile_threads
   double serial_mark = 0;            // profiled: the calling thread's CPU time when its last phase ended
+  // The first primitive, in submission order, whose clipping or set-up threw in a worker's walk of
+  // the exact draws (BandWorker::walk_exact), and what it threw: rethrown after the band phase,
+  // whichever worker met it first in time, so that the error is the exact path's.
+  struct Failure {
+    uint32_t draw = UINT32_MAX, primitive = UINT32_MAX;
+    std::exception_ptr error;
+  };
+  std::mutex failure_mutex;
+  Failure failure;
+  void record_failure(uint32_t draw, uint32_t primitive, std::exception_ptr error) {
+    const std::lock_guard<std::mutex> lock(failure_mutex);
+    if (draw < failure.draw || (draw == failure.draw && primitive < failure.primitive))
+      failure = Failure{draw, primitive, std::move(error)};
+  }
 };
 
 }  // namespace rastercmp::cpu::fast

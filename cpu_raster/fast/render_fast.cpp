@@ -566,6 +566,7 @@ void render_fast_into(const Scene& scene, const CpuOptions& options, const FastC
     measure_all_block_rows(frame, checks);
   }
   run_workers(frame);
+  if (frame.failure.error) std::rethrow_exception(frame.failure.error);
   move_into_result(std::move(frame.targets), lavapipe_profile_device(options), options.fma, result);
   if (config.profile) config.profile->serial_seconds += thread_cpu_seconds() - frame.serial_mark;
 }
