@@ -523,10 +523,10 @@ bool BandWorker::misses_own_rows(const ClipVertex* v, uint32_t count, float marg
 void BandWorker::raster_exact_in_band(const RasterPrimitive& primitive, const DepthTestState& depth) {
   const PixelRect& visit = primitive.visit;
   if (visit.empty()) return;
-  // Most often the visit lies in one tile row, all of it this worker's: drawn whole (the visit lies
-  // in the framebuffer, so the cut below would leave it as it is).
-  const int32_t ty_lo = visit.y0 >> kTileOrder;
-  if (ty_lo == visit.y1 >> kTileOrder && ty_lo >= 0 && row_kind_[size_t(ty_lo)] == 1) {
+  // Most often every tile row of the visit is all this worker's: drawn whole, in one call (the visit
+  // lies in the framebuffer, so the cut below would leave it as it is, in pieces).
+  const int32_t ty_lo = visit.y0 >> kTileOrder, ty_hi = visit.y1 >> kTileOrder;
+  if (ty_lo >= 0 && whole_before_[size_t(ty_hi) + 1] - whole_before_[size_t(ty_lo)] == uint32_t(ty_hi - ty_lo + 1)) {
     prepare_tiles(visit, depth.write);
     if (frame_.raster.avx2 && rasterize_rows_avx2(primitive, visit.y0, visit.y1, depth, frame_.targets)) return;
     if (primitive.binned)
