@@ -520,6 +520,112 @@ RASTERCMP_AVX2 bool sample_box_rows(const RasterPrimitive& p, int32_t y0, int32_
   return true;
 }
 
+// With an active depth test, a primitive in a frame of one sample per pixel (lines, mostly): the
+// columns of up to kChunkRows rows worked out and each row's depth and owner lines asked for, then
+// per step of four rows either one gathered eight-lane step, when every row's run is at most two
+// columns (lane 2k + j: row k, column u0[k] + j, valid when j < the run), or, row by row, steps of
+// eight contiguous columns masked to the run (a row of one sample per pixel is contiguous in the
+// attachments). Each lane's depth, test and write are flush_fragments'; a step holds distinct
+// samples of one primitive, so reading its stored values before writing any reads what the exact
+// path's order reads. Without the queue of depth_rows: a thin line's fragment is drawn where its
+// row's columns are known.
+template <DepthFormat F, CompareOp Op>
+RASTERCMP_AVX2 bool thin_rows(const RasterPrimitive& p, int32_t y0, int32_t y1, const KernelDepth& d,
+                              RenderTargets& targets) {
+  PlaneRows planes;
+  if (!init_plane_rows(planes, p, 1, y0, y1)) return false;
+  start_sample(planes, 0);
+  const int32_t width = int32_t(targets.width);
+  uint32_t* depth = targets.depth_raw.data();
+  uint32_t* owner = targets.owner.data();
+  const __m256 a0 = _mm256_set1_ps(p.depth.a0), dzdx = _mm256_set1_ps(p.depth.dzdx);
+  const __m256 dzdy = _mm256_set1_ps(p.depth.dzdy), offset = _mm256_set1_ps(p.offset.offset);
+  const __m256i id = _mm256_set1_epi32(int32_t(p.owner));
+  const __m256i lanes = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+  const __m256i lane_row = _mm256_setr_epi32(0, 0, 1, 1, 2, 2, 3, 3), lane_column = _mm256_setr_epi32(0, 1, 0, 1, 0, 1, 0, 1);
+  const __m256d first = _mm256_set1_pd(double(p.visit.x0)), last = _mm256_set1_pd(double(p.visit.x1));
+  alignas(32) uint32_t raw_lanes[8];
+  alignas(32) int32_t index_lanes[8];
+  constexpr int32_t kChunkRows = 64;
+  alignas(16) int32_t u[kChunkRows / 4][2][4];  // [step][lo, hi][row of the step]
+  for (int32_t chunk = y0; chunk <= y1; chunk += kChunkRows) {
+    const int32_t chunk_end = std::min(y1, chunk + kChunkRows - 1);
+    for (int32_t y = chunk, b = 0; y <= chunk_end; y += 4, ++b) {
+      next_plane_rows(planes, 0, first, last, u[b][0], u[b][1]);
+      for (int32_t k = 0; k < 4 && y + k <= chunk_end; ++k) {
+        if (u[b][0][k] > u[b][1][k]) continue;
+        const size_t at = size_t(y + k) * size_t(width) + size_t(u[b][0][k]);
+        _mm_prefetch(reinterpret_cast<const char*>(depth + at), _MM_HINT_T0);
+        _mm_prefetch(reinterpret_cast<const char*>(owner + at), _MM_HINT_T0);
+      }
+    }
+    for (int32_t y = chunk, b = 0; y <= chunk_end; y += 4, ++b) {
+      const int32_t rows = std::min(4, chunk_end - y + 1);
+      // rows past the chunk's end are made empty (their columns were computed, never to be drawn)
+      const __m128i row_valid = _mm_cmpgt_epi32(_mm_set1_epi32(rows), _mm_setr_epi32(0, 1, 2, 3));
+      const __m128i lo = _mm_load_si128(reinterpret_cast<const __m128i*>(u[b][0]));
+      const __m128i runs = _mm_and_si128(
+          row_valid,
+          _mm_max_epi32(_mm_sub_epi32(_mm_load_si128(reinterpret_cast<const __m128i*>(u[b][1])), _mm_sub_epi32(lo, _mm_set1_epi32(1))),
+                        _mm_setzero_si128()));
+      if (_mm_testz_si128(runs, runs)) continue;
+      if (_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpgt_epi32(runs, _mm_set1_epi32(2)))) == 0) {
+        // every run at most two columns: one gathered step
+        const __m256i row = _mm256_add_epi32(_mm256_set1_epi32(y), lane_row);
+        const __m256i column = _mm256_add_epi32(_mm256_permutevar8x32_epi32(_mm256_castsi128_si256(lo), lane_row), lane_column);
+        const __m256i valid =
+            _mm256_cmpgt_epi32(_mm256_permutevar8x32_epi32(_mm256_castsi128_si256(runs), lane_row), lane_column);
+        const __m256i index = _mm256_add_epi32(_mm256_mullo_epi32(row, _mm256_set1_epi32(width)), column);
+        // sample_point's floats for a pixel-centre sample: float(px), float(py)
+        const __m256 z = finish_depth8(
+            mul_add8(dzdy, _mm256_cvtepi32_ps(row), mul_add8(dzdx, _mm256_cvtepi32_ps(column), a0, d.fma), d.fma), offset,
+            d);
+        const __m256i raw = to_raw<F>(z);
+        __m256i pass = valid;
+        if constexpr (Op != CompareOp::Always) {
+          const __m256i stored =
+              _mm256_mask_i32gather_epi32(_mm256_setzero_si256(), reinterpret_cast<const int*>(depth), index, valid, 4);
+          pass = _mm256_and_si256(valid, depth_passes<F, Op>(z, raw, stored));
+        }
+        uint32_t bits = uint32_t(_mm256_movemask_ps(_mm256_castsi256_ps(pass)));
+        if (bits == 0) continue;
+        _mm256_store_si256(reinterpret_cast<__m256i*>(raw_lanes), raw);
+        _mm256_store_si256(reinterpret_cast<__m256i*>(index_lanes), index);
+        for (; bits != 0; bits &= bits - 1) {
+          const int k = std::countr_zero(bits);
+          const size_t at = size_t(uint32_t(index_lanes[k]));
+          if (d.write) depth[at] = raw_lanes[k];
+          owner[at] = p.owner;
+        }
+        continue;
+      }
+      for (int32_t k = 0; k < rows; ++k) {
+        const int32_t x0 = u[b][0][k], x1 = u[b][1][k], py = y + k;
+        if (x0 > x1) continue;
+        const __m256 y_v = _mm256_set1_ps(float(py));
+        uint32_t* depth_row = depth + size_t(py) * size_t(width);
+        uint32_t* owner_row = owner + size_t(py) * size_t(width);
+        for (int32_t px = x0; px <= x1; px += 8) {
+          const __m256i column = _mm256_add_epi32(_mm256_set1_epi32(px), lanes);
+          const __m256i covered = _mm256_cmpgt_epi32(_mm256_set1_epi32(x1 - px + 1), lanes);  // columns px .. x1
+          const __m256 z =
+              finish_depth8(mul_add8(dzdy, y_v, mul_add8(dzdx, _mm256_cvtepi32_ps(column), a0, d.fma), d.fma), offset, d);
+          const __m256i raw = to_raw<F>(z);
+          __m256i pass = covered;
+          if constexpr (Op != CompareOp::Always) {
+            const __m256i stored = _mm256_maskload_epi32(reinterpret_cast<const int*>(depth_row + px), covered);
+            pass = _mm256_and_si256(covered, depth_passes<F, Op>(z, raw, stored));
+          }
+          if (_mm256_testz_si256(pass, pass)) continue;
+          if (d.write) _mm256_maskstore_epi32(reinterpret_cast<int*>(depth_row + px), pass, raw);
+          _mm256_maskstore_epi32(reinterpret_cast<int*>(owner_row + px), pass, id);
+        }
+      }
+    }
+  }
+  return true;
+}
+
 template <DepthFormat F, CompareOp Op>
 RASTERCMP_AVX2 bool depth_kernel(const RasterPrimitive& p, int32_t y0, int32_t y1, const KernelDepth& d,
                                  RenderTargets& targets) {
@@ -531,6 +637,7 @@ RASTERCMP_AVX2 bool depth_kernel(const RasterPrimitive& p, int32_t y0, int32_t y
       return true;
     return sample_span_rows<F, Op>(p, y0, y1, d, targets);
   }
+  if (targets.samples == 1) return thin_rows<F, Op>(p, y0, y1, d, targets);
   return depth_rows<F, Op>(p, y0, y1, d, targets);
 }
 
