@@ -82,7 +82,11 @@ struct Target {
   const char* scene;
   double must, aim;  // lavapipe time / fast CPU time
 };
-constexpr Target kTargets[] = {{"fill_b2f", 4, 9}, {"fill_f2b", 8, 15}, {"grid_180k", 15, 25}, {"tiny_1m", 15, 25}};
+// The project's targets at two threads (docs/performance.md, "Current figures"); where no aim was
+// set beyond the must, the aim is the must.
+constexpr Target kTargets[] = {{"fill_b2f", 4, 9},     {"fill_f2b", 8, 15},   {"grid_180k", 15, 25},
+                               {"tiny_1m", 15, 25},    {"perspective", 10, 10}, {"lines_20k", 5, 10},
+                               {"msaa4_grid", 5, 10}, {"suite", 10, 10}};
 
 struct CaseReport {
   std::string name;
@@ -280,7 +284,7 @@ void print_table(const std::vector<CaseReport>& reports, const BenchArgs& args, 
     for (const CaseReport& r : reports) {
       if (r.name != t.scene) continue;
       const double ratio = bench::summarize(r.lavapipe).median / bench::summarize(r.fast).median;
-      fmt::print("target {:<10} lavapipe/fast {:6.1f}x   must reach {:4.0f}x: {}   aim {:4.0f}x: {}\n", t.scene, ratio,
+      fmt::print("target {:<12} lavapipe/fast {:6.1f}x   must reach {:4.0f}x: {}   aim {:4.0f}x: {}\n", t.scene, ratio,
                  t.must, ratio >= t.must ? "reached" : "NOT REACHED", t.aim, ratio >= t.aim ? "reached" : "not yet");
     }
   }
