@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <vector>
@@ -631,12 +632,48 @@ TEST(FastLeanSetup, LeanSetupEqualsSetupTriangle) {
   EXPECT_GT(full, 2000);
 }
 
+// Renders `scene` draw by draw with the exact rasterizer and, on a copy of the same targets (their
+// stored depths at random), with rasterize_rows_avx2 on the pieces `cut(p)` makes of each
+// primitive's visit, as the tile rows and runs of tiles of several workers cut it
+// (rasterize_primitive_rows where it declines a piece); `seen(p, vector)` for each piece drawn. Both
+// targets must hold the same owner and depth bytes after every draw.
+template <class Cut, class Seen>
+void expect_vector_rows_match(const Scene& scene, uint64_t seed, fast_test::Random& r, Cut cut, Seen seen) {
+  const bool fma = seed % 3 != 0;
+  const FrameContext frame = make_frame_context(scene, fma, {});
+  RenderTargets exact = make_render_targets(scene);
+  const uint32_t mask = depth_format_info(scene.depth_format).raw_mask;
+  for (uint32_t& raw : exact.depth_raw) raw = r.chance(0.3) ? raw : r.below(1u << 24) & mask;
+  if (is_float(scene.depth_format))
+    for (uint32_t& raw : exact.depth_raw) raw = float_bits(float(r.unit()));
+  RenderTargets vector = exact;
+  for (uint32_t d = 0; d < scene.draws.size(); ++d) {
+    const DepthTestState depth = make_depth_test_state(scene, scene.draws[d], frame.viewport, fma);
+    run_front_end(frame, d, [&](const PrimitiveOutcome& outcome) {
+      if (!outcome.rasterized()) return;
+      const RasterPrimitive& p = outcome.raster;
+      rasterize_primitive(p, depth, exact, WorkSkips{});
+      if (p.visit.empty()) return;
+      for (const PixelRect& piece : cut(p)) {
+        if (piece.empty()) continue;
+        RasterPrimitive band = p;
+        band.visit = piece;
+        const bool drawn = rasterize_rows_avx2(band, piece.y0, piece.y1, depth, vector);
+        if (!drawn) rasterize_primitive_rows(band, depth, vector, true);
+        seen(p, drawn);
+      }
+    });
+    ASSERT_EQ(exact.owner, vector.owner) << "seed " << seed << " draw " << d;
+    ASSERT_EQ(exact.depth_raw, vector.depth_raw) << "seed " << seed << " draw " << d;
+  }
+}
+
 // rasterize_rows_avx2 (exact_rows.hpp) against the exact rasterizer, primitive by primitive on the
 // same targets: random scenes of lines (every mode, widths 0.5-6 px, non-integer too) and triangles,
 // half of them in 4x frames (per-sample triangles and rectangular lines, pixel-centre Bresenham
 // lines), every depth format and compare op, writes, clamp, bias, scissors and viewports that cut
 // primitives, stored depths at random, each primitive's rows split at a random row as the tile rows
-// split them. Both targets must hold the same owner and depth bytes after every draw.
+// split them.
 TEST(FastExactRows, VectorRowsWriteWhatTheExactRasterizerWrites) {
   if (!host_has_avx2_fma()) GTEST_SKIP() << "the host runs no AVX2";
   uint64_t vector_primitives = 0, lines = 0, per_sample = 0;
@@ -650,38 +687,17 @@ TEST(FastExactRows, VectorRowsWriteWhatTheExactRasterizerWrites) {
       if (r.chance(0.5)) draw.state.line_width = float(r.range(0.5, 6.0));
       if (r.chance(0.15)) draw.state.line_mode = LineMode::RectangularSmooth;
     }
-    const bool fma = seed % 3 != 0;
-    const FrameContext frame = make_frame_context(scene, fma, {});
-    RenderTargets exact = make_render_targets(scene);
-    const uint32_t mask = depth_format_info(scene.depth_format).raw_mask;
-    for (uint32_t& raw : exact.depth_raw) raw = r.chance(0.3) ? raw : r.below(1u << 24) & mask;
-    if (is_float(scene.depth_format))
-      for (uint32_t& raw : exact.depth_raw) raw = float_bits(float(r.unit()));
-    RenderTargets vector = exact;
-    for (uint32_t d = 0; d < scene.draws.size(); ++d) {
-      const DepthTestState depth = make_depth_test_state(scene, scene.draws[d], frame.viewport, fma);
-      run_front_end(frame, d, [&](const PrimitiveOutcome& outcome) {
-        if (!outcome.rasterized()) return;
-        const RasterPrimitive& p = outcome.raster;
-        rasterize_primitive(p, depth, exact, WorkSkips{});
-        if (p.visit.empty()) return;
-        const int32_t split = p.visit.y0 + int32_t(r.below(uint32_t(p.visit.y1 - p.visit.y0 + 1)));
-        for (const auto& [y0, y1] : {std::pair{p.visit.y0, split - 1}, std::pair{split, p.visit.y1}}) {
-          if (rasterize_rows_avx2(p, y0, y1, depth, vector)) {
-            ++vector_primitives;
-            lines += p.is_line ? 1 : 0;
-            per_sample += p.per_sample ? 1 : 0;
-            continue;
-          }
-          RasterPrimitive band = p;
-          band.visit.y0 = y0;
-          band.visit.y1 = y1;
-          if (!band.visit.empty()) rasterize_primitive_rows(band, depth, vector, true);
-        }
-      });
-      ASSERT_EQ(exact.owner, vector.owner) << "seed " << seed << " draw " << d;
-      ASSERT_EQ(exact.depth_raw, vector.depth_raw) << "seed " << seed << " draw " << d;
-    }
+    const auto rows = [&r](const RasterPrimitive& p) {
+      const int32_t split = p.visit.y0 + int32_t(r.below(uint32_t(p.visit.y1 - p.visit.y0 + 1)));
+      return std::array<PixelRect, 2>{PixelRect{p.visit.x0, p.visit.y0, p.visit.x1, split - 1},
+                                      PixelRect{p.visit.x0, split, p.visit.x1, p.visit.y1}};
+    };
+    expect_vector_rows_match(scene, seed, r, rows, [&](const RasterPrimitive& p, bool vector) {
+      vector_primitives += vector ? 1 : 0;
+      lines += vector && p.is_line ? 1 : 0;
+      per_sample += vector && p.per_sample ? 1 : 0;
+    });
+    if (HasFatalFailure()) return;
   }
   EXPECT_GT(vector_primitives, 2000u);
   EXPECT_GT(lines, 500u);
@@ -689,10 +705,10 @@ TEST(FastExactRows, VectorRowsWriteWhatTheExactRasterizerWrites) {
 }
 
 // rasterize_rows_avx2's small per-sample primitives (sample_box_rows, exact_rows_avx2.cpp) against
-// the exact rasterizer: triangles of 0.3-40 px (and some far larger) in 4x frames of odd and even widths (a row's first
-// step starts one column before or at the visit), with scissors and viewports that cut them, every
-// depth format and compare op, writes, clamp and bias, each primitive's visit cut into runs of
-// columns and rows as the tiles of several workers cut it.
+// the exact rasterizer: triangles of 0.3-40 px (and some far larger) in 4x frames of odd and even
+// widths (a row's first step starts one column before or at the visit), with scissors and
+// viewports that cut them, every depth format and compare op, writes, clamp and bias, each
+// primitive's visit cut into runs of columns and rows as the tiles of several workers cut it.
 TEST(FastExactRows, SmallPerSampleTrianglesWriteWhatTheExactRasterizerWrites) {
   if (!host_has_avx2_fma()) GTEST_SKIP() << "the host runs no AVX2";
   uint64_t small = 0;
@@ -719,36 +735,17 @@ TEST(FastExactRows, SmallPerSampleTrianglesWriteWhatTheExactRasterizerWrites) {
                                            float(cz + r.range(-0.2, 0.2)), 1.0f);
       }
     }
-    const bool fma = seed % 3 != 0;
-    const FrameContext frame = make_frame_context(scene, fma, {});
-    RenderTargets exact = make_render_targets(scene);
-    const uint32_t mask = depth_format_info(scene.depth_format).raw_mask;
-    for (uint32_t& raw : exact.depth_raw) raw = r.chance(0.3) ? raw : r.below(1u << 24) & mask;
-    if (is_float(scene.depth_format))
-      for (uint32_t& raw : exact.depth_raw) raw = float_bits(float(r.unit()));
-    RenderTargets vector = exact;
-    for (uint32_t d = 0; d < scene.draws.size(); ++d) {
-      const DepthTestState depth = make_depth_test_state(scene, scene.draws[d], frame.viewport, fma);
-      run_front_end(frame, d, [&](const PrimitiveOutcome& outcome) {
-        if (!outcome.rasterized()) return;
-        const RasterPrimitive& p = outcome.raster;
-        rasterize_primitive(p, depth, exact, WorkSkips{});
-        if (p.visit.empty()) return;
-        small += p.visit.x1 - p.visit.x0 < 24 ? 1 : 0;
-        const int32_t split_y = p.visit.y0 + int32_t(r.below(uint32_t(p.visit.y1 - p.visit.y0 + 1)));
-        const int32_t split_x = p.visit.x0 + int32_t(r.below(uint32_t(p.visit.x1 - p.visit.x0 + 1)));
-        for (const auto& [y0, y1] : {std::pair{p.visit.y0, split_y - 1}, std::pair{split_y, p.visit.y1}}) {
-          for (const auto& [x0, x1] : {std::pair{p.visit.x0, split_x - 1}, std::pair{split_x, p.visit.x1}}) {
-            RasterPrimitive band = p;
-            band.visit = PixelRect{x0, y0, x1, y1};
-            if (band.visit.empty()) continue;
-            if (!rasterize_rows_avx2(band, y0, y1, depth, vector)) rasterize_primitive_rows(band, depth, vector, true);
-          }
-        }
-      });
-      ASSERT_EQ(exact.owner, vector.owner) << "seed " << seed << " draw " << d;
-      ASSERT_EQ(exact.depth_raw, vector.depth_raw) << "seed " << seed << " draw " << d;
-    }
+    const auto quarters = [&r](const RasterPrimitive& p) {
+      const PixelRect& v = p.visit;
+      const int32_t y = v.y0 + int32_t(r.below(uint32_t(v.y1 - v.y0 + 1)));
+      const int32_t x = v.x0 + int32_t(r.below(uint32_t(v.x1 - v.x0 + 1)));
+      return std::array<PixelRect, 4>{PixelRect{v.x0, v.y0, x - 1, y - 1}, PixelRect{x, v.y0, v.x1, y - 1},
+                                      PixelRect{v.x0, y, x - 1, v.y1}, PixelRect{x, y, v.x1, v.y1}};
+    };
+    expect_vector_rows_match(scene, seed, r, quarters, [&](const RasterPrimitive& p, bool) {
+      small += p.visit.x1 - p.visit.x0 < 24 ? 1 : 0;
+    });
+    if (HasFatalFailure()) return;
   }
   EXPECT_GT(small, 1500u);
 }

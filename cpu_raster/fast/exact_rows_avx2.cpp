@@ -302,6 +302,58 @@ RASTERCMP_AVX2 bool depth_rows(const RasterPrimitive& p, int32_t y0, int32_t y1,
   return true;
 }
 
+// What a step of a per-sample primitive in a 4x frame reads and writes the same way whatever chose
+// its lanes: lane l is sample l % 4 of pixel px + l / 4 (`pixel`), the step's eight values
+// contiguous at dp / op (32 bytes). Its depth (sample_point's floats: float(px) + the sample's x
+// offset, `y` the row's float plus the sample's y offset), the test against the stored values and
+// the writes of the passing covered lanes. A step with a lane outside the row (`row_end`: those
+// lanes hold another row's values) is loaded and stored masked to `covered`, which holds only
+// lanes of the row; otherwise the other lanes are written back as loaded (this worker's row).
+struct SampleStep {
+  __m256 sx, a0, dzdx, dzdy, offset;
+  __m256i id;
+};
+
+RASTERCMP_AVX2 inline SampleStep sample_step_of(const RasterPrimitive& p) {
+  return SampleStep{_mm256_setr_ps(kStandardSamples4x[0].x, kStandardSamples4x[1].x, kStandardSamples4x[2].x,
+                                   kStandardSamples4x[3].x, kStandardSamples4x[0].x, kStandardSamples4x[1].x,
+                                   kStandardSamples4x[2].x, kStandardSamples4x[3].x),
+                    _mm256_set1_ps(p.depth.a0),
+                    _mm256_set1_ps(p.depth.dzdx),
+                    _mm256_set1_ps(p.depth.dzdy),
+                    _mm256_set1_ps(p.offset.offset),
+                    _mm256_set1_epi32(int32_t(p.owner))};
+}
+
+// sample_point's y floats of a row's eight lanes: float(py) plus each lane's sample y offset.
+RASTERCMP_AVX2 inline __m256 sample_step_y(int32_t py) {
+  const __m256 sy = _mm256_setr_ps(kStandardSamples4x[0].y, kStandardSamples4x[1].y, kStandardSamples4x[2].y,
+                                   kStandardSamples4x[3].y, kStandardSamples4x[0].y, kStandardSamples4x[1].y,
+                                   kStandardSamples4x[2].y, kStandardSamples4x[3].y);
+  return _mm256_add_ps(_mm256_set1_ps(float(py)), sy);
+}
+
+template <DepthFormat F, CompareOp Op>
+RASTERCMP_AVX2 inline void draw_sample_step(const SampleStep& c, const KernelDepth& d, __m256i pixel, __m256 y,
+                                            __m256i covered, bool row_end, uint32_t* dp, uint32_t* op) {
+  const __m256 x = _mm256_add_ps(_mm256_cvtepi32_ps(pixel), c.sx);
+  const __m256 z = finish_depth8(mul_add8(c.dzdy, y, mul_add8(c.dzdx, x, c.a0, d.fma), d.fma), c.offset, d);
+  const __m256i raw = to_raw<F>(z);
+  const __m256i stored = row_end ? _mm256_maskload_epi32(reinterpret_cast<const int*>(dp), covered)
+                                 : _mm256_loadu_si256(reinterpret_cast<const __m256i*>(dp));
+  __m256i pass = covered;
+  if constexpr (Op != CompareOp::Always) pass = _mm256_and_si256(covered, depth_passes<F, Op>(z, raw, stored));
+  if (_mm256_testz_si256(pass, pass)) return;
+  if (row_end) {
+    if (d.write) _mm256_maskstore_epi32(reinterpret_cast<int*>(dp), pass, raw);
+    _mm256_maskstore_epi32(reinterpret_cast<int*>(op), pass, c.id);
+    return;
+  }
+  if (d.write) _mm256_storeu_si256(reinterpret_cast<__m256i*>(dp), _mm256_blendv_epi8(stored, raw, pass));
+  const __m256i old = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(op));
+  _mm256_storeu_si256(reinterpret_cast<__m256i*>(op), _mm256_blendv_epi8(old, c.id, pass));
+}
+
 // With an active depth test, a per-sample primitive in a 4x frame: one pixel row of the four
 // samples is a contiguous run of the attachments, eight values (two pixels) per step, lane l holding
 // column px + l / 4 and sample l % 4; a lane is covered when its column lies in its sample's covered
@@ -323,18 +375,8 @@ RASTERCMP_AVX2 bool sample_span_rows(const RasterPrimitive& p, int32_t y0, int32
   uint32_t* owner = targets.owner.data();
   const __m256i lane_pixel = _mm256_setr_epi32(0, 0, 0, 0, 1, 1, 1, 1);
   const __m256i lane_sample = _mm256_setr_epi32(0, 1, 2, 3, 0, 1, 2, 3);
-  // sample_point's floats: float(px) + the sample's x offset, float(py) + its y offset
-  const __m256 sx = _mm256_setr_ps(kStandardSamples4x[0].x, kStandardSamples4x[1].x, kStandardSamples4x[2].x,
-                                   kStandardSamples4x[3].x, kStandardSamples4x[0].x, kStandardSamples4x[1].x,
-                                   kStandardSamples4x[2].x, kStandardSamples4x[3].x);
-  const __m256 sy = _mm256_setr_ps(kStandardSamples4x[0].y, kStandardSamples4x[1].y, kStandardSamples4x[2].y,
-                                   kStandardSamples4x[3].y, kStandardSamples4x[0].y, kStandardSamples4x[1].y,
-                                   kStandardSamples4x[2].y, kStandardSamples4x[3].y);
-  const __m256 a0 = _mm256_set1_ps(p.depth.a0), dzdx = _mm256_set1_ps(p.depth.dzdx);
-  const __m256 dzdy = _mm256_set1_ps(p.depth.dzdy), offset = _mm256_set1_ps(p.offset.offset);
-  const __m256i id = _mm256_set1_epi32(int32_t(p.owner)), width_v = _mm256_set1_epi32(width),
-                one = _mm256_set1_epi32(1);
-  const __m256i minus_one = _mm256_set1_epi32(-1);
+  const SampleStep step = sample_step_of(p);
+  const __m256i one = _mm256_set1_epi32(1);
   const __m256d first = _mm256_set1_pd(double(p.visit.x0)), last = _mm256_set1_pd(double(p.visit.x1));
   // The columns of up to kChunkRows rows at a time, every row's lines asked for before the first
   // is drawn.
@@ -371,7 +413,7 @@ RASTERCMP_AVX2 bool sample_span_rows(const RasterPrimitive& p, int32_t y0, int32
             _mm256_castsi128_si256(_mm_load_si128(reinterpret_cast<const __m128i*>(x1))), lane_sample);
         const __m256i before = _mm256_sub_epi32(x0_v, one), after = _mm256_add_epi32(x1_v, one);
         const int32_t py = y + k;
-        const __m256 y_v = _mm256_add_ps(_mm256_set1_ps(float(py)), sy);
+        const __m256 y_v = sample_step_y(py);
         uint32_t* depth_row = depth + size_t(py) * size_t(width) * Samples;
         uint32_t* owner_row = owner + size_t(py) * size_t(width) * Samples;
         // steps on 32-byte boundaries of the attachments (both start on one), so a step's values lie
@@ -381,26 +423,8 @@ RASTERCMP_AVX2 bool sample_span_rows(const RasterPrimitive& p, int32_t y0, int32
           const __m256i pixel = _mm256_add_epi32(_mm256_set1_epi32(px), lane_pixel);
           const __m256i covered = _mm256_and_si256(_mm256_cmpgt_epi32(pixel, before), _mm256_cmpgt_epi32(after, pixel));
           const bool row_end = px < 0 || px + kPixels > width;  // lanes outside the row: other rows' values
-          const __m256i in_row =
-              _mm256_and_si256(_mm256_cmpgt_epi32(pixel, minus_one), _mm256_cmpgt_epi32(width_v, pixel));
-          uint32_t* dp = depth_row + ptrdiff_t(px) * Samples;
-          uint32_t* op = owner_row + ptrdiff_t(px) * Samples;
-          const __m256 x = _mm256_add_ps(_mm256_cvtepi32_ps(pixel), sx);
-          const __m256 z = finish_depth8(mul_add8(dzdy, y_v, mul_add8(dzdx, x, a0, d.fma), d.fma), offset, d);
-          const __m256i raw = to_raw<F>(z);
-          const __m256i stored = row_end ? _mm256_maskload_epi32(reinterpret_cast<const int*>(dp), in_row)
-                                         : _mm256_loadu_si256(reinterpret_cast<const __m256i*>(dp));
-          __m256i pass = covered;
-          if constexpr (Op != CompareOp::Always) pass = _mm256_and_si256(covered, depth_passes<F, Op>(z, raw, stored));
-          if (_mm256_testz_si256(pass, pass)) continue;
-          if (row_end) {
-            if (d.write) _mm256_maskstore_epi32(reinterpret_cast<int*>(dp), pass, raw);
-            _mm256_maskstore_epi32(reinterpret_cast<int*>(op), pass, id);
-            continue;
-          }
-          if (d.write) _mm256_storeu_si256(reinterpret_cast<__m256i*>(dp), _mm256_blendv_epi8(stored, raw, pass));
-          const __m256i old = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(op));
-          _mm256_storeu_si256(reinterpret_cast<__m256i*>(op), _mm256_blendv_epi8(old, id, pass));
+          draw_sample_step<F, Op>(step, d, pixel, y_v, covered, row_end, depth_row + ptrdiff_t(px) * Samples,
+                                  owner_row + ptrdiff_t(px) * Samples);
         }
       }
     }
@@ -463,15 +487,7 @@ RASTERCMP_AVX2 bool sample_box_rows(const RasterPrimitive& p, int32_t y0, int32_
   }
   uint32_t* depth = targets.depth_raw.data();
   uint32_t* owner = targets.owner.data();
-  const __m256 sx = _mm256_setr_ps(kStandardSamples4x[0].x, kStandardSamples4x[1].x, kStandardSamples4x[2].x,
-                                   kStandardSamples4x[3].x, kStandardSamples4x[0].x, kStandardSamples4x[1].x,
-                                   kStandardSamples4x[2].x, kStandardSamples4x[3].x);
-  const __m256 sy = _mm256_setr_ps(kStandardSamples4x[0].y, kStandardSamples4x[1].y, kStandardSamples4x[2].y,
-                                   kStandardSamples4x[3].y, kStandardSamples4x[0].y, kStandardSamples4x[1].y,
-                                   kStandardSamples4x[2].y, kStandardSamples4x[3].y);
-  const __m256 a0 = _mm256_set1_ps(p.depth.a0), dzdx = _mm256_set1_ps(p.depth.dzdx);
-  const __m256 dzdy = _mm256_set1_ps(p.depth.dzdy), offset = _mm256_set1_ps(p.offset.offset);
-  const __m256i id = _mm256_set1_epi32(int32_t(p.owner));
+  const SampleStep step = sample_step_of(p);
   const __m256i before = _mm256_set1_epi32(x0 - 1), after = _mm256_set1_epi32(x1 + 1);
   for (int32_t py = y0; py <= y1; ++py) {
     const int32_t first = x0 - int32_t((size_t(py) * size_t(width) + size_t(x0)) & 1u);  // start or start + 1
@@ -480,7 +496,7 @@ RASTERCMP_AVX2 bool sample_box_rows(const RasterPrimitive& p, int32_t y0, int32_
       n[i] = first == start ? row_n[i] : _mm256_add_epi32(row_n[i], gx1[i]);
       row_n[i] = _mm256_add_epi32(row_n[i], gy[i]);
     }
-    const __m256 y_v = _mm256_add_ps(_mm256_set1_ps(float(py)), sy);
+    const __m256 y_v = sample_step_y(py);
     uint32_t* depth_row = depth + size_t(py) * size_t(width) * Samples;
     uint32_t* owner_row = owner + size_t(py) * size_t(width) * Samples;
     for (int32_t px = first; px <= x1; px += 2) {
@@ -496,25 +512,8 @@ RASTERCMP_AVX2 bool sample_box_rows(const RasterPrimitive& p, int32_t y0, int32_
       const __m256i covered = _mm256_andnot_si256(_mm256_srai_epi32(any_out, 31), inside);
       if (_mm256_testz_si256(covered, covered)) continue;
       const bool row_end = px < 0 || px + 2 > width;  // lanes outside the row: other rows' values
-      uint32_t* dp = depth_row + ptrdiff_t(px) * Samples;
-      uint32_t* op = owner_row + ptrdiff_t(px) * Samples;
-      const __m256 x = _mm256_add_ps(_mm256_cvtepi32_ps(pixel), sx);
-      const __m256 z = finish_depth8(mul_add8(dzdy, y_v, mul_add8(dzdx, x, a0, d.fma), d.fma), offset, d);
-      const __m256i raw = to_raw<F>(z);
-      // covered lanes lie in [x0, x1], inside the row
-      const __m256i stored = row_end ? _mm256_maskload_epi32(reinterpret_cast<const int*>(dp), covered)
-                                     : _mm256_loadu_si256(reinterpret_cast<const __m256i*>(dp));
-      __m256i pass = covered;
-      if constexpr (Op != CompareOp::Always) pass = _mm256_and_si256(covered, depth_passes<F, Op>(z, raw, stored));
-      if (_mm256_testz_si256(pass, pass)) continue;
-      if (row_end) {
-        if (d.write) _mm256_maskstore_epi32(reinterpret_cast<int*>(dp), pass, raw);
-        _mm256_maskstore_epi32(reinterpret_cast<int*>(op), pass, id);
-        continue;
-      }
-      if (d.write) _mm256_storeu_si256(reinterpret_cast<__m256i*>(dp), _mm256_blendv_epi8(stored, raw, pass));
-      const __m256i old = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(op));
-      _mm256_storeu_si256(reinterpret_cast<__m256i*>(op), _mm256_blendv_epi8(old, id, pass));
+      draw_sample_step<F, Op>(step, d, pixel, y_v, covered, row_end, depth_row + ptrdiff_t(px) * Samples,
+                              owner_row + ptrdiff_t(px) * Samples);
     }
   }
   return true;
