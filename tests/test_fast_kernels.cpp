@@ -622,9 +622,7 @@ TEST(FastLeanSetup, LeanSetupEqualsSetupTriangle) {
         ++dropped;
         ASSERT_NE(setup.fate, SetupFate::Rasterized) << "trial " << trial;
         break;
-      case LeanSetup::Full:
-        ++full;
-        break;
+      case LeanSetup::Full: ++full; break;
     }
   }
   EXPECT_GT(drawn, 12000);
@@ -742,9 +740,8 @@ TEST(FastExactRows, SmallPerSampleTrianglesWriteWhatTheExactRasterizerWrites) {
       return std::array<PixelRect, 4>{PixelRect{v.x0, v.y0, x - 1, y - 1}, PixelRect{x, v.y0, v.x1, y - 1},
                                       PixelRect{v.x0, y, x - 1, v.y1}, PixelRect{x, y, v.x1, v.y1}};
     };
-    expect_vector_rows_match(scene, seed, r, quarters, [&](const RasterPrimitive& p, bool) {
-      small += p.visit.x1 - p.visit.x0 < 24 ? 1 : 0;
-    });
+    expect_vector_rows_match(scene, seed, r, quarters,
+                             [&](const RasterPrimitive& p, bool) { small += p.visit.x1 - p.visit.x0 < 24 ? 1 : 0; });
     if (HasFatalFailure()) return;
   }
   EXPECT_GT(small, 1500u);

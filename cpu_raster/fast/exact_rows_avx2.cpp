@@ -175,44 +175,63 @@ struct Fragments {
   alignas(32) float x[kBatch + 8], y[kBatch + 8];
 };
 
+// Eight fragments of one primitive, distinct samples anywhere in the targets: `index` (the sample's
+// value, or a pixel's first for a pixel-centre primitive) where `valid`, depth at (x, y), the stored
+// depths gathered and tested, the passing ones written one by one (the owner to `owner_values`
+// values from the index: a pixel-centre primitive's to every sample of the pixel).
+struct GatheredStep {
+  __m256 a0, dzdx, dzdy, offset;
+  uint32_t* depth;
+  uint32_t* owner;
+  uint32_t id, owner_values;
+};
+
+RASTERCMP_AVX2 inline GatheredStep gathered_step_of(const RasterPrimitive& p, RenderTargets& targets) {
+  return GatheredStep{_mm256_set1_ps(p.depth.a0),
+                      _mm256_set1_ps(p.depth.dzdx),
+                      _mm256_set1_ps(p.depth.dzdy),
+                      _mm256_set1_ps(p.offset.offset),
+                      targets.depth_raw.data(),
+                      targets.owner.data(),
+                      p.owner,
+                      p.per_sample ? 1u : targets.samples};
+}
+
+template <DepthFormat F, CompareOp Op>
+RASTERCMP_AVX2 inline void draw_gathered(const GatheredStep& c, const KernelDepth& d, __m256 x, __m256 y, __m256i index,
+                                         __m256i valid) {
+  const __m256 z = finish_depth8(mul_add8(c.dzdy, y, mul_add8(c.dzdx, x, c.a0, d.fma), d.fma), c.offset, d);
+  const __m256i raw = to_raw<F>(z);
+  __m256i pass = valid;
+  if constexpr (Op != CompareOp::Always) {
+    const __m256i stored =
+        _mm256_mask_i32gather_epi32(_mm256_setzero_si256(), reinterpret_cast<const int*>(c.depth), index, valid, 4);
+    pass = _mm256_and_si256(valid, depth_passes<F, Op>(z, raw, stored));
+  }
+  uint32_t bits = uint32_t(_mm256_movemask_ps(_mm256_castsi256_ps(pass)));
+  if (bits == 0) return;
+  alignas(32) uint32_t raw_lanes[8];
+  alignas(32) int32_t index_lanes[8];
+  _mm256_store_si256(reinterpret_cast<__m256i*>(raw_lanes), raw);
+  _mm256_store_si256(reinterpret_cast<__m256i*>(index_lanes), index);
+  for (; bits != 0; bits &= bits - 1) {
+    const int k = std::countr_zero(bits);
+    const size_t at = size_t(uint32_t(index_lanes[k]));
+    if (d.write) c.depth[at] = raw_lanes[k];
+    for (uint32_t t = 0; t < c.owner_values; ++t) c.owner[at + t] = c.id;
+  }
+}
+
 // Fragments [0, count): raw depth, test against the stored values, writes.
 template <DepthFormat F, CompareOp Op>
 RASTERCMP_AVX2 void flush_fragments(const Fragments& f, int32_t count, const RasterPrimitive& p, const KernelDepth& d,
                                     RenderTargets& targets) {
-  const __m256 a0 = _mm256_set1_ps(p.depth.a0), dzdx = _mm256_set1_ps(p.depth.dzdx);
-  const __m256 dzdy = _mm256_set1_ps(p.depth.dzdy), offset = _mm256_set1_ps(p.offset.offset);
+  const GatheredStep step = gathered_step_of(p, targets);
   const __m256i lanes = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
-  uint32_t* depth = targets.depth_raw.data();
-  uint32_t* owner = targets.owner.data();
-  const uint32_t samples = targets.samples, id = p.owner;
-  const bool per_sample = p.per_sample, write = d.write;
-  alignas(32) uint32_t raw_lanes[8];
-  for (int32_t i = 0; i < count; i += 8) {
-    const __m256i valid = _mm256_cmpgt_epi32(_mm256_set1_epi32(count - i), lanes);
-    const __m256 x = _mm256_load_ps(f.x + i), y = _mm256_load_ps(f.y + i);
-    const __m256i index = _mm256_load_si256(reinterpret_cast<const __m256i*>(f.index + i));
-    const __m256 z = finish_depth8(mul_add8(dzdy, y, mul_add8(dzdx, x, a0, d.fma), d.fma), offset, d);
-    const __m256i raw = to_raw<F>(z);
-    __m256i pass = valid;
-    if constexpr (Op != CompareOp::Always) {
-      const __m256i stored =
-          _mm256_mask_i32gather_epi32(_mm256_setzero_si256(), reinterpret_cast<const int*>(depth), index, valid, 4);
-      pass = _mm256_and_si256(valid, depth_passes<F, Op>(z, raw, stored));
-    }
-    uint32_t bits = uint32_t(_mm256_movemask_ps(_mm256_castsi256_ps(pass)));
-    if (bits == 0) continue;
-    _mm256_store_si256(reinterpret_cast<__m256i*>(raw_lanes), raw);
-    for (; bits != 0; bits &= bits - 1) {
-      const int k = std::countr_zero(bits);
-      const size_t at = size_t(uint32_t(f.index[i + k]));
-      if (write) depth[at] = raw_lanes[k];
-      if (per_sample) {
-        owner[at] = id;
-      } else {
-        for (uint32_t t = 0; t < samples; ++t) owner[at + t] = id;
-      }
-    }
-  }
+  for (int32_t i = 0; i < count; i += 8)
+    draw_gathered<F, Op>(step, d, _mm256_load_ps(f.x + i), _mm256_load_ps(f.y + i),
+                         _mm256_load_si256(reinterpret_cast<const __m256i*>(f.index + i)),
+                         _mm256_cmpgt_epi32(_mm256_set1_epi32(count - i), lanes));
 }
 
 // With an active depth test: each covered run of a sample row queued (index, x and y of each
@@ -458,14 +477,14 @@ RASTERCMP_AVX2 bool sample_box_rows(const RasterPrimitive& p, int32_t y0, int32_
   const int32_t start = x0 - 1;
   const int64_t reach_x = int64_t(x1) + 2 - start, reach_y = int64_t(y1) - y0 + 1;
   const __m256i lane_pixel = _mm256_setr_epi32(0, 0, 0, 0, 1, 1, 1, 1);
-  const __m256i lane_x = _mm256_setr_epi32(kStandardSamples4x[0].x_fixed, kStandardSamples4x[1].x_fixed,
-                                           kStandardSamples4x[2].x_fixed, kStandardSamples4x[3].x_fixed,
-                                           kStandardSamples4x[0].x_fixed, kStandardSamples4x[1].x_fixed,
-                                           kStandardSamples4x[2].x_fixed, kStandardSamples4x[3].x_fixed);
-  const __m256i lane_y = _mm256_setr_epi32(kStandardSamples4x[0].y_fixed, kStandardSamples4x[1].y_fixed,
-                                           kStandardSamples4x[2].y_fixed, kStandardSamples4x[3].y_fixed,
-                                           kStandardSamples4x[0].y_fixed, kStandardSamples4x[1].y_fixed,
-                                           kStandardSamples4x[2].y_fixed, kStandardSamples4x[3].y_fixed);
+  const __m256i lane_x =
+      _mm256_setr_epi32(kStandardSamples4x[0].x_fixed, kStandardSamples4x[1].x_fixed, kStandardSamples4x[2].x_fixed,
+                        kStandardSamples4x[3].x_fixed, kStandardSamples4x[0].x_fixed, kStandardSamples4x[1].x_fixed,
+                        kStandardSamples4x[2].x_fixed, kStandardSamples4x[3].x_fixed);
+  const __m256i lane_y =
+      _mm256_setr_epi32(kStandardSamples4x[0].y_fixed, kStandardSamples4x[1].y_fixed, kStandardSamples4x[2].y_fixed,
+                        kStandardSamples4x[3].y_fixed, kStandardSamples4x[0].y_fixed, kStandardSamples4x[1].y_fixed,
+                        kStandardSamples4x[2].y_fixed, kStandardSamples4x[3].y_fixed);
   __m256i row_n[8], gx1[8], gx2[8], gy[8];
   for (uint32_t i = 0; i < planes; ++i) {
     // lane (pixel k, sample s) of the first step: n at the pixel's corner, plus the sample's offset
@@ -473,12 +492,11 @@ RASTERCMP_AVX2 bool sample_box_rows(const RasterPrimitive& p, int32_t y0, int32_
     const EdgePlane& plane = p.planes.plane[i];
     const int64_t gx = -plane.dcdx * kFixedOne, dy = plane.dcdy * kFixedOne;
     const int64_t corner = edge_value(plane, int64_t(start) * kFixedOne, int64_t(y0) * kFixedOne) - 1;
-    const int64_t bound = (corner < 0 ? -corner : corner) + (gx < 0 ? -gx : gx) * reach_x +
-                          (dy < 0 ? -dy : dy) * reach_y;
+    const int64_t bound =
+        (corner < 0 ? -corner : corner) + (gx < 0 ? -gx : gx) * reach_x + (dy < 0 ? -dy : dy) * reach_y;
     if (bound >= (int64_t(1) << 31)) return false;  // then also |dcdx|, |dcdy| * 256 < 2^31
-    const __m256i offsets =
-        _mm256_sub_epi32(_mm256_mullo_epi32(_mm256_set1_epi32(int32_t(plane.dcdy)), lane_y),
-                         _mm256_mullo_epi32(_mm256_set1_epi32(int32_t(plane.dcdx)), lane_x));
+    const __m256i offsets = _mm256_sub_epi32(_mm256_mullo_epi32(_mm256_set1_epi32(int32_t(plane.dcdy)), lane_y),
+                                             _mm256_mullo_epi32(_mm256_set1_epi32(int32_t(plane.dcdx)), lane_x));
     gx1[i] = _mm256_set1_epi32(int32_t(gx));
     row_n[i] = _mm256_add_epi32(_mm256_add_epi32(_mm256_set1_epi32(int32_t(corner)), offsets),
                                 _mm256_mullo_epi32(gx1[i], lane_pixel));
@@ -535,16 +553,14 @@ RASTERCMP_AVX2 bool thin_rows(const RasterPrimitive& p, int32_t y0, int32_t y1, 
   if (!init_plane_rows(planes, p, 1, y0, y1)) return false;
   start_sample(planes, 0);
   const int32_t width = int32_t(targets.width);
-  uint32_t* depth = targets.depth_raw.data();
-  uint32_t* owner = targets.owner.data();
-  const __m256 a0 = _mm256_set1_ps(p.depth.a0), dzdx = _mm256_set1_ps(p.depth.dzdx);
-  const __m256 dzdy = _mm256_set1_ps(p.depth.dzdy), offset = _mm256_set1_ps(p.offset.offset);
+  const GatheredStep gathered = gathered_step_of(p, targets);
+  uint32_t* depth = gathered.depth;
+  uint32_t* owner = gathered.owner;
   const __m256i id = _mm256_set1_epi32(int32_t(p.owner));
   const __m256i lanes = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
-  const __m256i lane_row = _mm256_setr_epi32(0, 0, 1, 1, 2, 2, 3, 3), lane_column = _mm256_setr_epi32(0, 1, 0, 1, 0, 1, 0, 1);
+  const __m256i lane_row = _mm256_setr_epi32(0, 0, 1, 1, 2, 2, 3, 3),
+                lane_column = _mm256_setr_epi32(0, 1, 0, 1, 0, 1, 0, 1);
   const __m256d first = _mm256_set1_pd(double(p.visit.x0)), last = _mm256_set1_pd(double(p.visit.x1));
-  alignas(32) uint32_t raw_lanes[8];
-  alignas(32) int32_t index_lanes[8];
   constexpr int32_t kChunkRows = 64;
   alignas(16) int32_t u[kChunkRows / 4][2][4];  // [step][lo, hi][row of the step]
   for (int32_t chunk = y0; chunk <= y1; chunk += kChunkRows) {
@@ -564,38 +580,20 @@ RASTERCMP_AVX2 bool thin_rows(const RasterPrimitive& p, int32_t y0, int32_t y1, 
       const __m128i row_valid = _mm_cmpgt_epi32(_mm_set1_epi32(rows), _mm_setr_epi32(0, 1, 2, 3));
       const __m128i lo = _mm_load_si128(reinterpret_cast<const __m128i*>(u[b][0]));
       const __m128i runs = _mm_and_si128(
-          row_valid,
-          _mm_max_epi32(_mm_sub_epi32(_mm_load_si128(reinterpret_cast<const __m128i*>(u[b][1])), _mm_sub_epi32(lo, _mm_set1_epi32(1))),
-                        _mm_setzero_si128()));
+          row_valid, _mm_max_epi32(_mm_sub_epi32(_mm_load_si128(reinterpret_cast<const __m128i*>(u[b][1])),
+                                                 _mm_sub_epi32(lo, _mm_set1_epi32(1))),
+                                   _mm_setzero_si128()));
       if (_mm_testz_si128(runs, runs)) continue;
       if (_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpgt_epi32(runs, _mm_set1_epi32(2)))) == 0) {
         // every run at most two columns: one gathered step
         const __m256i row = _mm256_add_epi32(_mm256_set1_epi32(y), lane_row);
-        const __m256i column = _mm256_add_epi32(_mm256_permutevar8x32_epi32(_mm256_castsi128_si256(lo), lane_row), lane_column);
+        const __m256i column =
+            _mm256_add_epi32(_mm256_permutevar8x32_epi32(_mm256_castsi128_si256(lo), lane_row), lane_column);
         const __m256i valid =
             _mm256_cmpgt_epi32(_mm256_permutevar8x32_epi32(_mm256_castsi128_si256(runs), lane_row), lane_column);
         const __m256i index = _mm256_add_epi32(_mm256_mullo_epi32(row, _mm256_set1_epi32(width)), column);
         // sample_point's floats for a pixel-centre sample: float(px), float(py)
-        const __m256 z = finish_depth8(
-            mul_add8(dzdy, _mm256_cvtepi32_ps(row), mul_add8(dzdx, _mm256_cvtepi32_ps(column), a0, d.fma), d.fma), offset,
-            d);
-        const __m256i raw = to_raw<F>(z);
-        __m256i pass = valid;
-        if constexpr (Op != CompareOp::Always) {
-          const __m256i stored =
-              _mm256_mask_i32gather_epi32(_mm256_setzero_si256(), reinterpret_cast<const int*>(depth), index, valid, 4);
-          pass = _mm256_and_si256(valid, depth_passes<F, Op>(z, raw, stored));
-        }
-        uint32_t bits = uint32_t(_mm256_movemask_ps(_mm256_castsi256_ps(pass)));
-        if (bits == 0) continue;
-        _mm256_store_si256(reinterpret_cast<__m256i*>(raw_lanes), raw);
-        _mm256_store_si256(reinterpret_cast<__m256i*>(index_lanes), index);
-        for (; bits != 0; bits &= bits - 1) {
-          const int k = std::countr_zero(bits);
-          const size_t at = size_t(uint32_t(index_lanes[k]));
-          if (d.write) depth[at] = raw_lanes[k];
-          owner[at] = p.owner;
-        }
+        draw_gathered<F, Op>(gathered, d, _mm256_cvtepi32_ps(column), _mm256_cvtepi32_ps(row), index, valid);
         continue;
       }
       for (int32_t k = 0; k < rows; ++k) {
@@ -608,7 +606,9 @@ RASTERCMP_AVX2 bool thin_rows(const RasterPrimitive& p, int32_t y0, int32_t y1, 
           const __m256i column = _mm256_add_epi32(_mm256_set1_epi32(px), lanes);
           const __m256i covered = _mm256_cmpgt_epi32(_mm256_set1_epi32(x1 - px + 1), lanes);  // columns px .. x1
           const __m256 z =
-              finish_depth8(mul_add8(dzdy, y_v, mul_add8(dzdx, _mm256_cvtepi32_ps(column), a0, d.fma), d.fma), offset, d);
+              finish_depth8(mul_add8(gathered.dzdy, y_v,
+                                     mul_add8(gathered.dzdx, _mm256_cvtepi32_ps(column), gathered.a0, d.fma), d.fma),
+                            gathered.offset, d);
           const __m256i raw = to_raw<F>(z);
           __m256i pass = covered;
           if constexpr (Op != CompareOp::Always) {
