@@ -468,6 +468,23 @@ TEST(FastBinnedTiles, TileCoverageIsBinnedCoversPixelByPixel) {
   EXPECT_GT(uncovered, 100000);
 }
 
+// A random draw state and set-up context for the set-up tests: every cull mode and facing, the
+// depth test on or off, bias, every depth format, a 256x192 frame whose draw region cuts it (or,
+// with chance `whole_frame`, is the frame).
+void random_setup_case(fast_test::Random& r, double whole_frame, RasterState& state, SetupContext& ctx) {
+  state.cull_mode = r.chance(0.5) ? CullMode::None : CullMode(r.below(4));
+  state.front_face = r.chance(0.5) ? FrontFace::CounterClockwise : FrontFace::Clockwise;
+  state.depth.test_enable = r.chance(0.8);
+  state.depth_bias =
+      DepthBias{r.chance(0.3), float(r.range(-4, 4)), float(r.range(-2, 2)), float(r.range(-0.01, 0.01))};
+  ctx.framebuffer = PixelRect{0, 0, 255, 191};
+  const int32_t x0 = int32_t(r.below(200)), y0 = int32_t(r.below(150));
+  const int32_t x1 = x0 + int32_t(r.below(256 - uint32_t(x0))), y1 = y0 + int32_t(r.below(192 - uint32_t(y0)));
+  ctx.region = r.chance(whole_frame) ? ctx.framebuffer : PixelRect{x0, y0, x1, y1};
+  ctx.state = &state;
+  ctx.depth_format = DepthFormat(r.below(4));
+}
+
 // setup_piece (the lean set-up of clipped pieces) gives setup_triangle then fast_triangle_of for
 // every piece it draws, drops exactly what setup_triangle does not rasterize, and hands back
 // (Full) only what takes llvmpipe's wrapping set-up or fails to snap: random window triangles of
@@ -478,18 +495,8 @@ TEST(FastClippedPieces, LeanSetUpGivesTheExactPathsTriangle) {
   int drawn = 0, dropped = 0, full = 0;
   for (int trial = 0; trial < 40000; ++trial) {
     RasterState state;
-    state.cull_mode = r.chance(0.5) ? CullMode::None : CullMode(r.below(4));
-    state.front_face = r.chance(0.5) ? FrontFace::CounterClockwise : FrontFace::Clockwise;
-    state.depth.test_enable = r.chance(0.8);
-    state.depth_bias =
-        DepthBias{r.chance(0.3), float(r.range(-4, 4)), float(r.range(-2, 2)), float(r.range(-0.01, 0.01))};
     SetupContext ctx;
-    ctx.framebuffer = PixelRect{0, 0, 255, 191};
-    const int32_t x0 = int32_t(r.below(200)), y0 = int32_t(r.below(150));
-    const int32_t x1 = x0 + int32_t(r.below(256 - uint32_t(x0))), y1 = y0 + int32_t(r.below(192 - uint32_t(y0)));
-    ctx.region = PixelRect{x0, y0, x1, y1};
-    ctx.state = &state;
-    ctx.depth_format = DepthFormat(r.below(4));
+    random_setup_case(r, 0.0, state, ctx);
     std::array<WindowVertex, 3> window;
     // past the direct range (2^23 fixed units), large, small
     const double spread = r.chance(0.1) ? 3e7 : r.chance(0.3) ? 400.0 : 12.0;
@@ -551,18 +558,8 @@ TEST(FastLeanSetup, LeanSetupEqualsSetupTriangle) {
   const DenormalsFlushed ftz_daz;
   for (int trial = 0; trial < 40000; ++trial) {
     RasterState state;
-    state.cull_mode = r.chance(0.5) ? CullMode::None : CullMode(r.below(4));
-    state.front_face = r.chance(0.5) ? FrontFace::CounterClockwise : FrontFace::Clockwise;
-    state.depth.test_enable = r.chance(0.8);
-    state.depth_bias =
-        DepthBias{r.chance(0.3), float(r.range(-4, 4)), float(r.range(-2, 2)), float(r.range(-0.01, 0.01))};
     SetupContext ctx;
-    ctx.framebuffer = PixelRect{0, 0, 255, 191};
-    const int32_t x0 = int32_t(r.below(200)), y0 = int32_t(r.below(150));
-    const int32_t x1 = x0 + int32_t(r.below(256 - uint32_t(x0))), y1 = y0 + int32_t(r.below(192 - uint32_t(y0)));
-    ctx.region = r.chance(0.3) ? ctx.framebuffer : PixelRect{x0, y0, x1, y1};
-    ctx.state = &state;
-    ctx.depth_format = DepthFormat(r.below(4));
+    random_setup_case(r, 0.3, state, ctx);
     ctx.multisample = r.chance(0.5);
     if (r.chance(0.05)) ctx.methods.snap = SnapRounding::HalfAwayFromZero;
     if (r.chance(0.1)) ctx.skips.depth_only_when_attached = false;

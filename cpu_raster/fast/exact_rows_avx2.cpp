@@ -542,7 +542,7 @@ RASTERCMP_AVX2 bool sample_box_rows(const RasterPrimitive& p, int32_t y0, int32_
 // per step of four rows either one gathered eight-lane step, when every row's run is at most two
 // columns (lane 2k + j: row k, column u0[k] + j, valid when j < the run), or, row by row, steps of
 // eight contiguous columns masked to the run (a row of one sample per pixel is contiguous in the
-// attachments). Each lane's depth, test and write are flush_fragments'; a step holds distinct
+// attachments). Each lane's depth, test and write are draw_gathered's; a step holds distinct
 // samples of one primitive, so reading its stored values before writing any reads what the exact
 // path's order reads. Without the queue of depth_rows: a thin line's fragment is drawn where its
 // row's columns are known.
