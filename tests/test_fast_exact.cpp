@@ -463,15 +463,21 @@ TEST(FastBuiltinScenes, EverySupportedSceneMatchesExactPath) {
   EXPECT_GT(compared, scenes.size() / 2);
 }
 
+// What `describe` says of the Error a render throws ("" when it throws none).
+template <class Error, class Render, class Describe>
+std::string thrown(Render render, Describe describe) {
+  try {
+    render();
+  } catch (const Error& e) {
+    return describe(e);
+  }
+  return "";
+}
+
 // The JSON path of the InputError a render throws ("" when it throws none).
 template <class Render>
 std::string input_error_path(Render render) {
-  try {
-    render();
-  } catch (const InputError& e) {
-    return e.json_path();
-  }
-  return "";
+  return thrown<InputError>(render, [](const InputError& e) { return e.json_path(); });
 }
 
 // With several workers the fast path checks the index range where its block-row phase reads the
@@ -523,12 +529,7 @@ TEST(FastIndexCheck, SameErrorAsTheExactPath) {
 // The NotSupportedError message a render throws ("" when it throws none).
 template <class Render>
 std::string not_supported_message(Render render) {
-  try {
-    render();
-  } catch (const NotSupportedError& e) {
-    return e.what();
-  }
-  return "";
+  return thrown<NotSupportedError>(render, [](const NotSupportedError& e) { return std::string(e.what()); });
 }
 
 // Exact draws (a 4x frame) whose set-ups throw: a trailing pipelined run longer than one batch,

@@ -269,11 +269,10 @@ struct TrailingCheck {
 // With several workers the trailing runs' denormal checks are returned, for the block-row phase
 // to share out; with one they are made here.
 std::vector<TrailingCheck> transform_all_vertices(FastFrame& frame, bool check_pending) {
-  // the fast draws, and the triangle draws the exact front end walks (BandWorker::walk_exact reads
-  // their unclipped triangles' window positions here instead of transforming each corner per worker)
-  const auto transformed = [&frame](uint32_t d) {
-    return frame.draws[d].fast || is_triangle_topology(frame.scene->draws[d].topology);
-  };
+  // every triangle draw: the fast draws, and those the exact front end walks (BandWorker::walk_exact
+  // reads their unclipped triangles' window positions here instead of transforming each corner per
+  // worker)
+  const auto transformed = [&frame](uint32_t d) { return is_triangle_topology(frame.scene->draws[d].topology); };
   size_t total = 0;
   for (uint32_t d = 0; d < frame.draws.size(); ++d)
     if (transformed(d)) total += frame.scene->draws[d].positions_clip.size();
