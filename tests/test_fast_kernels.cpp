@@ -9,10 +9,13 @@
 #include <array>
 #include <bit>
 #include <cmath>
+#include <random>
 #include <vector>
 
+#include "cpu_raster/exact/depth_plane.hpp"
 #include "cpu_raster/exact/depth_sample.hpp"
 #include "cpu_raster/exact/edge_plane.hpp"
+#include "cpu_raster/exact/float_ops.hpp"
 #include "cpu_raster/exact/fixed_point.hpp"
 #include "cpu_raster/exact/front_end.hpp"
 #include "cpu_raster/exact/rasterize.hpp"
@@ -236,6 +239,76 @@ TEST(FastSmallTriangles, PairSetupEqualsTwoBlocks) {
     }
   }
   for (int c = 0; c < 4; ++c) EXPECT_GT(seen[c], 500) << "lane class " << c;
+}
+
+// The trailing-run check's eight-wide planes (trailing_depth_planes_avx2) raise the MXCSR flags
+// DenormalWatch reads exactly when the scalar loop's two triangle_depth_plane calls do: per
+// triangle (the lane repeated, as a last short group is) and per group of eight, with denormals
+// kept and under FTZ|DAZ. The triangles' z and coordinates are drawn to reach denormals: tiny
+// and denormal z, near-equal z, tiny coordinates, slivers.
+TEST(FastSmallTriangles, TrailingPlanesRaiseTheScalarLoopsFlags) {
+  if (!host_has_avx2_fma()) GTEST_SKIP() << "the host runs no AVX2";
+  std::mt19937 rng(37);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  const auto coordinate = [&]() -> float {
+    switch (rng() % 4) {
+      case 0: return std::ldexp(unit(rng), -int(rng() % 140));  // down to denormals
+      case 1: return 0.5f;
+      default: return 2048.0f * unit(rng);
+    }
+  };
+  const auto depth = [&](float near) -> float {
+    switch (rng() % 5) {
+      case 0: return std::ldexp(unit(rng), -int(rng() % 150));
+      case 1: return 0.0f;
+      case 2: return std::nextafter(near, 1.0f);  // one ulp from another corner
+      default: return unit(rng);
+    }
+  };
+  volatile float sink = 0.0f;
+  const auto scalar_met = [&](const FastVertex* v, const uint32_t (&c)[3][8], int lanes) {
+    const DenormalWatch watch;
+    for (int l = 0; l < lanes; ++l) {
+      const auto w = [&](uint32_t i) { return WindowVertex{v[i].x, v[i].y, v[i].z}; };
+      for (const std::array<WindowVertex, 3>& t : {std::array<WindowVertex, 3>{w(c[0][l]), w(c[1][l]), w(c[2][l])},
+                                                   std::array<WindowVertex, 3>{w(c[0][l]), w(c[2][l]), w(c[1][l])}}) {
+        const DepthPlane p = triangle_depth_plane(t, 0.5f);
+        sink = p.a0;
+        sink = p.dzdx;
+        sink = p.dzdy;
+      }
+    }
+    return watch.met();
+  };
+  const auto vector_met = [&](const FastVertex* v, const uint32_t (&c)[3][8]) {
+    const DenormalWatch watch;
+    sink = float(trailing_depth_planes_avx2(v, c));
+    return watch.met();
+  };
+  int outcomes[2] = {0, 0};
+  for (const bool flushed : {false, true}) {
+    const ScopedDenormalMode mode(flushed);
+    for (int trial = 0; trial < 4000; ++trial) {
+      std::vector<FastVertex> v;
+      for (int i = 0; i < 24; ++i) {
+        const float near = v.empty() ? unit(rng) : v.back().z;
+        v.push_back(FastVertex{coordinate(), coordinate(), depth(near), 0});
+      }
+      if (rng() % 4 == 0) v[2].y = std::nextafter(v[1].y, 4096.0f);  // a sliver
+      uint32_t group[3][8];
+      for (uint32_t l = 0; l < 8; ++l)
+        for (uint32_t k = 0; k < 3; ++k) group[k][l] = 3 * l + k;
+      ASSERT_EQ(scalar_met(v.data(), group, 8), vector_met(v.data(), group)) << "trial " << trial;
+      uint32_t one[3][8];
+      const uint32_t l = rng() % 8;
+      for (uint32_t k = 0; k < 3; ++k) std::fill(one[k], one[k] + 8, group[k][l]);
+      const bool met = scalar_met(v.data(), one, 1);
+      ASSERT_EQ(met, vector_met(v.data(), one)) << "trial " << trial << " lane " << l << " flushed " << flushed;
+      ++outcomes[met ? 1 : 0];
+    }
+  }
+  EXPECT_GT(outcomes[0], 1000);
+  EXPECT_GT(outcomes[1], 1000);
 }
 
 // G > 0 exactly where the exact 64-bit edge value E > 0, over random rectangles of a tile.

@@ -29,6 +29,7 @@
 #include "cpu_raster/fast/cpu_features.hpp"
 #include "cpu_raster/fast/frame_memory.hpp"
 #include "cpu_raster/fast/row_balance.hpp"
+#include "cpu_raster/fast/small_block_input.hpp"
 #include "cpu_raster/fast/worker_pool.hpp"
 #include "model/depth_format.hpp"
 #include "model/host.hpp"
@@ -208,29 +209,40 @@ uint32_t trailing_run_first(const FastFrame& frame, uint32_t d) {
 // denormal or a tiny value: the clip and set-up of each, watched (DenormalWatch, this thread's
 // flags). Both vertex orders of an unclipped triangle are tried (set-up may swap two vertices).
 // False: every set-up of the range gives the same bits with denormals flushed and kept. Primitives
-// with a position past the draw's are left out (the render throws on them).
-bool run_meets_denormals(const FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end) {
+// with a position past the draw's are left out (the render throws on them). On AVX2 hosts, without
+// depth bias, the unclipped triangles' planes are formed eight at a time, in one order
+// (trailing_depth_planes_avx2: each lane the scalar operations, so the same flags, which the other
+// order raises too; a last group of fewer repeats its first triangle).
+template <Topology T, bool Indexed>
+bool run_meets_denormals_of(const FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end) {
   const FastDraw& fd = frame.draws[d];
   const Draw& draw = frame.scene->draws[d];
+  const uint32_t* indices = draw.indices.data();
   const size_t positions = draw.positions_clip.size();
   const DepthBias& bias = draw.state.depth_bias;
   const UnormBiasUnits units = unorm_bias_units(fd.setup.rules);
+  const bool eight_wide = frame.raster.avx2 && !bias.enable;
   const auto window = [&](uint32_t position) {
     const FastVertex& v = fd.vertices[position];
     return WindowVertex{v.x, v.y, v.z};
   };
   // The results are stored where the compiler cannot drop the arithmetic that forms them.
   volatile float sink = 0.0f;
+  volatile uint32_t sink_bits = 0;
   const auto keep = [&sink](const DepthPlane& p, float offset) {
     sink = p.a0;
     sink = p.dzdx;
     sink = p.dzdy;
     sink = offset;
   };
+  const auto keep_eight = [&sink_bits](uint32_t sign_bits) { sink_bits = sign_bits; };
+  alignas(32) uint32_t group[3][8];
+  uint32_t grouped = 0;
   const DenormalWatch watch;
   for (uint32_t i = begin; i < end; ++i) {
-    const AssembledPrimitive prim = assemble_primitive(draw, i);
-    const uint32_t a = prim.position[0], b = prim.position[1], c = prim.position[2];
+    const std::array<uint32_t, 3> n = vertex_numbers<T>(i);
+    const uint32_t a = Indexed ? indices[n[0]] : n[0], b = Indexed ? indices[n[1]] : n[1],
+                   c = Indexed ? indices[n[2]] : n[2];
     if (a >= positions || b >= positions || c >= positions) continue;
     const uint32_t flags = fd.vertices[a].flags | fd.vertices[b].flags | fd.vertices[c].flags;
     if (flags & kVertexClipBits) {
@@ -241,6 +253,16 @@ bool run_meets_denormals(const FastFrame& frame, uint32_t d, uint32_t begin, uin
       continue;
     }
     if (flags & kVertexSnapFailed) continue;
+    if (eight_wide) {
+      group[0][grouped] = a;
+      group[1][grouped] = b;
+      group[2][grouped] = c;
+      if (++grouped == 8) {
+        keep_eight(trailing_depth_planes_avx2(fd.vertices, group));
+        grouped = 0;
+      }
+      continue;
+    }
     for (const std::array<WindowVertex, 3>& v :
          {std::array<WindowVertex, 3>{window(a), window(b), window(c)},
           std::array<WindowVertex, 3>{window(a), window(c), window(b)}}) {
@@ -248,7 +270,29 @@ bool run_meets_denormals(const FastFrame& frame, uint32_t d, uint32_t begin, uin
            bias.enable ? triangle_depth_offset(v, bias, fd.setup.depth_format, true, units).offset : 0.0f);
     }
   }
+  if (grouped > 0) {
+    for (uint32_t l = grouped; l < 8; ++l)
+      for (uint32_t k = 0; k < 3; ++k) group[k][l] = group[k][0];
+    keep_eight(trailing_depth_planes_avx2(fd.vertices, group));
+  }
   return watch.met();
+}
+
+bool run_meets_denormals(const FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end) {
+  const Draw& draw = frame.scene->draws[d];
+  const bool indexed = !draw.indices.empty();
+  switch (draw.topology) {
+    case Topology::TriangleList:
+      return indexed ? run_meets_denormals_of<Topology::TriangleList, true>(frame, d, begin, end)
+                     : run_meets_denormals_of<Topology::TriangleList, false>(frame, d, begin, end);
+    case Topology::TriangleStrip:
+      return indexed ? run_meets_denormals_of<Topology::TriangleStrip, true>(frame, d, begin, end)
+                     : run_meets_denormals_of<Topology::TriangleStrip, false>(frame, d, begin, end);
+    case Topology::TriangleFan:
+      return indexed ? run_meets_denormals_of<Topology::TriangleFan, true>(frame, d, begin, end)
+                     : run_meets_denormals_of<Topology::TriangleFan, false>(frame, d, begin, end);
+    default: return true;  // not a fast draw: fast draws are triangle draws
+  }
 }
 
 // A bias factor that is a denormal meets one in every set-up of a non-empty run.

@@ -29,8 +29,8 @@ RASTERCMP_SMALL_TARGET inline __m256i snap_fixed8(__m256 c) {
   return _mm256_cvtps_epi32(_mm256_mul_ps(_mm256_sub_ps(c, _mm256_set1_ps(0.5f)), _mm256_set1_ps(256.0f)));
 }
 
-// Eight FastVertex (16 bytes each) → one register per field (a 4x8 transpose), and the snap.
-RASTERCMP_SMALL_TARGET inline Corners load_corners(const FastVertex* v, const uint32_t* index, uint32_t stride) {
+// Eight FastVertex (16 bytes each) → one register per field (a 4x8 transpose), without the snap.
+RASTERCMP_SMALL_TARGET inline Corners load_fields(const FastVertex* v, const uint32_t* index, uint32_t stride) {
   __m256 r[4];  // vertices k and k + 4
   for (uint32_t k = 0; k < 4; ++k)
     r[k] = _mm256_insertf128_ps(
@@ -43,6 +43,12 @@ RASTERCMP_SMALL_TARGET inline Corners load_corners(const FastVertex* v, const ui
   c.y = _mm256_shuffle_ps(t0, t2, 0xEE);
   c.z = _mm256_shuffle_ps(t1, t3, 0x44);
   c.flags = _mm256_castps_si256(_mm256_shuffle_ps(t1, t3, 0xEE));
+  return c;
+}
+
+// The fields and the snap.
+RASTERCMP_SMALL_TARGET inline Corners load_corners(const FastVertex* v, const uint32_t* index, uint32_t stride) {
+  Corners c = load_fields(v, index, stride);
   c.x_fixed = snap_fixed8(c.x);
   c.y_fixed = snap_fixed8(c.y);
   return c;
@@ -261,6 +267,22 @@ RASTERCMP_SMALL_TARGET inline void store_window_lanes(const Edge8 (&edges)[3], c
 #endif
 
 }  // namespace
+
+#ifdef RASTERCMP_SMALL_TRAILING_PLANES
+// triangle_depth_plane(window, 0.5f) of eight triangles (a, b, c), one IEEE operation per
+// intrinsic: the MXCSR flags of the trailing-run check's scalar loop (render_fast.cpp), which also
+// forms the plane of (a, c, b). That order raises the same flags: its differences are the first
+// order's negated or exchanged (dx01' = -dx20, dy20' = -dy01, ...), its area's products are the
+// first's f and e, so its area is -(e - f) and its 1/area -ooa (rounding to nearest is symmetric
+// under negation), and dzdx, dzdy and a0 come out as the same roundings of the same magnitudes.
+// The sign bits of every result, ORed, so that none of the arithmetic is left out.
+RASTERCMP_SMALL_TARGET uint32_t RASTERCMP_SMALL_TRAILING_PLANES(const FastVertex* vertices,
+                                                                const uint32_t (&corners)[3][8]) {
+  const Plane8 plane = depth_plane8(load_fields(vertices, corners[0], 1), load_fields(vertices, corners[1], 1),
+                                    load_fields(vertices, corners[2], 1));
+  return uint32_t(_mm256_movemask_ps(_mm256_or_ps(plane.a0, _mm256_or_ps(plane.dzdx, plane.dzdy))));
+}
+#endif
 
 RASTERCMP_SMALL_TARGET void RASTERCMP_SMALL_SETUP(const SmallBlockInput& in, SmallBlockOutput& out) {
   out.window = false;

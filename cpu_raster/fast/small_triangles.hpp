@@ -105,6 +105,12 @@ using SmallSetupFn = void (*)(const SmallBlockInput& in, SmallBlockOutput& out);
 void setup_small_block_avx2(const SmallBlockInput& in, SmallBlockOutput& out);
 void setup_small_block_avx512(const SmallBlockInput& in, SmallBlockOutput& out);
 
+// The depth planes of eight triangles (corner k of lane l: vertices[corners[k][l]]), as
+// triangle_depth_plane forms them, for the MXCSR flags their arithmetic raises (the trailing-run
+// check, render_fast.cpp): each lane's flags are the scalar loop's for its triangle in either
+// corner order. AVX2 hosts (small_setup_simd.inl). Returns the ORed sign bits of the results.
+uint32_t trailing_depth_planes_avx2(const FastVertex* vertices, const uint32_t (&corners)[3][8]);
+
 // The sixteen-wide set-up (small_pair_avx512.cpp, AVX-512 hosts): two blocks of one draw at once
 // (in1's corners and count are its own, the draw state is in0's). Each output describes what
 // setup_small_block_avx512 gives for its block: the same lane classes, rectangles, covered pixels
