@@ -7,6 +7,7 @@
 
 #include "cpu_raster/exact/binned_triangle.hpp"
 #include "cpu_raster/exact/depth_plane.hpp"
+#include "cpu_raster/exact/float_ops.hpp"
 #include "cpu_raster/fast/block_rows.hpp"
 #include "cpu_raster/fast/small_block_input.hpp"
 
@@ -89,10 +90,12 @@ struct LaneRows {
 };
 
 template <Topology T, bool Indexed>
-void clip_blocks(FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end, ClippedTable& table) {
+bool clip_blocks(FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end, ClippedTable& table,
+                 uint32_t watch_from) {
   const Draw& draw = frame.scene->draws[d];
   FastDraw& fd = frame.draws[d];
   const uint32_t count = primitive_count(draw);
+  bool met = false;
   SmallBlock block;
   for (uint32_t b = begin; b < end; ++b) {
     if (fd.block_rows[b] != kBlockAnyRow) continue;  // known rows: no corner needs clipping
@@ -112,6 +115,8 @@ void clip_blocks(FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end, Cli
       ClippedPrimitive entry;
       entry.primitive = block.first + l;
       entry.first = uint32_t(table.pieces.size());
+      const std::optional<DenormalWatch> watch =
+          entry.primitive >= watch_from ? std::optional<DenormalWatch>(std::in_place) : std::nullopt;
       for_each_piece(
           frame, d, entry.primitive, a, bb, c,
           [&](const FastTriangle& t) {
@@ -119,30 +124,33 @@ void clip_blocks(FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end, Cli
             if (!t.rect.empty()) rows.add(t.rect.y0 >> kTileOrder, t.rect.y1 >> kTileOrder);
           },
           [&](const RasterPrimitive&) { entry.in_place = true; });
+      met |= watch && watch->met();
       rows.any_row |= entry.in_place;
       entry.count = uint32_t(table.pieces.size()) - entry.first;
       table.primitives.push_back(entry);
     }
     fd.block_rows[b] = rows.packed(frame.exact.region);
   }
+  return met;
 }
 
 }  // namespace
 
-void clip_block_triangles(FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end, ClippedTable& table) {
+bool clip_block_triangles(FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end, ClippedTable& table,
+                          uint32_t watch_from) {
   const Draw& draw = frame.scene->draws[d];
   const bool indexed = !draw.indices.empty();
   switch (draw.topology) {
     case Topology::TriangleList:
-      return indexed ? clip_blocks<Topology::TriangleList, true>(frame, d, begin, end, table)
-                     : clip_blocks<Topology::TriangleList, false>(frame, d, begin, end, table);
+      return indexed ? clip_blocks<Topology::TriangleList, true>(frame, d, begin, end, table, watch_from)
+                     : clip_blocks<Topology::TriangleList, false>(frame, d, begin, end, table, watch_from);
     case Topology::TriangleStrip:
-      return indexed ? clip_blocks<Topology::TriangleStrip, true>(frame, d, begin, end, table)
-                     : clip_blocks<Topology::TriangleStrip, false>(frame, d, begin, end, table);
+      return indexed ? clip_blocks<Topology::TriangleStrip, true>(frame, d, begin, end, table, watch_from)
+                     : clip_blocks<Topology::TriangleStrip, false>(frame, d, begin, end, table, watch_from);
     case Topology::TriangleFan:
-      return indexed ? clip_blocks<Topology::TriangleFan, true>(frame, d, begin, end, table)
-                     : clip_blocks<Topology::TriangleFan, false>(frame, d, begin, end, table);
-    default: return;
+      return indexed ? clip_blocks<Topology::TriangleFan, true>(frame, d, begin, end, table, watch_from)
+                     : clip_blocks<Topology::TriangleFan, false>(frame, d, begin, end, table, watch_from);
+    default: return false;
   }
 }
 

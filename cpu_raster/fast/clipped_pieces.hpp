@@ -80,7 +80,12 @@ void for_each_piece(const FastFrame& frame, uint32_t d, uint32_t primitive, uint
 // the tile rows its lanes reach: its other lanes' corners' rows and its pieces' rectangles' rows
 // (kBlockAnyRow only where a piece takes llvmpipe's wrapping set-up). Before, every worker set up
 // perspective's 201 such blocks, and a worker whose rows none reached walked 11 us longer.
-void clip_block_triangles(FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end, ClippedTable& table);
+// Returns whether the clipping and set-up of a triangle numbered watch_from or later met a
+// denormal or a tiny value (DenormalWatch around each): the trailing-run check's verdict on the
+// clipped triangles of those blocks (render_fast.cpp), which are the draw's clipped triangles
+// there (a lane that needs clipping keeps its block at kBlockAnyRow until here).
+bool clip_block_triangles(FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end, ClippedTable& table,
+                          uint32_t watch_from);
 
 // Appends `part` (the next primitives of the same draw) to `table`.
 void append_clipped(ClippedTable& table, const ClippedTable& part);

@@ -212,9 +212,11 @@ uint32_t trailing_run_first(const FastFrame& frame, uint32_t d) {
 // with a position past the draw's are left out (the render throws on them). On AVX2 hosts, without
 // depth bias, the unclipped triangles' planes are formed eight at a time, in one order
 // (trailing_depth_planes_avx2: each lane the scalar operations, so the same flags, which the other
-// order raises too; a last group of fewer repeats its first triangle).
+// order raises too; a last group of fewer repeats its first triangle). With clipped_elsewhere the
+// triangles that need clipping are left to clip_block_triangles, which watches them as it clips
+// them (the block-row phase).
 template <Topology T, bool Indexed>
-bool run_meets_denormals_of(const FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end) {
+bool run_meets_denormals_of(const FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end, bool clipped_elsewhere) {
   const FastDraw& fd = frame.draws[d];
   const Draw& draw = frame.scene->draws[d];
   const uint32_t* indices = draw.indices.data();
@@ -246,7 +248,7 @@ bool run_meets_denormals_of(const FastFrame& frame, uint32_t d, uint32_t begin, 
     if (a >= positions || b >= positions || c >= positions) continue;
     const uint32_t flags = fd.vertices[a].flags | fd.vertices[b].flags | fd.vertices[c].flags;
     if (flags & kVertexClipBits) {
-      if (needs_clipping(fd.vertices[a].flags, fd.vertices[b].flags, fd.vertices[c].flags))
+      if (!clipped_elsewhere && needs_clipping(fd.vertices[a].flags, fd.vertices[b].flags, fd.vertices[c].flags))
         for_each_piece(
             frame, d, i, a, b, c, [&](const FastTriangle& t) { keep(DepthPlane{t.a0, t.dzdx, t.dzdy}, t.offset); },
             [&](const RasterPrimitive& p) { keep(p.depth, p.offset.offset); });
@@ -278,19 +280,21 @@ bool run_meets_denormals_of(const FastFrame& frame, uint32_t d, uint32_t begin, 
   return watch.met();
 }
 
-bool run_meets_denormals(const FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end) {
+bool run_meets_denormals(const FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end,
+                         bool clipped_elsewhere = false) {
   const Draw& draw = frame.scene->draws[d];
   const bool indexed = !draw.indices.empty();
+  const bool c = clipped_elsewhere;
   switch (draw.topology) {
     case Topology::TriangleList:
-      return indexed ? run_meets_denormals_of<Topology::TriangleList, true>(frame, d, begin, end)
-                     : run_meets_denormals_of<Topology::TriangleList, false>(frame, d, begin, end);
+      return indexed ? run_meets_denormals_of<Topology::TriangleList, true>(frame, d, begin, end, c)
+                     : run_meets_denormals_of<Topology::TriangleList, false>(frame, d, begin, end, c);
     case Topology::TriangleStrip:
-      return indexed ? run_meets_denormals_of<Topology::TriangleStrip, true>(frame, d, begin, end)
-                     : run_meets_denormals_of<Topology::TriangleStrip, false>(frame, d, begin, end);
+      return indexed ? run_meets_denormals_of<Topology::TriangleStrip, true>(frame, d, begin, end, c)
+                     : run_meets_denormals_of<Topology::TriangleStrip, false>(frame, d, begin, end, c);
     case Topology::TriangleFan:
-      return indexed ? run_meets_denormals_of<Topology::TriangleFan, true>(frame, d, begin, end)
-                     : run_meets_denormals_of<Topology::TriangleFan, false>(frame, d, begin, end);
+      return indexed ? run_meets_denormals_of<Topology::TriangleFan, true>(frame, d, begin, end, c)
+                     : run_meets_denormals_of<Topology::TriangleFan, false>(frame, d, begin, end, c);
     default: return true;  // not a fast draw: fast draws are triangle draws
   }
 }
@@ -522,7 +526,11 @@ void measure_all_block_rows(FastFrame& frame, const std::vector<TrailingCheck>& 
   const size_t tiles_y = size_t(std::max(frame.raster.tiles_y, 0));
   std::vector<int32_t> reach(tasks.size() * (tiles_y + 1), 0);
   std::vector<ClippedTable> clipped(tasks.size());  // the tasks' clipped triangles (clipped_pieces.hpp)
-  std::vector<uint8_t> met(check_tasks.size(), 0);
+  std::vector<uint8_t> met(check_tasks.size(), 0), clipped_met(tasks.size(), 0);
+  // A draw of small blocks has its clipped triangles watched where the row tasks clip them, from
+  // its trailing run's first on; the check tasks leave them out.
+  std::vector<uint32_t> watch_from(frame.draws.size(), UINT32_MAX);
+  for (const TrailingCheck& c : checks) watch_from[c.draw] = c.first;
   std::atomic<size_t> next{0};
   std::atomic<bool> bad_index{false}, any_row{false};
   TaskTimes times(frame, check_tasks.size() + tasks.size());
@@ -532,7 +540,9 @@ void measure_all_block_rows(FastFrame& frame, const std::vector<TrailingCheck>& 
       bad_index = true;
       return;
     }
-    clip_block_triangles(frame, task.draw, task.begin, task.end, clipped[t]);  // narrows kBlockAnyRow
+    // narrows kBlockAnyRow
+    if (clip_block_triangles(frame, task.draw, task.begin, task.end, clipped[t], watch_from[task.draw]))
+      clipped_met[t] = 1;
     if (count_block_rows(frame.draws[task.draw].block_rows + task.begin, task.end - task.begin, tiles_y,
                          reach.data() + t * (tiles_y + 1)))
       any_row = true;
@@ -542,7 +552,7 @@ void measure_all_block_rows(FastFrame& frame, const std::vector<TrailingCheck>& 
       times.run(i, w, [&] {
         if (i < check_tasks.size()) {  // the checks first: the longer tasks
           const CheckTask& c = check_tasks[i];
-          met[i] = run_meets_denormals(frame, c.draw, c.begin, c.end) ? 1 : 0;
+          met[i] = run_meets_denormals(frame, c.draw, c.begin, c.end, frame.draws[c.draw].small_blocks) ? 1 : 0;
         } else {
           row_task(i - check_tasks.size());
         }
@@ -553,6 +563,8 @@ void measure_all_block_rows(FastFrame& frame, const std::vector<TrailingCheck>& 
   if (bad_index) check_lavapipe_profile_support(*frame.scene);
   for (size_t i = 0; i < check_tasks.size(); ++i)
     if (met[i]) drop_fast_draw(frame.draws[check_tasks[i].draw]);
+  for (size_t t = 0; t < tasks.size(); ++t)
+    if (clipped_met[t]) drop_fast_draw(frame.draws[tasks[t].draw]);
   for (size_t t = 0; t < tasks.size(); ++t) {
     if (!frame.draws[tasks[t].draw].small_blocks) {  // dropped: its blocks count nowhere
       std::fill_n(reach.begin() + std::ptrdiff_t(t * (tiles_y + 1)), tiles_y + 1, 0);
