@@ -242,6 +242,31 @@ TEST(FastSharedRows, HeavyRowCutIntoRunsOfTilesMatchesExactPath) {
   EXPECT_GT(profile.phases.back().tasks.size(), 4u);
 }
 
+// The set-ups of a trailing pipelined run that meet a denormal (the reduced random scenes of
+// tests/data/scenes/denormal-planes) after 40 draws of one small triangle each, which share the
+// vertex phase's first task with them: each draw's clip bits, which decide its trailing run and
+// its check, are its own.
+TEST(FastVertexPhase, DrawsSharingATaskKeepTheirOwnClipBits) {
+  const std::string root = std::string(RASTERCMP_SOURCE_DIR) + "/tests/data/scenes/denormal-planes";
+  int scenes = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(root)) {
+    const Scene original = load_scene_file(entry.path().string());
+    Scene scene = original;
+    scene.draws.clear();
+    for (int k = 0; k < 40; ++k) {
+      Draw small;
+      small.name = "small " + std::to_string(k);
+      const float x = -0.9f + 0.04f * float(k);
+      small.positions_clip = {{x, -0.9f, 0.5f, 1.0f}, {x + 0.03f, -0.9f, 0.5f, 1.0f}, {x, -0.87f, 0.5f, 1.0f}};
+      scene.draws.push_back(small);
+    }
+    scene.draws.insert(scene.draws.end(), original.draws.begin(), original.draws.end());
+    for (const bool fma : {true, false}) expect_fast_matches(scene, fma);
+    ++scenes;
+  }
+  EXPECT_EQ(scenes, 12);
+}
+
 // render_fast_side_by_side (the bench's suite row): scenes rendered side by side on the workers,
 // each on one (a scene worker_count gives several first, with all of them), give each scene the
 // exact path's bytes, into reused results too; the queue holds the one-worker scenes, largest

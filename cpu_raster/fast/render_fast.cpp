@@ -186,10 +186,17 @@ void init_frame(FastFrame& frame, const Scene& scene, const CpuOptions& options,
   raster.tiles = frame.tiles.data();
 }
 
-struct VertexTask {
+// Positions [begin, end) of one draw, transformed by one call of the vertex pass.
+struct VertexPiece {
   uint32_t draw;
   size_t begin, end;
   uint32_t flags = 0;  // OR of the vertices' flags
+};
+
+// A task of the vertex phase: pieces [first, last), at most kVertexBlock positions in all, so that
+// the small draws of a scene of many draws share one task instead of taking one each.
+struct VertexTask {
+  size_t first, last;
 };
 
 // The first primitive of the draw's trailing pipelined run (front_end.hpp), primitive_count(draw)
@@ -326,7 +333,9 @@ std::vector<TrailingCheck> transform_all_vertices(FastFrame& frame, bool check_p
     if (transformed(d)) total += frame.scene->draws[d].positions_clip.size();
   FastVertex* scratch = thread_vertex_scratch().acquire(total);
   int16_t* rows = thread_row_scratch(total);
+  std::vector<VertexPiece> pieces;
   std::vector<VertexTask> tasks;
+  size_t filled = kVertexBlock;  // positions in the last task
   for (uint32_t d = 0; d < frame.draws.size(); ++d) {
     if (!transformed(d)) continue;
     const size_t n = frame.scene->draws[d].positions_clip.size();
@@ -334,17 +343,30 @@ std::vector<TrailingCheck> transform_all_vertices(FastFrame& frame, bool check_p
     frame.draws[d].tile_rows = rows;
     scratch += n;
     rows += n;
-    for (size_t b = 0; b < n; b += kVertexBlock) tasks.push_back({d, b, std::min(n, b + kVertexBlock)});
+    for (size_t b = 0; b < n;) {
+      if (filled == kVertexBlock) {
+        tasks.push_back({pieces.size(), pieces.size()});
+        filled = 0;
+      }
+      const size_t e = std::min(n, b + (kVertexBlock - filled));
+      pieces.push_back({d, b, e});
+      tasks.back().last = pieces.size();
+      filled += e - b;
+      b = e;
+    }
   }
-  const auto run = [&frame](VertexTask& task) {
-    const Draw& draw = frame.scene->draws[task.draw];
-    const VertexJob job{draw.positions_clip.data(), frame.exact.viewport, frame.exact.fma,
-                        draw.state.depth_clip_enabled()};
-    FastDraw& fd = frame.draws[task.draw];
-    const auto pass = frame.raster.avx512 ? transform_vertices_avx512
-                      : frame.raster.avx2 ? transform_vertices_avx2
-                                          : transform_vertices_scalar;
-    task.flags = pass(job, task.begin, task.end, fd.vertices, fd.tile_rows);
+  const auto run = [&frame, &pieces](const VertexTask& task) {
+    for (size_t i = task.first; i < task.last; ++i) {
+      VertexPiece& piece = pieces[i];
+      const Draw& draw = frame.scene->draws[piece.draw];
+      const VertexJob job{draw.positions_clip.data(), frame.exact.viewport, frame.exact.fma,
+                          draw.state.depth_clip_enabled()};
+      FastDraw& fd = frame.draws[piece.draw];
+      const auto pass = frame.raster.avx512 ? transform_vertices_avx512
+                        : frame.raster.avx2 ? transform_vertices_avx2
+                                            : transform_vertices_scalar;
+      piece.flags = pass(job, piece.begin, piece.end, fd.vertices, fd.tile_rows);
+    }
   };
   std::atomic<size_t> next{0};
   TaskTimes times(frame, tasks.size());
@@ -354,7 +376,7 @@ std::vector<TrailingCheck> transform_all_vertices(FastFrame& frame, bool check_p
   });
   times.attach(frame);
   std::vector<uint32_t> draw_flags(frame.draws.size(), 0);
-  for (const VertexTask& task : tasks) draw_flags[task.draw] |= task.flags;
+  for (const VertexPiece& piece : pieces) draw_flags[piece.draw] |= piece.flags;
   std::vector<TrailingCheck> checks;
   for (uint32_t d = 0; d < frame.draws.size(); ++d) {
     FastDraw& fd = frame.draws[d];
