@@ -701,12 +701,13 @@ TEST(FastLeanSetup, LeanSetupEqualsSetupTriangle) {
 }
 
 // Renders `scene` draw by draw with the exact rasterizer and, on a copy of the same targets (their
-// stored depths at random), with rasterize_rows_avx2 on the pieces `cut(p)` makes of each
-// primitive's visit, as the tile rows and runs of tiles of several workers cut it
+// stored depths at random), with `rows` (rasterize_rows_avx2 unless given) on the pieces `cut(p)`
+// makes of each primitive's visit, as the tile rows and runs of tiles of several workers cut it
 // (rasterize_primitive_rows where it declines a piece); `seen(p, vector)` for each piece drawn. Both
 // targets must hold the same owner and depth bytes after every draw.
-template <class Cut, class Seen>
-void expect_vector_rows_match(const Scene& scene, uint64_t seed, fast_test::Random& r, Cut cut, Seen seen) {
+template <class Cut, class Seen, class Rows = decltype(&rasterize_rows_avx2)>
+void expect_vector_rows_match(const Scene& scene, uint64_t seed, fast_test::Random& r, Cut cut, Seen seen,
+                              Rows rows_kernel = &rasterize_rows_avx2) {
   const bool fma = seed % 3 != 0;
   const FrameContext frame = make_frame_context(scene, fma, {});
   RenderTargets exact = make_render_targets(scene);
@@ -726,7 +727,7 @@ void expect_vector_rows_match(const Scene& scene, uint64_t seed, fast_test::Rand
         if (piece.empty()) continue;
         RasterPrimitive band = p;
         band.visit = piece;
-        const bool drawn = rasterize_rows_avx2(band, piece.y0, piece.y1, depth, vector);
+        const bool drawn = rows_kernel(band, piece.y0, piece.y1, depth, vector);
         if (!drawn) rasterize_primitive_rows(band, depth, vector, true);
         seen(p, drawn);
       }
@@ -772,14 +773,23 @@ TEST(FastExactRows, VectorRowsWriteWhatTheExactRasterizerWrites) {
   EXPECT_GT(per_sample, 500u);
 }
 
-// rasterize_rows_avx2's small per-sample primitives (sample_box_rows, exact_rows_avx2.cpp) against
-// the exact rasterizer: triangles of 0.3-40 px (and some far larger) in 4x frames of odd and even
-// widths (a row's first step starts one column before or at the visit), with scissors and
-// viewports that cut them, every depth format and compare op, writes, clamp and bias, each
-// primitive's visit cut into runs of columns and rows as the tiles of several workers cut it.
-TEST(FastExactRows, SmallPerSampleTrianglesWriteWhatTheExactRasterizerWrites) {
-  if (!host_has_avx2_fma()) GTEST_SKIP() << "the host runs no AVX2";
-  uint64_t small = 0;
+// The box kernels' small per-sample primitives (sample_box_rows, exact_rows_avx2.cpp, through
+// rasterize_rows_avx2; and on AVX-512 hosts box16, exact_rows_avx512.cpp, through
+// rasterize_box_avx512) against the exact rasterizer: triangles of 0.3-40 px (and some far larger)
+// in 4x frames of odd and even widths (a row's first step starts up to three columns before the
+// visit), with scissors and viewports that cut them, every depth format and compare op, writes,
+// clamp and bias, each primitive's visit cut into runs of columns and rows as the tiles of several
+// workers cut it.
+void expect_small_per_sample_triangles_match(bool avx512) {
+  uint64_t small = 0, boxed = 0;
+  const auto box_first = [&boxed](const RasterPrimitive& p, int32_t y0, int32_t y1, const DepthTestState& depth,
+                                  RenderTargets& targets) {
+    if (rasterize_box_avx512(p, y0, y1, depth, targets)) {
+      ++boxed;
+      return true;
+    }
+    return rasterize_rows_avx2(p, y0, y1, depth, targets);
+  };
   for (uint64_t seed = 1; seed <= 120; ++seed) {
     fast_test::Random r(seed * 104729);
     Scene scene = fast_test::random_scene(seed, fast_test::RandomSceneSpec{true, false, 90, 40});
@@ -810,11 +820,27 @@ TEST(FastExactRows, SmallPerSampleTrianglesWriteWhatTheExactRasterizerWrites) {
       return std::array<PixelRect, 4>{PixelRect{v.x0, v.y0, x - 1, y - 1}, PixelRect{x, v.y0, v.x1, y - 1},
                                       PixelRect{v.x0, y, x - 1, v.y1}, PixelRect{x, y, v.x1, v.y1}};
     };
-    expect_vector_rows_match(scene, seed, r, quarters,
-                             [&](const RasterPrimitive& p, bool) { small += p.visit.x1 - p.visit.x0 < 24 ? 1 : 0; });
-    if (HasFatalFailure()) return;
+    const auto seen = [&](const RasterPrimitive& p, bool) { small += p.visit.x1 - p.visit.x0 < 24 ? 1 : 0; };
+    if (avx512)
+      expect_vector_rows_match(scene, seed, r, quarters, seen, box_first);
+    else
+      expect_vector_rows_match(scene, seed, r, quarters, seen);
+    if (::testing::Test::HasFatalFailure()) return;
   }
   EXPECT_GT(small, 1500u);
+  if (avx512) {
+    EXPECT_GT(boxed, 1500u);
+  }
+}
+
+TEST(FastExactRows, SmallPerSampleTrianglesWriteWhatTheExactRasterizerWrites) {
+  if (!host_has_avx2_fma()) GTEST_SKIP() << "the host runs no AVX2";
+  expect_small_per_sample_triangles_match(false);
+}
+
+TEST(FastExactRows, SixteenLaneBoxWritesWhatTheExactRasterizerWrites) {
+  if (!host_has_avx512()) GTEST_SKIP() << "the host runs no AVX-512";
+  expect_small_per_sample_triangles_match(true);
 }
 
 }  // namespace

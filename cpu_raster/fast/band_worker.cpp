@@ -528,6 +528,7 @@ void BandWorker::raster_exact_in_band(const RasterPrimitive& primitive, const De
   const int32_t ty_lo = visit.y0 >> kTileOrder, ty_hi = visit.y1 >> kTileOrder;
   if (ty_lo >= 0 && whole_before_[size_t(ty_hi) + 1] - whole_before_[size_t(ty_lo)] == uint32_t(ty_hi - ty_lo + 1)) {
     prepare_tiles(visit, depth.write);
+    if (frame_.raster.avx512 && rasterize_box_avx512(primitive, visit.y0, visit.y1, depth, frame_.targets)) return;
     if (frame_.raster.avx2 && rasterize_rows_avx2(primitive, visit.y0, visit.y1, depth, frame_.targets)) return;
     if (primitive.binned)
       rasterize_binned_rows(primitive, depth, frame_.targets, frame_.raster.avx2);
@@ -553,6 +554,7 @@ void BandWorker::raster_exact_in_band(const RasterPrimitive& primitive, const De
       band.visit.x1 = std::min(visit.x1, last * kTileSize + kTileSize - 1);
       tx = last;
       prepare_tiles(band.visit, depth.write);
+      if (frame_.raster.avx512 && rasterize_box_avx512(band, y0, y1, depth, frame_.targets)) continue;
       if (frame_.raster.avx2 && rasterize_rows_avx2(band, y0, y1, depth, frame_.targets)) continue;
       if (band.binned)  // llvmpipe's wrapping set-up: coverage from its bins, not a plane test
         rasterize_binned_rows(band, depth, frame_.targets, frame_.raster.avx2);

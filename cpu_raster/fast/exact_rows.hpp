@@ -28,6 +28,17 @@ void rasterize_primitive_rows(const RasterPrimitive& p, const DepthTestState& de
 bool rasterize_rows_avx2(const RasterPrimitive& p, int32_t y0, int32_t y1, const DepthTestState& depth,
                          RenderTargets& targets);
 
+// The visits of small per-sample primitives in 4x frames that the box kernels take (at most
+// kBoxColumns columns and kBoxPixels pixels; exact_rows_avx2.cpp, exact_rows_avx512.cpp).
+inline constexpr int32_t kBoxColumns = 24, kBoxPixels = 256;
+
+// Same writes as rasterize_primitive(p, depth, targets) for the rows [y0, y1] of p.visit, for a
+// small per-sample primitive in a 4x frame with an active depth test (exact_rows_avx512.cpp; call
+// only on AVX-512 hosts): the box kernel sixteen lanes wide. False, having written nothing, for
+// any other primitive or planes whose values leave int32: then rasterize_rows_avx2.
+bool rasterize_box_avx512(const RasterPrimitive& p, int32_t y0, int32_t y1, const DepthTestState& depth,
+                          RenderTargets& targets);
+
 // Same writes as rasterize_primitive(p, depth, targets) for a binned primitive (p.binned): coverage
 // a 64x64 tile at a time from its bins, binned_covers only in partial tiles. avx2: as for
 // rasterize_primitive_rows, each run of covered columns of a sample row with its raw depths eight

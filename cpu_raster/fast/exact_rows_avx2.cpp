@@ -462,7 +462,6 @@ RASTERCMP_AVX2 bool sample_span_rows(const RasterPrimitive& p, int32_t y0, int32
 // |gy| * (y1 - y0 + 1), checked below 2^31 in int64 per plane (the row step past y1 may wrap; it
 // is never read). Lanes outside [x0, x1] are masked: the exact path visits only those columns. A
 // step with no covered lane computes no depth. False, having written nothing, when a bound fails.
-constexpr int32_t kBoxColumns = 24, kBoxPixels = 256;
 
 // Planes: p.planes.count, or 0 for any count up to 8 (a triangle without scissor planes has 3,
 // kept in registers).
