@@ -3,7 +3,9 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cerrno>
+#include <cstdlib>
 
 #include <cstdio>
 #include <cstring>
@@ -38,7 +40,25 @@ void commit_temp(const std::string& tmp, const std::string& path) {
   }
 }
 
+// The test-only write fault: with RASTERCMP_TEST_WRITE_FAULT=N, the N-th file this process writes
+// through the atomic writers below (counting from 1) and every later one fail as on a full disk
+// (ENOSPC), nothing left under the file's name or its temporary one. A full disk made with a
+// file-size limit (ulimit -f, as tests/test_cli_children.cpp makes it) also stops lavapipe from
+// Mesa 25 on, which backs device memory with memory files the limit applies to, so
+// tests/test_cli_capture.cpp, whose command renders on lavapipe, fills the disk this way.
+void fail_if_disk_full_for_test(const std::string& path) {
+  static const long fault_from = [] {
+    const char* value = std::getenv("RASTERCMP_TEST_WRITE_FAULT");
+    return value != nullptr ? std::strtol(value, nullptr, 10) : 0L;
+  }();
+  static std::atomic<long> written{0};
+  if (fault_from > 0 && ++written >= fault_from)
+    throw InputError(path, "", std::string("could not write the file: ") + std::strerror(ENOSPC) +
+                                   " (RASTERCMP_TEST_WRITE_FAULT)");
+}
+
 void write_image_atomic(const std::string& path, const ImageView& image) {
+  fail_if_disk_full_for_test(path);
   const ImageCodec& codec = image_codec();
   const std::string tmp = temp_name_for(path);
   // Renamed only when every step, the close (the last flush) included, succeeded.
@@ -134,6 +154,7 @@ void write_temp_text(const std::string& tmp, const std::string& path, const std:
 }  // namespace
 
 void write_text_file_atomic(const std::string& path, const std::string& text) {
+  fail_if_disk_full_for_test(path);
   const std::string tmp = temp_name_for(path);
   write_temp_text(tmp, path, text);
   commit_temp(tmp, path);

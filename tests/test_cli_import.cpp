@@ -122,16 +122,15 @@ TEST(CliImport, AMalformedModelOfEachFormatIsExit2WithTheReason) {
     EXPECT_TRUE(r.out.empty()) << describe(args, r);
     EXPECT_FALSE(fs::exists(out)) << describe(args, r);
   }
-  // A model the importer reads with vertices near FLT_MAX (assimp-testmodels' PLY pond): no camera
-  // in float frames it, and the message names the bounding box.
-  if (fs::exists(kTestModels / "PLY/pond.0.ply")) {
-    const std::vector<std::string> args = {"import", (kTestModels / "PLY/pond.0.ply").string(), "--out",
-                                           (tmp / "pond.json").string()};
-    const RunResult r = run_cli(args);
-    EXPECT_EQ(r.exit_code, 2) << describe(args, r);
-    EXPECT_NE(r.err.find("bounding box spans"), std::string::npos) << describe(args, r);
-    EXPECT_FALSE(fs::exists(tmp / "pond.json"));
-  }
+  // A model the importer reads with vertices near FLT_MAX: no camera in float frames it, and the
+  // message names the bounding box. (Written here: which of assimp-testmodels' files read so
+  // depends on the release's assimp; Debian 12's read the PLY pond so, Debian 13's do not.)
+  write_file(tmp / "huge.obj", "v 3e38 0 0\nv -3e38 0 0\nv 0 3e38 0\nf 1 2 3\n");
+  const std::vector<std::string> args = {"import", (tmp / "huge.obj").string(), "--out", (tmp / "huge.json").string()};
+  const RunResult r = run_cli(args);
+  EXPECT_EQ(r.exit_code, 2) << describe(args, r);
+  EXPECT_NE(r.err.find("bounding box spans"), std::string::npos) << describe(args, r);
+  EXPECT_FALSE(fs::exists(tmp / "huge.json"));
 }
 
 // The real models of Debian's assimp-testmodels, given to compare and conformance as they are:
