@@ -32,6 +32,23 @@ bool rasterize_rows_avx2(const RasterPrimitive& p, int32_t y0, int32_t y1, const
 // kBoxColumns columns and kBoxPixels pixels; exact_rows_avx2.cpp, exact_rows_avx512.cpp).
 inline constexpr int32_t kBoxColumns = 24, kBoxPixels = 256;
 
+// One plane of a box kernel: n = E - 1 at the corner of pixel (start, y0), its step per pixel (gx =
+// -dcdx * 256) and per row (gy = dcdy * 256). True when every value the kernel forms over the
+// columns [start, start + reach_x), each plus a sample's offset (below 256 fixed units each way),
+// and the rows [y0, y0 + reach_y) lies in int32: |n| <= |corner| + |gx| * reach_x + |gy| * reach_y
+// < 2^31, checked in int64 (then also |dcdx| * 256, |dcdy| * 256 < 2^31).
+struct BoxPlane {
+  int64_t corner = 0, gx = 0, gy = 0;
+};
+inline bool box_plane(const EdgePlane& plane, int32_t start, int32_t y0, int64_t reach_x, int64_t reach_y,
+                      BoxPlane& out) {
+  out.gx = -plane.dcdx * kFixedOne;
+  out.gy = plane.dcdy * kFixedOne;
+  out.corner = edge_value(plane, int64_t(start) * kFixedOne, int64_t(y0) * kFixedOne) - 1;
+  const auto magnitude = [](int64_t v) { return v < 0 ? -v : v; };
+  return magnitude(out.corner) + magnitude(out.gx) * reach_x + magnitude(out.gy) * reach_y < (int64_t(1) << 31);
+}
+
 // Same writes as rasterize_primitive(p, depth, targets) for the rows [y0, y1] of p.visit, for a
 // small per-sample primitive in a 4x frame with an active depth test (exact_rows_avx512.cpp; call
 // only on AVX-512 hosts): the box kernel sixteen lanes wide. False, having written nothing, for

@@ -489,18 +489,15 @@ RASTERCMP_AVX2 bool sample_box_rows(const RasterPrimitive& p, int32_t y0, int32_
     // lane (pixel k, sample s) of the first step: n at the pixel's corner, plus the sample's offset
     // (below 256 fixed units each way) and k pixels; every term and sum within the bound
     const EdgePlane& plane = p.planes.plane[i];
-    const int64_t gx = -plane.dcdx * kFixedOne, dy = plane.dcdy * kFixedOne;
-    const int64_t corner = edge_value(plane, int64_t(start) * kFixedOne, int64_t(y0) * kFixedOne) - 1;
-    const int64_t bound =
-        (corner < 0 ? -corner : corner) + (gx < 0 ? -gx : gx) * reach_x + (dy < 0 ? -dy : dy) * reach_y;
-    if (bound >= (int64_t(1) << 31)) return false;  // then also |dcdx|, |dcdy| * 256 < 2^31
+    BoxPlane b;
+    if (!box_plane(plane, start, y0, reach_x, reach_y, b)) return false;
     const __m256i offsets = _mm256_sub_epi32(_mm256_mullo_epi32(_mm256_set1_epi32(int32_t(plane.dcdy)), lane_y),
                                              _mm256_mullo_epi32(_mm256_set1_epi32(int32_t(plane.dcdx)), lane_x));
-    gx1[i] = _mm256_set1_epi32(int32_t(gx));
-    row_n[i] = _mm256_add_epi32(_mm256_add_epi32(_mm256_set1_epi32(int32_t(corner)), offsets),
+    gx1[i] = _mm256_set1_epi32(int32_t(b.gx));
+    row_n[i] = _mm256_add_epi32(_mm256_add_epi32(_mm256_set1_epi32(int32_t(b.corner)), offsets),
                                 _mm256_mullo_epi32(gx1[i], lane_pixel));
-    gx2[i] = _mm256_set1_epi32(int32_t(2 * gx));
-    gy[i] = _mm256_set1_epi32(int32_t(dy));
+    gx2[i] = _mm256_set1_epi32(int32_t(2 * b.gx));
+    gy[i] = _mm256_set1_epi32(int32_t(b.gy));
   }
   uint32_t* depth = targets.depth_raw.data();
   uint32_t* owner = targets.owner.data();

@@ -34,50 +34,40 @@ RASTERCMP_AVX512 bool box16(const RasterPrimitive& p, int32_t y0, int32_t y1, co
   const uint32_t planes = Planes != 0 ? Planes : p.planes.count;
   const int32_t start = x0 - 3;
   const int64_t reach_x = int64_t(x1) + 4 - start, reach_y = int64_t(y1) - y0 + 1;
-  const __m512i lane_pixel = _mm512_setr_epi32(0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 3, 3, 3, 3);
-  const __m512i lane_x =
-      _mm512_setr_epi32(kStandardSamples4x[0].x_fixed, kStandardSamples4x[1].x_fixed, kStandardSamples4x[2].x_fixed,
-                        kStandardSamples4x[3].x_fixed, kStandardSamples4x[0].x_fixed, kStandardSamples4x[1].x_fixed,
-                        kStandardSamples4x[2].x_fixed, kStandardSamples4x[3].x_fixed, kStandardSamples4x[0].x_fixed,
-                        kStandardSamples4x[1].x_fixed, kStandardSamples4x[2].x_fixed, kStandardSamples4x[3].x_fixed,
-                        kStandardSamples4x[0].x_fixed, kStandardSamples4x[1].x_fixed, kStandardSamples4x[2].x_fixed,
-                        kStandardSamples4x[3].x_fixed);
-  const __m512i lane_y =
-      _mm512_setr_epi32(kStandardSamples4x[0].y_fixed, kStandardSamples4x[1].y_fixed, kStandardSamples4x[2].y_fixed,
-                        kStandardSamples4x[3].y_fixed, kStandardSamples4x[0].y_fixed, kStandardSamples4x[1].y_fixed,
-                        kStandardSamples4x[2].y_fixed, kStandardSamples4x[3].y_fixed, kStandardSamples4x[0].y_fixed,
-                        kStandardSamples4x[1].y_fixed, kStandardSamples4x[2].y_fixed, kStandardSamples4x[3].y_fixed,
-                        kStandardSamples4x[0].y_fixed, kStandardSamples4x[1].y_fixed, kStandardSamples4x[2].y_fixed,
-                        kStandardSamples4x[3].y_fixed);
+  // lane l: pixel l / 4, sample l % 4 (its fixed and float offsets), constants
+  static constexpr auto kLanes = [] {
+    struct {
+      alignas(64) int32_t pixel[16], x_fixed[16], y_fixed[16];
+      alignas(64) float x[16], y[16];
+    } lanes{};
+    for (int l = 0; l < 16; ++l) {
+      lanes.pixel[l] = l / Samples;
+      lanes.x_fixed[l] = kStandardSamples4x[l % Samples].x_fixed;
+      lanes.y_fixed[l] = kStandardSamples4x[l % Samples].y_fixed;
+      lanes.x[l] = kStandardSamples4x[l % Samples].x;
+      lanes.y[l] = kStandardSamples4x[l % Samples].y;
+    }
+    return lanes;
+  }();
+  const __m512i lane_pixel = _mm512_load_si512(kLanes.pixel), lane_x = _mm512_load_si512(kLanes.x_fixed),
+                lane_y = _mm512_load_si512(kLanes.y_fixed);
+  const __m512 sx = _mm512_load_ps(kLanes.x), sy = _mm512_load_ps(kLanes.y);
   __m512i row_n[8], gx1[8], gx4[8], gy[8];
   for (uint32_t i = 0; i < planes; ++i) {
     const EdgePlane& plane = p.planes.plane[i];
-    const int64_t gx = -plane.dcdx * kFixedOne, dy = plane.dcdy * kFixedOne;
-    const int64_t corner = edge_value(plane, int64_t(start) * kFixedOne, int64_t(y0) * kFixedOne) - 1;
-    const int64_t bound =
-        (corner < 0 ? -corner : corner) + (gx < 0 ? -gx : gx) * reach_x + (dy < 0 ? -dy : dy) * reach_y;
-    if (bound >= (int64_t(1) << 31)) return false;  // then also |dcdx|, |dcdy| * 256 < 2^31
+    BoxPlane b;
+    if (!box_plane(plane, start, y0, reach_x, reach_y, b)) return false;
     const __m512i offsets = _mm512_sub_epi32(_mm512_mullo_epi32(_mm512_set1_epi32(int32_t(plane.dcdy)), lane_y),
                                              _mm512_mullo_epi32(_mm512_set1_epi32(int32_t(plane.dcdx)), lane_x));
-    gx1[i] = _mm512_set1_epi32(int32_t(gx));
-    row_n[i] = _mm512_add_epi32(_mm512_add_epi32(_mm512_set1_epi32(int32_t(corner)), offsets),
+    gx1[i] = _mm512_set1_epi32(int32_t(b.gx));
+    row_n[i] = _mm512_add_epi32(_mm512_add_epi32(_mm512_set1_epi32(int32_t(b.corner)), offsets),
                                 _mm512_mullo_epi32(gx1[i], lane_pixel));
-    gx4[i] = _mm512_set1_epi32(int32_t(4 * gx));
-    gy[i] = _mm512_set1_epi32(int32_t(dy));
+    gx4[i] = _mm512_set1_epi32(int32_t(4 * b.gx));
+    gy[i] = _mm512_set1_epi32(int32_t(b.gy));
   }
   uint32_t* depth = targets.depth_raw.data();
   uint32_t* owner = targets.owner.data();
   const Depth16 d = depth16(kd);
-  const __m512 sx = _mm512_setr_ps(
-      kStandardSamples4x[0].x, kStandardSamples4x[1].x, kStandardSamples4x[2].x, kStandardSamples4x[3].x,
-      kStandardSamples4x[0].x, kStandardSamples4x[1].x, kStandardSamples4x[2].x, kStandardSamples4x[3].x,
-      kStandardSamples4x[0].x, kStandardSamples4x[1].x, kStandardSamples4x[2].x, kStandardSamples4x[3].x,
-      kStandardSamples4x[0].x, kStandardSamples4x[1].x, kStandardSamples4x[2].x, kStandardSamples4x[3].x);
-  const __m512 sy = _mm512_setr_ps(
-      kStandardSamples4x[0].y, kStandardSamples4x[1].y, kStandardSamples4x[2].y, kStandardSamples4x[3].y,
-      kStandardSamples4x[0].y, kStandardSamples4x[1].y, kStandardSamples4x[2].y, kStandardSamples4x[3].y,
-      kStandardSamples4x[0].y, kStandardSamples4x[1].y, kStandardSamples4x[2].y, kStandardSamples4x[3].y,
-      kStandardSamples4x[0].y, kStandardSamples4x[1].y, kStandardSamples4x[2].y, kStandardSamples4x[3].y);
   const __m512 a0 = _mm512_set1_ps(p.depth.a0), dzdx = _mm512_set1_ps(p.depth.dzdx),
                dzdy = _mm512_set1_ps(p.depth.dzdy);
   const __m512 offset = _mm512_set1_ps(p.offset.offset);
