@@ -101,20 +101,9 @@ bool BandWorker::owns_tile_rows(int32_t t0, int32_t t1) const {
 }
 
 void BandWorker::walk_fast(uint32_t d) {
-  const Draw& draw = frame_.scene->draws[d];
-  const bool indexed = !draw.indices.empty();
-  switch (draw.topology) {
-    case Topology::TriangleList:
-      indexed ? walk_triangles<Topology::TriangleList, true>(d) : walk_triangles<Topology::TriangleList, false>(d);
-      break;
-    case Topology::TriangleStrip:
-      indexed ? walk_triangles<Topology::TriangleStrip, true>(d) : walk_triangles<Topology::TriangleStrip, false>(d);
-      break;
-    case Topology::TriangleFan:
-      indexed ? walk_triangles<Topology::TriangleFan, true>(d) : walk_triangles<Topology::TriangleFan, false>(d);
-      break;
-    default: break;  // not a fast draw (render_fast.cpp)
-  }
+  on_triangle_layout(
+      frame_.scene->draws[d], [&](auto topology, auto indexed) { walk_triangles<topology(), indexed()>(d); },
+      [] {});  // not a fast draw (render_fast.cpp)
 }
 
 template <Topology T, bool Indexed>

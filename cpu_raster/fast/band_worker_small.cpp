@@ -269,20 +269,10 @@ void BandWorker::draw_lane(const SmallBlockOutput& block, int lane, uint32_t own
 }
 
 bool measure_block_rows(FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end) {
-  const Draw& draw = frame.scene->draws[d];
-  const bool indexed = !draw.indices.empty();
-  switch (draw.topology) {
-    case Topology::TriangleList:
-      return indexed ? measure_rows<Topology::TriangleList, true>(frame, d, begin, end)
-                     : measure_rows<Topology::TriangleList, false>(frame, d, begin, end);
-    case Topology::TriangleStrip:
-      return indexed ? measure_rows<Topology::TriangleStrip, true>(frame, d, begin, end)
-                     : measure_rows<Topology::TriangleStrip, false>(frame, d, begin, end);
-    case Topology::TriangleFan:
-      return indexed ? measure_rows<Topology::TriangleFan, true>(frame, d, begin, end)
-                     : measure_rows<Topology::TriangleFan, false>(frame, d, begin, end);
-    default: return true;
-  }
+  return on_triangle_layout(
+      frame.scene->draws[d],
+      [&](auto topology, auto indexed) { return measure_rows<topology(), indexed()>(frame, d, begin, end); },
+      [] { return true; });
 }
 
 }  // namespace rastercmp::cpu::fast

@@ -138,20 +138,12 @@ bool clip_blocks(FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end, Cli
 
 bool clip_block_triangles(FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end, ClippedTable& table,
                           uint32_t watch_from) {
-  const Draw& draw = frame.scene->draws[d];
-  const bool indexed = !draw.indices.empty();
-  switch (draw.topology) {
-    case Topology::TriangleList:
-      return indexed ? clip_blocks<Topology::TriangleList, true>(frame, d, begin, end, table, watch_from)
-                     : clip_blocks<Topology::TriangleList, false>(frame, d, begin, end, table, watch_from);
-    case Topology::TriangleStrip:
-      return indexed ? clip_blocks<Topology::TriangleStrip, true>(frame, d, begin, end, table, watch_from)
-                     : clip_blocks<Topology::TriangleStrip, false>(frame, d, begin, end, table, watch_from);
-    case Topology::TriangleFan:
-      return indexed ? clip_blocks<Topology::TriangleFan, true>(frame, d, begin, end, table, watch_from)
-                     : clip_blocks<Topology::TriangleFan, false>(frame, d, begin, end, table, watch_from);
-    default: return false;
-  }
+  return on_triangle_layout(
+      frame.scene->draws[d],
+      [&](auto topology, auto indexed) {
+        return clip_blocks<topology(), indexed()>(frame, d, begin, end, table, watch_from);
+      },
+      [] { return false; });
 }
 
 void append_clipped(ClippedTable& table, const ClippedTable& part) {

@@ -289,21 +289,12 @@ bool run_meets_denormals_of(const FastFrame& frame, uint32_t d, uint32_t begin, 
 
 bool run_meets_denormals(const FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end,
                          bool clipped_elsewhere = false) {
-  const Draw& draw = frame.scene->draws[d];
-  const bool indexed = !draw.indices.empty();
-  const bool c = clipped_elsewhere;
-  switch (draw.topology) {
-    case Topology::TriangleList:
-      return indexed ? run_meets_denormals_of<Topology::TriangleList, true>(frame, d, begin, end, c)
-                     : run_meets_denormals_of<Topology::TriangleList, false>(frame, d, begin, end, c);
-    case Topology::TriangleStrip:
-      return indexed ? run_meets_denormals_of<Topology::TriangleStrip, true>(frame, d, begin, end, c)
-                     : run_meets_denormals_of<Topology::TriangleStrip, false>(frame, d, begin, end, c);
-    case Topology::TriangleFan:
-      return indexed ? run_meets_denormals_of<Topology::TriangleFan, true>(frame, d, begin, end, c)
-                     : run_meets_denormals_of<Topology::TriangleFan, false>(frame, d, begin, end, c);
-    default: return true;  // not a fast draw: fast draws are triangle draws
-  }
+  return on_triangle_layout(
+      frame.scene->draws[d],
+      [&](auto topology, auto indexed) {
+        return run_meets_denormals_of<topology(), indexed()>(frame, d, begin, end, clipped_elsewhere);
+      },
+      [] { return true; });  // not a fast draw: fast draws are triangle draws
 }
 
 // A bias factor that is a denormal meets one in every set-up of a non-empty run.

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <type_traits>
 
 #include "cpu_raster/exact/assemble.hpp"
 #include "cpu_raster/fast/fast_frame.hpp"
@@ -19,6 +20,23 @@ inline std::array<uint32_t, 3> vertex_numbers(uint32_t i) {
   if constexpr (T == Topology::TriangleStrip)
     return (i & 1) == 0 ? std::array<uint32_t, 3>{i, i + 1, i + 2} : std::array<uint32_t, 3>{i, i + 2, i + 1};
   return {i + 1, i + 2, 0};  // fan
+}
+
+// f(topology, indexed) with the draw's triangle topology and whether it has an index buffer as
+// std::integral_constant arguments, for code templated on them (vertex_numbers); otherwise() for
+// any other topology. Both return the same type.
+template <class F, class Otherwise>
+decltype(auto) on_triangle_layout(const Draw& draw, F&& f, Otherwise&& otherwise) {
+  using List = std::integral_constant<Topology, Topology::TriangleList>;
+  using Strip = std::integral_constant<Topology, Topology::TriangleStrip>;
+  using Fan = std::integral_constant<Topology, Topology::TriangleFan>;
+  const bool indexed = !draw.indices.empty();
+  switch (draw.topology) {
+    case Topology::TriangleList: return indexed ? f(List{}, std::true_type{}) : f(List{}, std::false_type{});
+    case Topology::TriangleStrip: return indexed ? f(Strip{}, std::true_type{}) : f(Strip{}, std::false_type{});
+    case Topology::TriangleFan: return indexed ? f(Fan{}, std::true_type{}) : f(Fan{}, std::false_type{});
+    default: return otherwise();
+  }
 }
 
 // What every block of draw d shares: the vertex array, region, face and cull state, depth.
