@@ -4,6 +4,7 @@
 // (docs/performance.md).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <string>
 #include <utility>
@@ -579,6 +580,46 @@ TEST(FastFailures, FirstFailingPrimitiveOfTheExactPathOnEveryWorkerCount) {
   for (const uint32_t threads : {1u, 2u, 3u, 4u}) {
     SCOPED_TRACE("threads=" + std::to_string(threads));
     EXPECT_EQ(not_supported_message([&] { render_fast(scene, true, threads, fast_test::best_isa()); }), expected);
+  }
+}
+
+// A line draw whose every line leaves the clip volume (one pipelined chunk, the draw's trailing
+// run, rules §7.11), its depths near the smallest normal float: each set-up meets a denormal that
+// changes its depth plane. Three lines fit one batch: set up with denormals kept, the fast path's
+// bytes are the exact path's, and the flushed set-up alone would differ from them. A hundred
+// span batches: the render throws the exact path's error at every worker count.
+Scene tiny_depth_lines_scene(uint32_t lines) {
+  Scene scene;
+  scene.name = "tiny depth lines";
+  scene.width = scene.height = 64;
+  scene.depth_format = DepthFormat::D32Sfloat;
+  Draw draw;
+  draw.topology = Topology::LineList;
+  draw.state.depth.compare_op = CompareOp::Always;
+  for (uint32_t k = 0; k < lines; ++k) {
+    const float x = -0.9f + 0.017f * float(k % 100), y = -0.85f + 0.0163f * float(k % 97);
+    const float z = 1.18e-38f * (1.0f + 0.02f * float(k % 90));
+    draw.positions_clip.emplace_back(x, y, z, 1.0f);
+    draw.positions_clip.emplace_back(x + 1.95f, y + 0.1f, z * (1.0f + 1e-5f * float(1 + k % 7)), 1.0f);
+  }
+  scene.draws.push_back(std::move(draw));
+  return scene;
+}
+
+TEST(FastLines, TrailingRunSetUpsThatMeetDenormals) {
+  const Scene kept = tiny_depth_lines_scene(3);
+  const RenderResult exact = render_exact(kept, true);
+  for (const uint32_t threads : {1u, 2u})
+    EXPECT_TRUE(same_bytes(exact, render_fast(kept, true, threads, fast_test::best_isa()))) << threads;
+  Scene flushed = kept;  // in a chunk without clipping the lines are set up in the flushed mode
+  for (glm::vec4& v : flushed.draws[0].positions_clip) v.x = std::min(v.x, 0.99f);
+  EXPECT_FALSE(same_bytes(exact, render_exact(flushed, true)));
+  const Scene spanning = tiny_depth_lines_scene(100);
+  const std::string expected = not_supported_message([&] { render_exact(spanning, true); });
+  ASSERT_NE(expected.find("draw 0 primitive 0:"), std::string::npos) << expected;
+  for (const uint32_t threads : {1u, 2u, 3u}) {
+    SCOPED_TRACE("threads=" + std::to_string(threads));
+    EXPECT_EQ(not_supported_message([&] { render_fast(spanning, true, threads, fast_test::best_isa()); }), expected);
   }
 }
 

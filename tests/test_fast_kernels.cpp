@@ -705,9 +705,13 @@ TEST(FastLeanSetup, LeanSetupEqualsSetupTriangle) {
 // makes of each primitive's visit, as the tile rows and runs of tiles of several workers cut it
 // (rasterize_primitive_rows where it declines a piece); `seen(p, vector)` for each piece drawn. Both
 // targets must hold the same owner and depth bytes after every draw.
-template <class Cut, class Seen, class Rows = decltype(&rasterize_rows_avx2)>
+bool vector_rows(const RasterPrimitive& p, int32_t y0, int32_t y1, const DepthTestState& depth, RenderTargets& targets) {
+  return rasterize_rows_avx2(p, y0, y1, depth, targets);
+}
+
+template <class Cut, class Seen, class Rows = decltype(&vector_rows)>
 void expect_vector_rows_match(const Scene& scene, uint64_t seed, fast_test::Random& r, Cut cut, Seen seen,
-                              Rows rows_kernel = &rasterize_rows_avx2) {
+                              Rows rows_kernel = &vector_rows) {
   const bool fma = seed % 3 != 0;
   const FrameContext frame = make_frame_context(scene, fma, {});
   RenderTargets exact = make_render_targets(scene);
@@ -742,10 +746,10 @@ void expect_vector_rows_match(const Scene& scene, uint64_t seed, fast_test::Rand
 // half of them in 4x frames (per-sample triangles and rectangular lines, pixel-centre Bresenham
 // lines), every depth format and compare op, writes, clamp, bias, scissors and viewports that cut
 // primitives, stored depths at random, each primitive's rows split at a random row as the tile rows
-// split them.
+// split them. On AVX-512 hosts half of the 1x frames take the scattered writes (avx512_writes).
 TEST(FastExactRows, VectorRowsWriteWhatTheExactRasterizerWrites) {
   if (!host_has_avx2_fma()) GTEST_SKIP() << "the host runs no AVX2";
-  uint64_t vector_primitives = 0, lines = 0, per_sample = 0;
+  uint64_t vector_primitives = 0, lines = 0, per_sample = 0, scattered_lines = 0;
   for (uint64_t seed = 1; seed <= 160; ++seed) {
     fast_test::Random r(seed * 7919);
     fast_test::RandomSceneSpec spec;
@@ -761,16 +765,28 @@ TEST(FastExactRows, VectorRowsWriteWhatTheExactRasterizerWrites) {
       return std::array<PixelRect, 2>{PixelRect{p.visit.x0, p.visit.y0, p.visit.x1, split - 1},
                                       PixelRect{p.visit.x0, split, p.visit.x1, p.visit.y1}};
     };
-    expect_vector_rows_match(scene, seed, r, rows, [&](const RasterPrimitive& p, bool vector) {
-      vector_primitives += vector ? 1 : 0;
-      lines += vector && p.is_line ? 1 : 0;
-      per_sample += vector && p.per_sample ? 1 : 0;
-    });
+    const bool avx512_writes = host_has_avx512() && seed % 4 == 1;
+    const auto kernel = [avx512_writes](const RasterPrimitive& p, int32_t y0, int32_t y1, const DepthTestState& depth,
+                                        RenderTargets& targets) {
+      return rasterize_rows_avx2(p, y0, y1, depth, targets, avx512_writes);
+    };
+    expect_vector_rows_match(
+        scene, seed, r, rows,
+        [&](const RasterPrimitive& p, bool vector) {
+          vector_primitives += vector ? 1 : 0;
+          lines += vector && p.is_line ? 1 : 0;
+          per_sample += vector && p.per_sample ? 1 : 0;
+          scattered_lines += vector && p.is_line && avx512_writes ? 1 : 0;
+        },
+        kernel);
     if (HasFatalFailure()) return;
   }
   EXPECT_GT(vector_primitives, 2000u);
   EXPECT_GT(lines, 500u);
   EXPECT_GT(per_sample, 500u);
+  if (host_has_avx512()) {
+    EXPECT_GT(scattered_lines, 200u);
+  }
 }
 
 // The box kernels' small per-sample primitives (sample_box_rows, exact_rows_avx2.cpp, through

@@ -73,28 +73,31 @@ struct DenormalsKept : ScopedDenormalMode {
   DenormalsKept() : ScopedDenormalMode(false) {}
 };
 
-// Watches the calling thread's arithmetic for denormals: clears the MXCSR flags DE (a denormal
-// operand, raised only without DAZ) and UE (a tiny result: flushed under FTZ, or inexact without it)
-// on construction; met() says whether either was raised since. Under FTZ|DAZ with no denormal
-// input, met() false means every intermediate was normal or zero, so the same operations without
-// the mode give the same bits. Without MXCSR every computation counts as having met one.
+// The MXCSR flags DE (a denormal operand, raised only without DAZ) and UE (a tiny result: flushed
+// under FTZ, or inexact without it): whether either is raised, and clearing both. Without MXCSR
+// every computation counts as having raised one.
+inline constexpr uint32_t kMxcsrDenormalFlags = 0x12u;  // DE (bit 1) | UE (bit 4)
+inline bool denormal_flags_raised() {
+#ifdef RASTERCMP_HAS_MXCSR
+  return (_mm_getcsr() & kMxcsrDenormalFlags) != 0;
+#else
+  return true;
+#endif
+}
+inline void clear_denormal_flags() {
+#ifdef RASTERCMP_HAS_MXCSR
+  _mm_setcsr(_mm_getcsr() & ~kMxcsrDenormalFlags);
+#endif
+}
+
+// Watches the calling thread's arithmetic for denormals: clears DE and UE on construction; met()
+// says whether either was raised since. Under FTZ|DAZ with no denormal input, met() false means
+// every intermediate was normal or zero, so the same operations without the mode give the same
+// bits.
 class DenormalWatch {
  public:
-  DenormalWatch() {
-#ifdef RASTERCMP_HAS_MXCSR
-    _mm_setcsr(_mm_getcsr() & ~kMxcsrDenormalFlags);
-#endif
-  }
-  bool met() const {
-#ifdef RASTERCMP_HAS_MXCSR
-    return (_mm_getcsr() & kMxcsrDenormalFlags) != 0;
-#else
-    return true;
-#endif
-  }
-
- private:
-  static constexpr uint32_t kMxcsrDenormalFlags = 0x12u;  // DE (bit 1) | UE (bit 4)
+  DenormalWatch() { clear_denormal_flags(); }
+  bool met() const { return denormal_flags_raised(); }
 };
 
 // Comparisons with 0 as code outside the denormal mode makes them (by the bits: under DAZ a

@@ -136,10 +136,7 @@ auto setup_in_mode(SetupDenormals mode, uint32_t draw_index, uint32_t primitive_
     const DenormalsFlushed ftz_daz;
     return setup();
   }();
-  const DepthBias& bias = state.depth_bias;
-  const bool denormal_input =
-      is_denormal(bias.constant_factor) || is_denormal(bias.slope_factor) || is_denormal(bias.clamp);
-  if (!watch.met() && !denormal_input) return flushed;
+  if (!watch.met() && !depth_bias_is_denormal(state.depth_bias)) return flushed;
   const auto kept = [&] {
     const DenormalsKept kept_mode;
     return setup();
@@ -203,6 +200,10 @@ TriangleSetup setup_triangle_in_mode(SetupDenormals mode, const std::array<Windo
                                      const SetupContext& ctx, uint32_t primitive_index) {
   return setup_in_mode(mode, ctx.draw_index, primitive_index, *ctx.state,
                        [&] { return setup_triangle(window, owner, ctx); });
+}
+
+bool depth_bias_is_denormal(const DepthBias& bias) {
+  return is_denormal(bias.constant_factor) || is_denormal(bias.slope_factor) || is_denormal(bias.clamp);
 }
 
 LineSetup setup_line_in_mode(SetupDenormals mode, const std::array<WindowVertex, 2>& window, uint32_t owner,

@@ -98,6 +98,10 @@ TriangleSetup setup_triangle_in_mode(SetupDenormals mode, const std::array<Windo
 LineSetup setup_line_in_mode(SetupDenormals mode, const std::array<WindowVertex, 2>& window, uint32_t owner,
                              const SetupContext& ctx, uint32_t primitive_index);
 
+// Whether a depth bias factor is a denormal: a set-up outside the flushed mode then meets one
+// whatever its primitive (setup_in_mode's check of its input).
+bool depth_bias_is_denormal(const DepthBias& bias);
+
 struct PrimitiveOutcome {
   uint32_t draw_index = 0;
   uint32_t primitive_index = 0;

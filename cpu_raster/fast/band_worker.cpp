@@ -414,6 +414,7 @@ bool BandWorker::walk_exact(uint32_t d) {
   const bool lean_triangles = !lines && frame.skips.clip_only_when_needed;
   const bool float_cull = walk.draw->state.cull_mode != CullMode::None;
   const uint32_t inside_planes = frame.skips.clip_only_when_needed ? 0 : tested_clip_planes(depth_clip);
+  const bool bias_denormal = lines && depth_bias_is_denormal(walk.draw->state.depth_bias);
   const LineXyClip line_xy = frame.rules.has(LavapipeRule::LineGuardBand) ? LineXyClip::GuardBand : LineXyClip::Clip;
   // A primitive that throws (set-up in a mode where the two modes disagree, a refused wrapping
   // set-up) stops this walk; the render throws the first such primitive's error (FastFrame::failure).
@@ -430,8 +431,9 @@ bool BandWorker::walk_exact(uint32_t d) {
       std::array<ClipVertex, 3> v;
       for (uint32_t k = 0; k < corners; ++k) {
         const uint32_t position = prim.position[k];
-        if (!lines && transformed && position < positions) {
+        if (transformed && position < positions) {  // make_clip_vertex's fields
           const FastVertex& t = transformed[position];
+          v[k].pos_clip = walk.draw->positions_clip[position];
           v[k].window = WindowVertex{t.x, t.y, t.z};
           v[k].clip_mask = t.flags & kVertexClipBits;
         } else {
@@ -443,8 +445,8 @@ bool BandWorker::walk_exact(uint32_t d) {
       if (lines) {
         const ClippedLine clipped = clip_line({v[0], v[1]}, frame.viewport, inside_planes, line_xy);
         if (clipped.fate == ClipFate::Outside || clipped.fate == ClipFate::Discarded) continue;
-        const LineSetup setup = setup_line_in_mode(mode, {clipped.line[0].window, clipped.line[1].window}, owner,
-                                                   walk.ctx, prim.primitive_index);
+        const LineSetup setup = setup_line_flushed(mode, {clipped.line[0].window, clipped.line[1].window}, owner,
+                                                   walk.ctx, prim.primitive_index, bias_denormal);
         if (setup.fate == SetupFate::Rasterized) raster_exact_in_band(setup.raster, depth);
         continue;
       }
@@ -467,6 +469,24 @@ bool BandWorker::walk_exact(uint32_t d) {
     return false;
   }
   return true;
+}
+
+// setup_line_in_mode in a worker, which runs with denormals flushed: a line set up in the flushed
+// mode is setup_line's result as it is; one in a trailing run (Kept, EitherMustAgree) is too when
+// no set-up operation met a denormal and no bias factor is one (setup_in_mode, front_end.cpp), and
+// otherwise goes to setup_line_in_mode, which sets it up again in both modes. The MXCSR's flags are
+// read before and after, and written only when raised: one write in place of the scoped mode's and
+// the watch's three per line.
+LineSetup BandWorker::setup_line_flushed(SetupDenormals mode, const std::array<WindowVertex, 2>& window,
+                                         uint32_t owner, const SetupContext& ctx, uint32_t primitive_index,
+                                         bool bias_denormal) {
+  if (mode == SetupDenormals::Flushed) return setup_line(window, owner, ctx);
+  if (bias_denormal) return setup_line_in_mode(mode, window, owner, ctx, primitive_index);
+  if (denormal_flags_raised()) clear_denormal_flags();
+  LineSetup setup = setup_line(window, owner, ctx);
+  if (!denormal_flags_raised()) return setup;
+  clear_denormal_flags();
+  return setup_line_in_mode(mode, window, owner, ctx, primitive_index);
 }
 
 // begin_draw with the chunk flags and trailing run formed from the vertex phase's clip bits (as
@@ -518,7 +538,9 @@ void BandWorker::raster_exact_in_band(const RasterPrimitive& primitive, const De
   if (ty_lo >= 0 && whole_before_[size_t(ty_hi) + 1] - whole_before_[size_t(ty_lo)] == uint32_t(ty_hi - ty_lo + 1)) {
     prepare_tiles(visit, depth.write);
     if (frame_.raster.avx512 && rasterize_box_avx512(primitive, visit.y0, visit.y1, depth, frame_.targets)) return;
-    if (frame_.raster.avx2 && rasterize_rows_avx2(primitive, visit.y0, visit.y1, depth, frame_.targets)) return;
+    if (frame_.raster.avx2 &&
+        rasterize_rows_avx2(primitive, visit.y0, visit.y1, depth, frame_.targets, frame_.raster.avx512))
+      return;
     if (primitive.binned)
       rasterize_binned_rows(primitive, depth, frame_.targets, frame_.raster.avx2);
     else
@@ -544,7 +566,8 @@ void BandWorker::raster_exact_in_band(const RasterPrimitive& primitive, const De
       tx = last;
       prepare_tiles(band.visit, depth.write);
       if (frame_.raster.avx512 && rasterize_box_avx512(band, y0, y1, depth, frame_.targets)) continue;
-      if (frame_.raster.avx2 && rasterize_rows_avx2(band, y0, y1, depth, frame_.targets)) continue;
+      if (frame_.raster.avx2 && rasterize_rows_avx2(band, y0, y1, depth, frame_.targets, frame_.raster.avx512))
+        continue;
       if (band.binned)  // llvmpipe's wrapping set-up: coverage from its bins, not a plane test
         rasterize_binned_rows(band, depth, frame_.targets, frame_.raster.avx2);
       else

@@ -63,6 +63,8 @@ class BandWorker {
   void walk_fast(uint32_t draw_index);
   bool walk_exact(uint32_t draw_index);  // false: a primitive threw (FastFrame::failure)
   DrawWalk begin_draw_transformed(uint32_t draw_index) const;
+  LineSetup setup_line_flushed(SetupDenormals mode, const std::array<WindowVertex, 2>& window, uint32_t owner,
+                               const SetupContext& ctx, uint32_t primitive_index, bool bias_denormal);
   bool misses_own_rows(const ClipVertex* vertices, uint32_t count, float margin, bool may_throw) const;
   // The exact rasterizer for one primitive, on this worker's tile rows.
   void raster_exact_in_band(const RasterPrimitive& primitive, const DepthTestState& depth);

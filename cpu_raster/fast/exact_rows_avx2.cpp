@@ -179,14 +179,18 @@ struct Fragments {
 // value, or a pixel's first for a pixel-centre primitive) where `valid`, depth at (x, y), the stored
 // depths gathered and tested, the passing ones written one by one (the owner to `owner_values`
 // values from the index: a pixel-centre primitive's to every sample of the pixel).
+// scatter: the passing lanes written by scatter_passing (AVX-512 hosts, one owner value each).
 struct GatheredStep {
   __m256 a0, dzdx, dzdy, offset;
   uint32_t* depth;
   uint32_t* owner;
   uint32_t id, owner_values;
+  bool scatter;
 };
 
-RASTERCMP_AVX2 inline GatheredStep gathered_step_of(const RasterPrimitive& p, RenderTargets& targets) {
+RASTERCMP_AVX2 inline GatheredStep gathered_step_of(const RasterPrimitive& p, RenderTargets& targets,
+                                                    bool avx512_writes) {
+  const uint32_t owner_values = p.per_sample ? 1u : targets.samples;
   return GatheredStep{_mm256_set1_ps(p.depth.a0),
                       _mm256_set1_ps(p.depth.dzdx),
                       _mm256_set1_ps(p.depth.dzdy),
@@ -194,7 +198,17 @@ RASTERCMP_AVX2 inline GatheredStep gathered_step_of(const RasterPrimitive& p, Re
                       targets.depth_raw.data(),
                       targets.owner.data(),
                       p.owner,
-                      p.per_sample ? 1u : targets.samples};
+                      owner_values,
+                      avx512_writes && owner_values == 1};
+}
+
+// The writes of a gathered step's passing lanes (distinct positions `index`) with two masked
+// scatters: the raw depths (when written) and the owner. The same stores as draw_gathered's loop
+// over the lanes, without a branch per lane that waits on the gathered depths.
+RASTERCMP_AVX512 void scatter_passing(const GatheredStep& c, bool write, __m256i index, __m256i pass, __m256i raw) {
+  const __mmask8 lanes = _mm256_movepi32_mask(pass);
+  if (write) _mm256_mask_i32scatter_epi32(c.depth, lanes, index, raw, 4);
+  _mm256_mask_i32scatter_epi32(c.owner, lanes, index, _mm256_set1_epi32(int32_t(c.id)), 4);
 }
 
 template <DepthFormat F, CompareOp Op>
@@ -207,6 +221,10 @@ RASTERCMP_AVX2 inline void draw_gathered(const GatheredStep& c, const KernelDept
     const __m256i stored =
         _mm256_mask_i32gather_epi32(_mm256_setzero_si256(), reinterpret_cast<const int*>(c.depth), index, valid, 4);
     pass = _mm256_and_si256(valid, depth_passes<F, Op>(z, raw, stored));
+  }
+  if (c.scatter) {
+    scatter_passing(c, d.write, index, pass, raw);
+    return;
   }
   uint32_t bits = uint32_t(_mm256_movemask_ps(_mm256_castsi256_ps(pass)));
   if (bits == 0) return;
@@ -226,7 +244,7 @@ RASTERCMP_AVX2 inline void draw_gathered(const GatheredStep& c, const KernelDept
 template <DepthFormat F, CompareOp Op>
 RASTERCMP_AVX2 void flush_fragments(const Fragments& f, int32_t count, const RasterPrimitive& p, const KernelDepth& d,
                                     RenderTargets& targets) {
-  const GatheredStep step = gathered_step_of(p, targets);
+  const GatheredStep step = gathered_step_of(p, targets, false);  // four owner values a fragment
   const __m256i lanes = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
   for (int32_t i = 0; i < count; i += 8)
     draw_gathered<F, Op>(step, d, _mm256_load_ps(f.x + i), _mm256_load_ps(f.y + i),
@@ -544,12 +562,12 @@ RASTERCMP_AVX2 bool sample_box_rows(const RasterPrimitive& p, int32_t y0, int32_
 // row's columns are known.
 template <DepthFormat F, CompareOp Op>
 RASTERCMP_AVX2 bool thin_rows(const RasterPrimitive& p, int32_t y0, int32_t y1, const KernelDepth& d,
-                              RenderTargets& targets) {
+                              RenderTargets& targets, bool avx512_writes) {
   PlaneRows planes;
   if (!init_plane_rows(planes, p, 1, y0, y1)) return false;
   start_sample(planes, 0);
   const int32_t width = int32_t(targets.width);
-  const GatheredStep gathered = gathered_step_of(p, targets);
+  const GatheredStep gathered = gathered_step_of(p, targets, avx512_writes);
   uint32_t* depth = gathered.depth;
   uint32_t* owner = gathered.owner;
   const __m256i id = _mm256_set1_epi32(int32_t(p.owner));
@@ -623,7 +641,7 @@ RASTERCMP_AVX2 bool thin_rows(const RasterPrimitive& p, int32_t y0, int32_t y1, 
 
 template <DepthFormat F, CompareOp Op>
 RASTERCMP_AVX2 bool depth_kernel(const RasterPrimitive& p, int32_t y0, int32_t y1, const KernelDepth& d,
-                                 RenderTargets& targets) {
+                                 RenderTargets& targets, bool avx512_writes) {
   if (p.per_sample && targets.samples == 4) {
     const int32_t columns = p.visit.x1 - p.visit.x0 + 1;
     if (columns <= kBoxColumns && columns * (y1 - y0 + 1) <= kBoxPixels &&
@@ -632,7 +650,7 @@ RASTERCMP_AVX2 bool depth_kernel(const RasterPrimitive& p, int32_t y0, int32_t y
       return true;
     return sample_span_rows<F, Op>(p, y0, y1, d, targets);
   }
-  if (targets.samples == 1) return thin_rows<F, Op>(p, y0, y1, d, targets);
+  if (targets.samples == 1) return thin_rows<F, Op>(p, y0, y1, d, targets, avx512_writes);
   return depth_rows<F, Op>(p, y0, y1, d, targets);
 }
 
@@ -651,7 +669,7 @@ RASTERCMP_AVX2 bool coverage_rows(const RasterPrimitive& p, int32_t y0, int32_t 
   });
 }
 
-using DepthRowsFn = bool (*)(const RasterPrimitive&, int32_t, int32_t, const KernelDepth&, RenderTargets&);
+using DepthRowsFn = bool (*)(const RasterPrimitive&, int32_t, int32_t, const KernelDepth&, RenderTargets&, bool);
 
 struct DepthRowsMaker {
   template <DepthFormat F, CompareOp Op>
@@ -667,7 +685,7 @@ constexpr auto kDepthRows = kernel_table<DepthRowsMaker>();
 }  // namespace
 
 bool rasterize_rows_avx2(const RasterPrimitive& p, int32_t y0, int32_t y1, const DepthTestState& depth,
-                         RenderTargets& targets) {
+                         RenderTargets& targets, bool avx512_writes) {
   if (p.binned || depth.compute_when_inactive || (p.per_sample && targets.samples > kStandardSamples4x.size()))
     return false;
   if (uint64_t(targets.width) * targets.height * targets.samples > uint64_t(INT32_MAX)) return false;  // gather indices
@@ -677,7 +695,7 @@ bool rasterize_rows_avx2(const RasterPrimitive& p, int32_t y0, int32_t y1, const
   if (depth.op == CompareOp::Never) return true;  // no covered sample passes: nothing is written
   const KernelDepth d{depth.format,     depth.op,         depth.write, depth.range.clamp,
                       depth.range.zmin, depth.range.zmax, depth.fma};
-  return select_kernel(kDepthRows, depth.format, depth.op)(p, y0, y1, d, targets);
+  return select_kernel(kDepthRows, depth.format, depth.op)(p, y0, y1, d, targets, avx512_writes);
 }
 
 }  // namespace rastercmp::cpu::fast

@@ -297,11 +297,6 @@ bool run_meets_denormals(const FastFrame& frame, uint32_t d, uint32_t begin, uin
       [] { return true; });  // not a fast draw: fast draws are triangle draws
 }
 
-// A bias factor that is a denormal meets one in every set-up of a non-empty run.
-bool bias_is_denormal(const DepthBias& bias) {
-  return is_denormal(bias.constant_factor) || is_denormal(bias.slope_factor) || is_denormal(bias.clamp);
-}
-
 // A draw's trailing pipelined run [first, primitive count) whose set-ups the block-row phase
 // checks for denormals (run_meets_denormals), a range of primitives per task.
 struct TrailingCheck {
@@ -315,10 +310,13 @@ struct TrailingCheck {
 // With several workers the trailing runs' denormal checks are returned, for the block-row phase
 // to share out; with one they are made here.
 std::vector<TrailingCheck> transform_all_vertices(FastFrame& frame, bool check_pending) {
-  // every triangle draw: the fast draws, and those the exact front end walks (BandWorker::walk_exact
-  // reads their unclipped triangles' window positions here instead of transforming each corner per
-  // worker)
-  const auto transformed = [&frame](uint32_t d) { return is_triangle_topology(frame.scene->draws[d].topology); };
+  // every draw of triangles or lines: the fast draws, and those the exact front end walks
+  // (BandWorker::walk_exact reads their lines' and unclipped triangles' window positions here
+  // instead of transforming each corner per worker)
+  const auto transformed = [&frame](uint32_t d) {
+    const Topology topology = frame.scene->draws[d].topology;
+    return is_triangle_topology(topology) || is_line_topology(topology);
+  };
   size_t total = 0;
   for (uint32_t d = 0; d < frame.draws.size(); ++d)
     if (transformed(d)) total += frame.scene->draws[d].positions_clip.size();
@@ -382,7 +380,7 @@ std::vector<TrailingCheck> transform_all_vertices(FastFrame& frame, bool check_p
     // until then.
     if ((draw_flags[d] & kVertexClipBits) && fd.setup.depth_active()) {
       const uint32_t first = trailing_run_first(frame, d), count = primitive_count(draw);
-      const bool met = first < count && (bias_is_denormal(draw.state.depth_bias) ||
+      const bool met = first < count && (depth_bias_is_denormal(draw.state.depth_bias) ||
                                          (!check_pending && run_meets_denormals(frame, d, first, count)));
       if (met) {
         fd.fast = false;
