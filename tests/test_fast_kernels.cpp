@@ -746,7 +746,8 @@ void expect_vector_rows_match(const Scene& scene, uint64_t seed, fast_test::Rand
 // half of them in 4x frames (per-sample triangles and rectangular lines, pixel-centre Bresenham
 // lines), every depth format and compare op, writes, clamp, bias, scissors and viewports that cut
 // primitives, stored depths at random, each primitive's rows split at a random row as the tile rows
-// split them. On AVX-512 hosts half of the 1x frames take the scattered writes (avx512_writes).
+// split them. On AVX-512 hosts half of the 1x frames take the scattered writes (avx512_writes), the
+// others, and every frame on other hosts, the blended ones.
 TEST(FastExactRows, VectorRowsWriteWhatTheExactRasterizerWrites) {
   if (!host_has_avx2_fma()) GTEST_SKIP() << "the host runs no AVX2";
   uint64_t vector_primitives = 0, lines = 0, per_sample = 0, scattered_lines = 0;

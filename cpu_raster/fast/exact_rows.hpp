@@ -25,8 +25,9 @@ void rasterize_primitive_rows(const RasterPrimitive& p, const DepthTestState& de
 // rows per step, then the covered samples' depths, tests and writes eight at a time, gathered from
 // any row. False, having written nothing, for a binned primitive, the depth skip off, or planes
 // whose values leave the range it evaluates exactly in double: then rasterize_primitive_rows.
-// avx512_writes (call only on AVX-512 hosts): a frame of one sample per pixel's gathered steps write
-// their passing lanes with scatters.
+// A frame of one sample per pixel's gathered steps write their passing lanes with scatters when
+// avx512_writes (call so only on AVX-512 hosts), otherwise every valid lane, a failing one with
+// the values it held.
 bool rasterize_rows_avx2(const RasterPrimitive& p, int32_t y0, int32_t y1, const DepthTestState& depth,
                          RenderTargets& targets, bool avx512_writes = false);
 

@@ -179,13 +179,17 @@ struct Fragments {
 // value, or a pixel's first for a pixel-centre primitive) where `valid`, depth at (x, y), the stored
 // depths gathered and tested, the passing ones written one by one (the owner to `owner_values`
 // values from the index: a pixel-centre primitive's to every sample of the pixel).
-// scatter: the passing lanes written by scatter_passing (AVX-512 hosts, one owner value each).
+// How a step's passing lanes are written: one by one (Lanes), by scatter_passing (Scatter:
+// AVX-512 hosts, one owner value a lane), or every valid lane, those that failed with the values
+// they held (Blended: one owner value a lane).
+enum class StepWrites { Lanes, Scatter, Blended };
+
 struct GatheredStep {
   __m256 a0, dzdx, dzdy, offset;
   uint32_t* depth;
   uint32_t* owner;
   uint32_t id, owner_values;
-  bool scatter;
+  StepWrites writes;
 };
 
 RASTERCMP_AVX2 inline GatheredStep gathered_step_of(const RasterPrimitive& p, RenderTargets& targets,
@@ -199,7 +203,9 @@ RASTERCMP_AVX2 inline GatheredStep gathered_step_of(const RasterPrimitive& p, Re
                       targets.owner.data(),
                       p.owner,
                       owner_values,
-                      avx512_writes && owner_values == 1};
+                      owner_values != 1 ? StepWrites::Lanes
+                      : avx512_writes   ? StepWrites::Scatter
+                                        : StepWrites::Blended};
 }
 
 // The writes of a gathered step's passing lanes (distinct positions `index`) with two masked
@@ -216,14 +222,41 @@ RASTERCMP_AVX2 inline void draw_gathered(const GatheredStep& c, const KernelDept
                                          __m256i valid) {
   const __m256 z = finish_depth8(mul_add8(c.dzdy, y, mul_add8(c.dzdx, x, c.a0, d.fma), d.fma), c.offset, d);
   const __m256i raw = to_raw<F>(z);
-  __m256i pass = valid;
+  __m256i pass = valid, stored = raw;
   if constexpr (Op != CompareOp::Always) {
-    const __m256i stored =
+    stored =
         _mm256_mask_i32gather_epi32(_mm256_setzero_si256(), reinterpret_cast<const int*>(c.depth), index, valid, 4);
     pass = _mm256_and_si256(valid, depth_passes<F, Op>(z, raw, stored));
   }
-  if (c.scatter) {
+  if (c.writes == StepWrites::Scatter) {
     scatter_passing(c, d.write, index, pass, raw);
+    return;
+  }
+  if (c.writes == StepWrites::Blended) {
+    // A valid lane is a sample of this primitive in this worker's tiles: storing back what a
+    // failing one held changes nothing, and no other worker writes it. An invalid lane's stores
+    // go to a scratch word. So eight stores of each kind, without a branch on the test.
+    const __m256i id = _mm256_set1_epi32(int32_t(c.id));
+    __m256i owner_out = id;
+    if constexpr (Op != CompareOp::Always)
+      owner_out = _mm256_blendv_epi8(
+          _mm256_mask_i32gather_epi32(_mm256_setzero_si256(), reinterpret_cast<const int*>(c.owner), index, valid, 4),
+          id, pass);
+    alignas(32) uint32_t depth_lanes[8], owner_lanes[8];
+    alignas(32) int32_t index_lanes[8], valid_lanes[8];
+    _mm256_store_si256(reinterpret_cast<__m256i*>(depth_lanes), _mm256_blendv_epi8(stored, raw, pass));
+    _mm256_store_si256(reinterpret_cast<__m256i*>(owner_lanes), owner_out);
+    _mm256_store_si256(reinterpret_cast<__m256i*>(index_lanes), index);
+    _mm256_store_si256(reinterpret_cast<__m256i*>(valid_lanes), valid);
+    uint32_t scratch[2];
+    for (uint32_t k = 0; k < 8; ++k) {
+      const bool in = valid_lanes[k] != 0;
+      const size_t at = in ? size_t(uint32_t(index_lanes[k])) : 0;
+      uint32_t* depth_at = in ? c.depth + at : scratch;
+      uint32_t* owner_at = in ? c.owner + at : scratch + 1;
+      if (d.write) *depth_at = depth_lanes[k];
+      *owner_at = owner_lanes[k];
+    }
     return;
   }
   uint32_t bits = uint32_t(_mm256_movemask_ps(_mm256_castsi256_ps(pass)));
@@ -556,9 +589,10 @@ RASTERCMP_AVX2 bool sample_box_rows(const RasterPrimitive& p, int32_t y0, int32_
 // per step of four rows either one gathered eight-lane step, when every row's run is at most two
 // columns (lane 2k + j: row k, column u0[k] + j, valid when j < the run), or, row by row, steps of
 // eight contiguous columns masked to the run (a row of one sample per pixel is contiguous in the
-// attachments). Each lane's depth, test and write are draw_gathered's; a step holds distinct
-// samples of one primitive, so reading its stored values before writing any reads what the exact
-// path's order reads. Without the queue of depth_rows: a thin line's fragment is drawn where its
+// attachments). Each lane's depth, test and write are draw_gathered's (the gathered step's writes
+// scattered on AVX-512 hosts, blended elsewhere: StepWrites); a step holds distinct samples of one
+// primitive, so reading its stored values before writing any reads what the exact path's order
+// reads. Without the queue of depth_rows: a thin line's fragment is drawn where its
 // row's columns are known.
 template <DepthFormat F, CompareOp Op>
 RASTERCMP_AVX2 bool thin_rows(const RasterPrimitive& p, int32_t y0, int32_t y1, const KernelDepth& d,
