@@ -221,9 +221,13 @@ uint32_t trailing_run_first(const FastFrame& frame, uint32_t d) {
 // (trailing_depth_planes_avx2: each lane the scalar operations, so the same flags, which the other
 // order raises too; a last group of fewer repeats its first triangle). With clipped_elsewhere the
 // triangles that need clipping are left to clip_block_triangles, which watches them as it clips
-// them (the block-row phase).
-template <Topology T, bool Indexed>
-bool run_meets_denormals_of(const FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end, bool clipped_elsewhere) {
+// them (the block-row phase). With block_rows (the draw's measured block rows, the same phase) the
+// triangles of a block at kNoRow are left out: every one of them is outside one clip plane (the
+// clipper drops it) or has its corners' rows outside the draw region's (its set-up stops at the
+// region test, before the depth plane: setup_triangle, place_in_region), so none forms a plane.
+template <Topology T, bool Indexed, bool ByBlockRows>
+bool run_meets_denormals_of(const FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end, bool clipped_elsewhere,
+                            const uint32_t* block_rows) {
   const FastDraw& fd = frame.draws[d];
   const Draw& draw = frame.scene->draws[d];
   const uint32_t* indices = draw.indices.data();
@@ -249,6 +253,12 @@ bool run_meets_denormals_of(const FastFrame& frame, uint32_t d, uint32_t begin, 
   uint32_t grouped = 0;
   const DenormalWatch watch;
   for (uint32_t i = begin; i < end; ++i) {
+    if constexpr (ByBlockRows) {
+      if (block_rows[i / 8] == kNoRow) {
+        i |= 7;  // the block's last primitive
+        continue;
+      }
+    }
     const std::array<uint32_t, 3> n = vertex_numbers<T>(i);
     const uint32_t a = Indexed ? indices[n[0]] : n[0], b = Indexed ? indices[n[1]] : n[1],
                    c = Indexed ? indices[n[2]] : n[2];
@@ -288,11 +298,15 @@ bool run_meets_denormals_of(const FastFrame& frame, uint32_t d, uint32_t begin, 
 }
 
 bool run_meets_denormals(const FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end,
-                         bool clipped_elsewhere = false) {
+                         bool clipped_elsewhere = false, const uint32_t* block_rows = nullptr) {
   return on_triangle_layout(
       frame.scene->draws[d],
       [&](auto topology, auto indexed) {
-        return run_meets_denormals_of<topology(), indexed()>(frame, d, begin, end, clipped_elsewhere);
+        return block_rows != nullptr
+                   ? run_meets_denormals_of<topology(), indexed(), true>(frame, d, begin, end, clipped_elsewhere,
+                                                                         block_rows)
+                   : run_meets_denormals_of<topology(), indexed(), false>(frame, d, begin, end, clipped_elsewhere,
+                                                                          nullptr);
       },
       [] { return true; });  // not a fast draw: fast draws are triangle draws
 }
@@ -503,17 +517,21 @@ void contiguous_rows(FastFrame& frame) {
 // Phase 3 (several workers): which tile rows each block of small triangles may reach, measured
 // once, so that a worker sets up only the blocks it may draw into. Each block's indices are
 // checked before they are read through; a bad one: the full profile check, which throws. The
-// same phase checks the trailing runs' set-ups for denormals (`checks`, transform_all_vertices),
-// a range of primitives per task; a draw that meets one is dropped from the fast draws
+// same phase checks the trailing runs' set-ups for denormals (`checks`, transform_all_vertices):
+// a draw of small blocks in its row tasks, each on its own blocks once their rows are known;
+// another a range of primitives per task. A draw that meets one is dropped from the fast draws
 // (drop_fast_draw) and from the row balance.
 void measure_all_block_rows(FastFrame& frame, const std::vector<TrailingCheck>& checks) {
-  // Tasks small enough to share out between 16 workers (perspective: 40 row tasks, 40 checks).
+  // Tasks small enough to share out between 16 workers (perspective: 40 row tasks, its check in them).
   constexpr uint32_t kRowTaskBlocks = 256, kCheckTaskPrimitives = 2048;
   struct CheckTask {
     uint32_t draw, begin, end;
   };
+  // A draw of small blocks has its run checked by the row tasks, on their blocks, after measuring
+  // their rows (blocks nobody sets up left out); any other draw by check tasks.
   std::vector<CheckTask> check_tasks;
   for (const TrailingCheck& c : checks) {
+    if (frame.draws[c.draw].small_blocks) continue;
     const uint32_t count = primitive_count(frame.scene->draws[c.draw]);
     for (uint32_t p = c.first; p < count; p += kCheckTaskPrimitives)
       check_tasks.push_back({c.draw, p, std::min(count, p + kCheckTaskPrimitives)});
@@ -537,7 +555,7 @@ void measure_all_block_rows(FastFrame& frame, const std::vector<TrailingCheck>& 
   const size_t tiles_y = size_t(std::max(frame.raster.tiles_y, 0));
   std::vector<int32_t> reach(tasks.size() * (tiles_y + 1), 0);
   std::vector<ClippedTable> clipped(tasks.size());  // the tasks' clipped triangles (clipped_pieces.hpp)
-  std::vector<uint8_t> met(check_tasks.size(), 0), clipped_met(tasks.size(), 0);
+  std::vector<uint8_t> met(check_tasks.size(), 0), row_met(tasks.size(), 0);
   // A draw of small blocks has its clipped triangles watched where the row tasks clip them, from
   // its trailing run's first on; the check tasks leave them out.
   std::vector<uint32_t> watch_from(frame.draws.size(), UINT32_MAX);
@@ -553,7 +571,14 @@ void measure_all_block_rows(FastFrame& frame, const std::vector<TrailingCheck>& 
     }
     // narrows kBlockAnyRow
     if (clip_block_triangles(frame, task.draw, task.begin, task.end, clipped[t], watch_from[task.draw]))
-      clipped_met[t] = 1;
+      row_met[t] = 1;
+    const uint32_t run_first = watch_from[task.draw];  // the trailing run's check on these blocks
+    if (run_first != UINT32_MAX) {
+      const uint32_t lo = std::max(run_first, task.begin * 8);
+      const uint32_t hi = std::min(primitive_count(frame.scene->draws[task.draw]), task.end * 8);
+      if (lo < hi && run_meets_denormals(frame, task.draw, lo, hi, true, frame.draws[task.draw].block_rows))
+        row_met[t] = 1;
+    }
     if (count_block_rows(frame.draws[task.draw].block_rows + task.begin, task.end - task.begin, tiles_y,
                          reach.data() + t * (tiles_y + 1)))
       any_row = true;
@@ -575,7 +600,7 @@ void measure_all_block_rows(FastFrame& frame, const std::vector<TrailingCheck>& 
   for (size_t i = 0; i < check_tasks.size(); ++i)
     if (met[i]) drop_fast_draw(frame.draws[check_tasks[i].draw]);
   for (size_t t = 0; t < tasks.size(); ++t)
-    if (clipped_met[t]) drop_fast_draw(frame.draws[tasks[t].draw]);
+    if (row_met[t]) drop_fast_draw(frame.draws[tasks[t].draw]);
   for (size_t t = 0; t < tasks.size(); ++t) {
     if (!frame.draws[tasks[t].draw].small_blocks) {  // dropped: its blocks count nowhere
       std::fill_n(reach.begin() + std::ptrdiff_t(t * (tiles_y + 1)), tiles_y + 1, 0);
