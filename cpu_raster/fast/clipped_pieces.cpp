@@ -95,7 +95,10 @@ bool clip_blocks(FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end, Cli
   const Draw& draw = frame.scene->draws[d];
   FastDraw& fd = frame.draws[d];
   const uint32_t count = primitive_count(draw);
-  bool met = false;
+  // The clipped lanes of the trailing run are watched together: the flags cleared before the
+  // first of them, read after the last (between them only integer work runs), instead of a
+  // DenormalWatch around each.
+  bool watching = false;
   SmallBlock block;
   for (uint32_t b = begin; b < end; ++b) {
     if (fd.block_rows[b] != kBlockAnyRow) continue;  // known rows: no corner needs clipping
@@ -115,8 +118,10 @@ bool clip_blocks(FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end, Cli
       ClippedPrimitive entry;
       entry.primitive = block.first + l;
       entry.first = uint32_t(table.pieces.size());
-      const std::optional<DenormalWatch> watch =
-          entry.primitive >= watch_from ? std::optional<DenormalWatch>(std::in_place) : std::nullopt;
+      if (!watching && entry.primitive >= watch_from) {
+        clear_denormal_flags();
+        watching = true;
+      }
       for_each_piece(
           frame, d, entry.primitive, a, bb, c,
           [&](const FastTriangle& t) {
@@ -124,14 +129,13 @@ bool clip_blocks(FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end, Cli
             if (!t.rect.empty()) rows.add(t.rect.y0 >> kTileOrder, t.rect.y1 >> kTileOrder);
           },
           [&](const RasterPrimitive&) { entry.in_place = true; });
-      met |= watch && watch->met();
       rows.any_row |= entry.in_place;
       entry.count = uint32_t(table.pieces.size()) - entry.first;
       table.primitives.push_back(entry);
     }
     fd.block_rows[b] = rows.packed(frame.exact.region);
   }
-  return met;
+  return watching && denormal_flags_raised();
 }
 
 }  // namespace
