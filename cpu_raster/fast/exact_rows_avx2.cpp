@@ -175,15 +175,15 @@ struct Fragments {
   alignas(32) float x[kBatch + 8], y[kBatch + 8];
 };
 
-// Eight fragments of one primitive, distinct samples anywhere in the targets: `index` (the sample's
-// value, or a pixel's first for a pixel-centre primitive) where `valid`, depth at (x, y), the stored
-// depths gathered and tested, the passing ones written one by one (the owner to `owner_values`
-// values from the index: a pixel-centre primitive's to every sample of the pixel).
 // How a step's passing lanes are written: one by one (Lanes), by scatter_passing (Scatter:
 // AVX-512 hosts, one owner value a lane), or every valid lane, those that failed with the values
 // they held (Blended: one owner value a lane).
 enum class StepWrites { Lanes, Scatter, Blended };
 
+// Eight fragments of one primitive, distinct samples anywhere in the targets: `index` (the sample's
+// value, or a pixel's first for a pixel-centre primitive) where `valid`, depth at (x, y), the stored
+// depths gathered and tested, the passing ones written as `writes` says (the owner to
+// `owner_values` values from the index: a pixel-centre primitive's to every sample of the pixel).
 struct GatheredStep {
   __m256 a0, dzdx, dzdy, offset;
   uint32_t* depth;

@@ -225,6 +225,8 @@ uint32_t trailing_run_first(const FastFrame& frame, uint32_t d) {
 // triangles of a block at kNoRow are left out: every one of them is outside one clip plane (the
 // clipper drops it) or has its corners' rows outside the draw region's (its set-up stops at the
 // region test, before the depth plane: setup_triangle, place_in_region), so none forms a plane.
+// ByBlockRows is a template argument because a test in the loop slowed the one-worker check,
+// which runs without block rows (its serial time 0.21-0.22 -> 0.24-0.27 ms, perspective).
 template <Topology T, bool Indexed, bool ByBlockRows>
 bool run_meets_denormals_of(const FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end, bool clipped_elsewhere,
                             const uint32_t* block_rows) {
