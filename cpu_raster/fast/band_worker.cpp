@@ -416,11 +416,20 @@ bool BandWorker::walk_exact(uint32_t d) {
   const uint32_t inside_planes = frame.skips.clip_only_when_needed ? 0 : tested_clip_planes(depth_clip);
   const bool bias_denormal = lines && depth_bias_is_denormal(walk.draw->state.depth_bias);
   const LineXyClip line_xy = frame.rules.has(LavapipeRule::LineGuardBand) ? LineXyClip::GuardBand : LineXyClip::Clip;
+  // A line list without indices: line i's ends are positions 2i and 2i + 1, so a line in other
+  // workers' rows is left out from the vertex phase's values before it is assembled.
+  const bool listed_lines = lines && transformed && frame_.workers > 1 &&
+                            walk.draw->topology == Topology::LineList && walk.draw->indices.empty();
   // A primitive that throws (set-up in a mode where the two modes disagree, a refused wrapping
   // set-up) stops this walk; the render throws the first such primitive's error (FastFrame::failure).
   uint32_t i = 0;
   try {
     for (; i < walk.count; ++i) {
+      if (listed_lines && 2 * size_t(i) + 1 < positions) {
+        const RowReach reach = line_reach(transformed + 2 * size_t(i), margin);
+        if (reach == RowReach::OtherRows) continue;
+        if (reach == RowReach::NoFrameRow && primitive_setup_denormals(walk, i) == SetupDenormals::Flushed) continue;
+      }
       const SetupDenormals mode = primitive_setup_denormals(walk, i);
       const bool flushed = mode == SetupDenormals::Flushed;
       if (!lines && frame_.workers == 1 && (!flushed || !lean_triangles)) {
@@ -515,18 +524,41 @@ DrawWalk BandWorker::begin_draw_transformed(uint32_t d) const {
 // sets it up, in order, and records its error (walk_exact, FastFrame::failure), which is then
 // the first failing primitive's, as on the exact path.
 bool BandWorker::misses_own_rows(const ClipVertex* v, uint32_t count, float margin, bool may_throw) const {
-  float x_lo = v[0].window.x, x_hi = x_lo, y_lo = v[0].window.y, y_hi = y_lo;
+  const RowReach reach =
+      reach_of(count, margin, [v](uint32_t k) { return std::pair{v[k].window, v[k].clip_mask}; });
+  return reach == RowReach::OtherRows || (reach == RowReach::NoFrameRow && !may_throw);
+}
+
+// A line of a list without indices (ends at positions 2i and 2i + 1), from the vertex phase's
+// values.
+BandWorker::RowReach BandWorker::line_reach(const FastVertex* ends, float margin) const {
+  return reach_of(2, margin, [ends](uint32_t k) {
+    return std::pair{WindowVertex{ends[k].x, ends[k].y, ends[k].z}, ends[k].flags & kVertexClipBits};
+  });
+}
+
+template <class Vertex>
+BandWorker::RowReach BandWorker::reach_of(uint32_t count, float margin, Vertex&& vertex) const {
+  const WindowVertex first = vertex(0).first;
+  float x_lo = first.x, x_hi = x_lo, y_lo = first.y, y_hi = y_lo;
   for (uint32_t k = 0; k < count; ++k) {
-    if (v[k].clip_mask != 0 || !std::isfinite(v[k].window.x) || !std::isfinite(v[k].window.y)) return false;
-    x_lo = std::min(x_lo, v[k].window.x);
-    x_hi = std::max(x_hi, v[k].window.x);
-    y_lo = std::min(y_lo, v[k].window.y);
-    y_hi = std::max(y_hi, v[k].window.y);
+    const auto [window, clip_mask] = vertex(k);
+    if (clip_mask != 0 || !std::isfinite(window.x) || !std::isfinite(window.y)) return RowReach::Unsettled;
+    x_lo = std::min(x_lo, window.x);
+    x_hi = std::max(x_hi, window.x);
+    y_lo = std::min(y_lo, window.y);
+    y_hi = std::max(y_hi, window.y);
   }
-  if ((x_hi - x_lo) + (y_hi - y_lo) + 4.0f * margin >= 32000.0f || y_lo < -1e7f || y_hi > 1e7f) return false;
-  const int32_t row_lo = int32_t(std::floor(y_lo - margin)), row_hi = int32_t(std::floor(y_hi + margin));
-  if (may_throw && (row_hi < 0 || (row_lo >> kTileOrder) >= frame_.raster.tiles_y)) return false;
-  return !owns_tile_rows(row_lo >> kTileOrder, row_hi >> kTileOrder);
+  if ((x_hi - x_lo) + (y_hi - y_lo) + 4.0f * margin >= 32000.0f || y_lo < -1e7f || y_hi > 1e7f)
+    return RowReach::Unsettled;
+  // floor of a float within +-2e7: its truncation, one less when that lies above it
+  const auto floor_of = [](float value) {
+    const int32_t t = int32_t(value);
+    return float(t) > value ? t - 1 : t;
+  };
+  const int32_t row_lo = floor_of(y_lo - margin), row_hi = floor_of(y_hi + margin);
+  if (owns_tile_rows(row_lo >> kTileOrder, row_hi >> kTileOrder)) return RowReach::OwnRows;
+  return row_hi < 0 || (row_lo >> kTileOrder) >= frame_.raster.tiles_y ? RowReach::NoFrameRow : RowReach::OtherRows;
 }
 
 void BandWorker::raster_exact_in_band(const RasterPrimitive& primitive, const DepthTestState& depth) {
