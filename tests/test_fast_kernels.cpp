@@ -88,12 +88,11 @@ TEST(FastSmallTriangles, PackedGridWordsHoldEachLanesBits) {
   }
 }
 
-// Eight overlapping triangles of a few pixels, in the 8x8 layout: the AVX-512 set-up hands the
+// Eight overlapping triangles of a few pixels, in the 8x8 layout: the eight-wide set-up hands the
 // block to the window compositor, whose result equals the grid lanes' scatter (the same set-up
 // without window_ok) for every depth format and compare op, with and without depth writes, clamp
 // and FMA, also when only some of the block's rows are drawn (another worker's rows).
-TEST(FastSmallTriangles, WindowCompositorEqualsGridScatter) {
-  if (!host_has_avx512()) GTEST_SKIP() << "host without AVX-512: the window compositor does not run";
+void expect_window_equals_grid_scatter(SmallSetupFn setup, WindowBlockFn (*select_window)(DepthFormat, CompareOp)) {
   fast_test::Random r(23);
   constexpr int32_t kSide = 48;
   int windows = 0;
@@ -115,9 +114,9 @@ TEST(FastSmallTriangles, WindowCompositorEqualsGridScatter) {
     in.depth.zmin = 0.2f, in.depth.zmax = 0.7f;
     in.depth.fma = r.chance(0.5);
     SmallBlockOutput grid, window;
-    setup_small_block_avx512(in, grid);  // window_ok false: the grid evaluation
+    setup(in, grid);  // window_ok false: the grid evaluation
     in.window_ok = true;
-    setup_small_block_avx512(in, window);
+    setup(in, window);
     ASSERT_FALSE(grid.window);
     if (!window.window) continue;
     ++windows;
@@ -142,11 +141,21 @@ TEST(FastSmallTriangles, WindowCompositorEqualsGridScatter) {
       if (lo <= hi)
         select_grid_scatter(in.depth.format, in.depth.op)(grid, l, 100 + uint32_t(l), lo, hi, in.depth.write, a);
     }
-    select_window_block_avx512(in.depth.format, in.depth.op)(window, 100, row_lo, row_hi, in.depth, b);
+    select_window(in.depth.format, in.depth.op)(window, 100, row_lo, row_hi, in.depth, b);
     ASSERT_EQ(owner_a, owner_b) << "trial " << trial;
     ASSERT_EQ(depth_a, depth_b) << "trial " << trial;
   }
   EXPECT_GT(windows, 300);  // most blocks of this shape take the window
+}
+
+TEST(FastSmallTriangles, WindowCompositorEqualsGridScatter) {
+  if (!host_has_avx512()) GTEST_SKIP() << "host without AVX-512: the sixteen-pixel window compositor does not run";
+  expect_window_equals_grid_scatter(&setup_small_block_avx512, &select_window_block_avx512);
+}
+
+TEST(FastSmallTriangles, EightPixelWindowCompositorEqualsGridScatter) {
+  if (!host_has_avx2_fma()) GTEST_SKIP() << "host without AVX2/FMA: the eight-pixel window compositor does not run";
+  expect_window_equals_grid_scatter(&setup_small_block_avx2, &select_window_block_avx2);
 }
 
 // What a set-up output says about lane l that the drawing reads: its rectangle, and by class the

@@ -1,7 +1,7 @@
 // setup_small_block_avx2 and setup_small_block_avx512 (small_triangles.hpp): this body is
 // compiled twice, by small_triangles_avx2.cpp and small_triangles_avx512.cpp, which define
 // RASTERCMP_SMALL_TARGET (the target attribute) and RASTERCMP_SMALL_SETUP (the function's name).
-// The AVX-512 build runs the same 256-bit intrinsics with 32 vector registers (fewer spills) and
+// The AVX-512 build runs the same 256-bit intrinsics with 32 vector registers (fewer spills). Both
 // may hand blocks to the window compositor (small_window.hpp). Every float operation is the
 // scalar set-up's (depth_plane.cpp triangle_depth_plane, §3.2), one IEEE operation per intrinsic
 // and no fusion.
@@ -249,7 +249,6 @@ RASTERCMP_SMALL_TARGET int max_lane(__m256i v, __m256i mask) {
   return _mm256_cvtsi256_si32(m);
 }
 
-#ifdef RASTERCMP_SMALL_WINDOW
 // What the compositor evaluates each lane from: E - 1 at (grid_x0, y0), the steps, the plane.
 RASTERCMP_SMALL_TARGET inline void store_window_lanes(const Edge8 (&edges)[3], const Plane8& plane,
                                                       SmallBlockOutput& out) {
@@ -264,7 +263,6 @@ RASTERCMP_SMALL_TARGET inline void store_window_lanes(const Edge8 (&edges)[3], c
   _mm256_store_ps(out.dzdy, plane.dzdy);
   out.window = true;
 }
-#endif
 
 }  // namespace
 
@@ -367,12 +365,10 @@ RASTERCMP_SMALL_TARGET void RASTERCMP_SMALL_SETUP(const SmallBlockInput& in, Sma
     out.grid_y0 = min_of_lanes(_mm256_blendv_epi8(none_low, y0, grid));
     out.grid_x1 = max_of_lanes(_mm256_blendv_epi8(none_high, x1, grid));
     out.grid_y1 = max_of_lanes(_mm256_blendv_epi8(none_high, y1, grid));
-#ifdef RASTERCMP_SMALL_WINDOW
     if (in.window_ok && goes_to_window(out, shift)) {
       store_window_lanes(edges, plane, out);
       return;
     }
-#endif
     with_depth_format(in.depth.format, [&]<DepthFormat F>() RASTERCMP_SMALL_TARGET {
       evaluate_grid<F>(g, edges, plane, in.depth, out);
     });

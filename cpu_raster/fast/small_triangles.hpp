@@ -49,7 +49,7 @@ struct SmallBlockInput {
   bool front_ccw = true;
   CullMode cull = CullMode::None;
   KernelDepth depth;       // format None: no depth test
-  bool window_ok = false;  // blocks may be left to the window compositor (AVX-512 set-up only)
+  bool window_ok = false;  // blocks may be left to the window compositor (small_window.hpp)
 };
 
 struct SmallBlockOutput {
@@ -87,13 +87,13 @@ struct SmallBlockOutput {
 };
 
 // A block in the 4x4 layout goes to the window when its union holds at least this many pixels
-// (about 4 per lane): below it, the packed scatter costs less (docs/performance-log.md: d95728d, a8e02a1).
+// (about 4 per lane): below it, the packed scatter costs less (docs/performance-log.md: d95728d,
+// a8e02a1).
 inline constexpr int32_t kWindowMinUnion = 32;
 
-// Whether a set-up block goes to the window compositor (small_window.hpp, AVX-512 set-ups): grid
-// lanes only, their union within kWindowWidth x kWindowHeight, and in the 4x4 layout (`shift` is
-// the block's own) only when the union holds kWindowMinUnion pixels: pixel-sized lanes keep the
-// packed scatter.
+// Whether a set-up block goes to the window compositor (small_window.hpp): grid lanes only, their
+// union within kWindowWidth x kWindowHeight, and in the 4x4 layout (`shift` is the block's own)
+// only when the union holds kWindowMinUnion pixels: pixel-sized lanes keep the packed scatter.
 inline bool goes_to_window(const SmallBlockOutput& out, int shift) {
   const int32_t columns = out.grid_x1 - out.grid_x0 + 1, rows = out.grid_y1 - out.grid_y0 + 1;
   return (shift != kSmallGridShift || columns * rows >= kWindowMinUnion) && (out.job_mask | out.scalar_mask) == 0 &&

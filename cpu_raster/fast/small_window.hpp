@@ -1,9 +1,9 @@
-// The window compositor for blocks of small triangles (AVX-512 hosts): a block of grid lanes
-// whose union fits kWindowWidth x kWindowHeight pixels
-// (SmallBlockOutput::window) is drawn by loading that window of the attachments once, then, lane
-// by lane in primitive order, evaluating the lane's rows 16 pixels at a time (coverage from the
-// 32-bit edge values, raw depth from the plane, the depth test against the window) and merging the
-// passing pixels into the window with masked moves; the window is stored back once.
+// The window compositor for blocks of small triangles: a block of grid lanes whose union fits
+// kWindowWidth x kWindowHeight pixels (SmallBlockOutput::window) is drawn by loading that window
+// of the attachments once, then, lane by lane in primitive order, evaluating the lane's rows 16
+// pixels at a time on AVX-512 hosts, 8 on AVX2 hosts (coverage from the 32-bit edge values, raw
+// depth from the plane, the depth test against the window) and merging the passing pixels into the
+// window with masked moves or blends; the window is stored back once.
 //
 // Why it is exact: each pixel still sees the block's triangles one by one in primitive order, with
 // the exact path's operations (the per-pixel formula of tile_kernel.hpp, the compare of
@@ -26,5 +26,7 @@ using WindowBlockFn = void (*)(const SmallBlockOutput&, uint32_t owner_of_lane_0
 
 // Call only when host_has_avx512().
 WindowBlockFn select_window_block_avx512(DepthFormat format, CompareOp op);
+// Call only when host_has_avx2_fma().
+WindowBlockFn select_window_block_avx2(DepthFormat format, CompareOp op);
 
 }  // namespace rastercmp::cpu::fast

@@ -48,7 +48,8 @@ DrawRaster make_draw_raster(const DepthTestState& depth, bool frame_bounds, bool
                            : select_small_kernel_avx2(draw.kernel.format, depth.op);
     draw.grid_fn = select_grid_scatter(draw.kernel.format, depth.op);
     draw.grid_block_fn = select_grid_block(draw.kernel.format, depth.op);
-    if (avx512) draw.window_block_fn = select_window_block_avx512(draw.kernel.format, depth.op);
+    draw.window_block_fn = avx512 ? select_window_block_avx512(draw.kernel.format, depth.op)
+                                  : select_window_block_avx2(draw.kernel.format, depth.op);
   }
   return draw;
 }
