@@ -416,17 +416,18 @@ bool BandWorker::walk_exact(uint32_t d) {
   const uint32_t inside_planes = frame.skips.clip_only_when_needed ? 0 : tested_clip_planes(depth_clip);
   const bool bias_denormal = lines && depth_bias_is_denormal(walk.draw->state.depth_bias);
   const LineXyClip line_xy = frame.rules.has(LavapipeRule::LineGuardBand) ? LineXyClip::GuardBand : LineXyClip::Clip;
-  // A line list without indices: line i's ends are positions 2i and 2i + 1, so a line in other
-  // workers' rows is left out from the vertex phase's values before it is assembled.
-  const bool listed_lines = lines && transformed && frame_.workers > 1 &&
-                            walk.draw->topology == Topology::LineList && walk.draw->indices.empty();
+  // A line or triangle list: primitive i's corners are positions (indices[]) corners * i + k, so a
+  // primitive in other workers' rows is left out from the vertex phase's values before it is
+  // assembled.
+  const bool listed = transformed && frame_.workers > 1 &&
+                      walk.draw->topology == (lines ? Topology::LineList : Topology::TriangleList);
   // A primitive that throws (set-up in a mode where the two modes disagree, a refused wrapping
   // set-up) stops this walk; the render throws the first such primitive's error (FastFrame::failure).
   uint32_t i = 0;
   try {
     for (; i < walk.count; ++i) {
-      if (listed_lines && 2 * size_t(i) + 1 < positions) {
-        const RowReach reach = line_reach(transformed + 2 * size_t(i), margin);
+      if (listed) {
+        const RowReach reach = listed_reach(*walk.draw, transformed, positions, corners, i, margin);
         if (reach == RowReach::OtherRows) continue;
         if (reach == RowReach::NoFrameRow && primitive_setup_denormals(walk, i) == SetupDenormals::Flushed) continue;
       }
@@ -529,11 +530,21 @@ bool BandWorker::misses_own_rows(const ClipVertex* v, uint32_t count, float marg
   return reach == RowReach::OtherRows || (reach == RowReach::NoFrameRow && !may_throw);
 }
 
-// A line of a list without indices (ends at positions 2i and 2i + 1), from the vertex phase's
-// values.
-BandWorker::RowReach BandWorker::line_reach(const FastVertex* ends, float margin) const {
-  return reach_of(2, margin, [ends](uint32_t k) {
-    return std::pair{WindowVertex{ends[k].x, ends[k].y, ends[k].z}, ends[k].flags & kVertexClipBits};
+// Primitive i of a line or triangle list (`corners` a primitive), from the vertex phase's values
+// at its positions: Unsettled when one lies past the draw's positions (the walk's own path then
+// takes it) or the list ends before its last corner.
+BandWorker::RowReach BandWorker::listed_reach(const Draw& draw, const FastVertex* transformed, size_t positions,
+                                              uint32_t corners, uint32_t i, float margin) const {
+  std::array<uint32_t, 3> at{};
+  const size_t first = size_t(corners) * i, listed = draw.indices.empty() ? positions : draw.indices.size();
+  if (first + corners > listed) return RowReach::Unsettled;
+  for (uint32_t k = 0; k < corners; ++k) {
+    at[k] = draw.indices.empty() ? uint32_t(first + k) : draw.indices[first + k];
+    if (at[k] >= positions) return RowReach::Unsettled;
+  }
+  return reach_of(corners, margin, [&](uint32_t k) {
+    const FastVertex& v = transformed[at[k]];
+    return std::pair{WindowVertex{v.x, v.y, v.z}, v.flags & kVertexClipBits};
   });
 }
 

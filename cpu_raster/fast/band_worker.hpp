@@ -71,7 +71,8 @@ class BandWorker {
   enum class RowReach { Unsettled, OwnRows, OtherRows, NoFrameRow };
   template <class Vertex>
   RowReach reach_of(uint32_t count, float margin, Vertex&& vertex) const;
-  RowReach line_reach(const FastVertex* ends, float margin) const;
+  RowReach listed_reach(const Draw& draw, const FastVertex* transformed, size_t positions, uint32_t corners,
+                        uint32_t i, float margin) const;
   // The exact rasterizer for one primitive, on this worker's tile rows.
   void raster_exact_in_band(const RasterPrimitive& primitive, const DepthTestState& depth);
 
