@@ -390,6 +390,64 @@ TEST(FastRowBalance, EveryRowOwnedOnceDeterministicAndBalanced) {
   EXPECT_LT(tile_row_weight(3, 8), tile_row_weight(3, 16));
 }
 
+// Rows shared out by the workers' speeds (a worker whose core another process shares): equal
+// speeds give the assignment without speeds; a worker at half speed gets about a third of two
+// workers' rows, and no worker finishes (load / speed) later than the mean finish by more than one
+// row's weight over its speed; contiguous runs follow the speeds' proportions, in order.
+TEST(FastRowBalance, RowsSharedOutByTheWorkersSpeeds) {
+  fast_test::Random random(31);
+  std::vector<uint64_t> weights(64);
+  for (uint64_t& w : weights) w = 100 + random.below(900);
+  const uint64_t heaviest = *std::max_element(weights.begin(), weights.end());
+  const uint64_t sum = std::accumulate(weights.begin(), weights.end(), uint64_t{0});
+  for (const uint32_t workers : {1u, 2u, 3u, 8u}) {
+    SCOPED_TRACE("workers " + std::to_string(workers));
+    EXPECT_EQ(balance_rows(weights, workers, std::vector<double>(workers, 1.0)), balance_rows(weights, workers));
+    EXPECT_EQ(contiguous_runs(16, workers, std::vector<double>(workers, 1.0)), contiguous_runs(16, workers));
+    std::vector<double> speeds(workers, 1.0);
+    speeds[workers - 1] = 0.5;
+    const std::vector<uint32_t> owner = balance_rows(weights, workers, speeds);
+    EXPECT_EQ(owner, balance_rows(weights, workers, speeds));
+    const std::vector<uint64_t> load = worker_loads(weights, owner, workers);
+    const double capacity = std::accumulate(speeds.begin(), speeds.end(), 0.0);
+    for (uint32_t w = 0; w < workers; ++w)
+      EXPECT_LE(double(load[w]) / speeds[w], double(sum) / capacity + double(heaviest) / speeds[w]) << w;
+    const std::vector<uint32_t> runs = contiguous_runs(16, workers, speeds);
+    ASSERT_EQ(runs.size(), 16u);
+    EXPECT_TRUE(std::is_sorted(runs.begin(), runs.end()));
+    for (const uint32_t w : runs) EXPECT_LT(w, workers);
+  }
+  const std::vector<uint64_t> two = worker_loads(weights, balance_rows(weights, 2, {1.0, 0.5}), 2);
+  EXPECT_NEAR(double(two[1]) / double(sum), 1.0 / 3.0, 0.03);
+  EXPECT_EQ(contiguous_runs(16, 2, {1.0, 0.5}), (std::vector<uint32_t>{0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 1}));
+  EXPECT_EQ(contiguous_runs(16, 2), (std::vector<uint32_t>{0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1}));
+}
+
+// The pool's pace (WorkerPool::record_pace, relative_speeds): equal until every worker is
+// measured, equal while the slowest keeps kPaceEven of the fastest's rate, then each worker's rate
+// over the fastest's, smoothed (a mean of paces), never below kPaceSlowest; phases shorter than
+// kPaceMinSeconds and workers given no work are left out.
+TEST(FastWorkerPool, PaceFromTheBandPhasesBefore) {
+  WorkerPool pool(2);
+  const std::vector<double> equal{1.0, 1.0};
+  EXPECT_EQ(pool.relative_speeds(), equal);
+  pool.record_pace({100, 0}, {0.004, 0.004});  // worker 1 given nothing: still unmeasured
+  EXPECT_EQ(pool.relative_speeds(), equal);
+  pool.record_pace({100, 100}, {0.004, 0.0045});  // 89% of the rate: even
+  EXPECT_EQ(pool.relative_speeds(), equal);
+  pool.record_pace({100, 100}, {0.0002, 0.0008});  // too short to say anything
+  EXPECT_EQ(pool.relative_speeds(), equal);
+  pool.record_pace({100, 100}, {0.004, 0.008});  // paces 40 and (45 + 80) / 2 us a unit
+  std::vector<double> speeds = pool.relative_speeds();
+  EXPECT_EQ(speeds[0], 1.0);
+  EXPECT_NEAR(speeds[1], 40.0 / 62.5, 1e-9);
+  for (int k = 0; k < 8; ++k) pool.record_pace({100, 100}, {0.004, 0.04});  // a tenth of the rate
+  speeds = pool.relative_speeds();
+  EXPECT_EQ(speeds[1], WorkerPool::kPaceSlowest);
+  for (int k = 0; k < 8; ++k) pool.record_pace({100, 100}, {0.004, 0.004});  // even again
+  EXPECT_EQ(pool.relative_speeds(), equal);
+}
+
 // balance_tiles: rows as balance_rows while no row weighs more than a worker's share; otherwise
 // the heavy rows cut into runs of whole tiles, every tile in exactly one unit, each unit one run of
 // one row, units in order of their estimate, heaviest first.

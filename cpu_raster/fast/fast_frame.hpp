@@ -77,6 +77,9 @@ struct FastFrame {
   // more of them (a camera's sky: six of perspective's sixteen rows).
   std::vector<int32_t> unowned_rows;
   std::atomic<size_t> next_unowned{0};
+  // Without queued units, each worker's rows' estimated work (row_balance.hpp), which the band
+  // phase's pace is measured against (WorkerPool::record_pace); empty: not measured.
+  std::vector<double> worker_work;
   RenderProfile* profile = nullptr;  // FastConfig::profile
   uint32_t profile_threads = 0;      // FastConfig::profile_threads
   double serial_mark = 0;            // profiled: the calling thread's CPU time when its last phase ended

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <functional>
 #include <memory>
@@ -469,6 +470,13 @@ bool count_block_rows(const uint32_t* block_rows, uint32_t n, size_t tiles_y, in
   return any_row;
 }
 
+// The workers' relative speeds for the static rows (WorkerPool::relative_speeds): equal with
+// one worker and in a profiled render (the model projects from equal shares).
+std::vector<double> pace_speeds(const FastFrame& frame) {
+  if (frame.workers <= 1 || frame.profile != nullptr) return {};
+  return worker_pool(frame.workers).relative_speeds();
+}
+
 // Which worker draws each tile, from the blocks that reach each row (`reach`: `tasks` arrays of
 // tiles_y + 1 differences) and the row's width (tile_row_weight): whole rows, or runs of a heavy
 // row's tiles, shared out by balance_tiles. No block reaching any row: row r to r % workers. When every draw
@@ -497,9 +505,14 @@ void balance_tile_rows(FastFrame& frame, const std::vector<int32_t>& reach, size
         unowned && weights[r] == 0 ? 0 : tile_row_weight(weights[r], uint32_t(std::max(frame.raster.tiles_x, 0)));
   }
   const uint32_t tiles_x = uint32_t(std::max(frame.raster.tiles_x, 0));
-  const TileUnits units = balance_tiles(weights, tiles_x, frame.workers);
+  const TileUnits units = balance_tiles(weights, tiles_x, frame.workers, pace_speeds(frame));
   for (size_t i = 0; i < frame.tiles.size(); ++i) frame.tiles[i].worker = units.unit[i];
   frame.queued_units = units.queued ? units.count : 0;
+  if (!units.queued) {
+    frame.worker_work.assign(frame.workers, 0.0);
+    for (size_t r = 0; r < tiles_y; ++r)
+      if (!(unowned && weights[r] == 0)) frame.worker_work[units.unit[r * tiles_x]] += double(weights[r]);
+  }
   for (const int32_t r : empty_rows)
     for (uint32_t tx = 0; tx < tiles_x; ++tx) frame.tiles[size_t(r) * tiles_x + tx].worker = kUnownedRow;
   frame.unowned_rows = std::move(empty_rows);
@@ -513,7 +526,10 @@ void balance_tile_rows(FastFrame& frame, const std::vector<int32_t>& reach, size
 void contiguous_rows(FastFrame& frame) {
   if (std::any_of(frame.draws.begin(), frame.draws.end(), [](const FastDraw& d) { return d.fast; })) return;
   const size_t tiles_x = size_t(std::max(frame.raster.tiles_x, 1)), tiles_y = size_t(std::max(frame.raster.tiles_y, 1));
-  for (size_t i = 0; i < frame.tiles.size(); ++i) frame.tiles[i].worker = uint32_t(i / tiles_x * frame.workers / tiles_y);
+  const std::vector<uint32_t> owner = contiguous_runs(uint32_t(tiles_y), frame.workers, pace_speeds(frame));
+  for (size_t i = 0; i < frame.tiles.size(); ++i) frame.tiles[i].worker = owner[i / tiles_x];
+  frame.worker_work.assign(frame.workers, 0.0);  // a row's work: one unit
+  for (const uint32_t w : owner) frame.worker_work[w] += 1.0;
 }
 
 // Phase 3 (several workers): which tile rows each block of small triangles may reach, measured
@@ -618,7 +634,15 @@ void measure_all_block_rows(FastFrame& frame, const std::vector<TrailingCheck>& 
 // none is left.
 void run_workers(FastFrame& frame) {
   if (frame.queued_units == 0) {
-    run_phase(frame, "bands", frame.workers, [&frame](uint32_t w) { BandWorker(frame, w).run(); });
+    // each worker's finish, from the phase's start: its pace, for the next render's rows
+    const bool paced = frame.worker_work.size() == frame.workers && frame.workers > 1 && frame.profile == nullptr;
+    std::vector<double> finished(frame.workers, 0.0);
+    const auto start = std::chrono::steady_clock::now();
+    run_phase(frame, "bands", frame.workers, [&](uint32_t w) {
+      BandWorker(frame, w).run();
+      if (paced) finished[w] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    });
+    if (paced) worker_pool(frame.workers).record_pace(frame.worker_work, finished);
     return;
   }
   std::atomic<uint32_t> next{0};

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <cmath>
 #include <numeric>
 
 namespace rastercmp::cpu::fast {
@@ -11,22 +12,57 @@ uint64_t tile_row_weight(uint64_t blocks, uint32_t tiles_x) {
          uint64_t(tiles_x) * (kRowWeightPerClearedTile + (blocks > 0 ? kRowWeightPerFilledTile : 0));
 }
 
-std::vector<uint32_t> balance_rows(const std::vector<uint64_t>& weights, uint32_t workers) {
+namespace {
+
+bool equal_speeds(const std::vector<double>& speeds, uint32_t workers) {
+  return speeds.size() != workers || std::all_of(speeds.begin(), speeds.end(), [](double s) { return s == 1.0; });
+}
+
+}  // namespace
+
+std::vector<uint32_t> balance_rows(const std::vector<uint64_t>& weights, uint32_t workers,
+                                   const std::vector<double>& speeds) {
   workers = std::max(workers, 1u);
+  const bool equal = equal_speeds(speeds, workers);
   std::vector<uint32_t> order(weights.size());
   std::iota(order.begin(), order.end(), 0u);
   std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return weights[a] > weights[b]; });
   std::vector<uint64_t> load(workers, 0);
   std::vector<uint32_t> owner(weights.size(), 0);
   for (const uint32_t r : order) {
-    const uint32_t w = uint32_t(std::min_element(load.begin(), load.end()) - load.begin());  // first of the least
+    uint32_t w = uint32_t(std::min_element(load.begin(), load.end()) - load.begin());  // first of the least
+    if (!equal) {
+      const auto finish = [&](uint32_t v) { return double(load[v] + weights[r]) / speeds[v]; };
+      for (uint32_t v = 0; v < workers; ++v)
+        if (finish(v) < finish(w)) w = v;
+    }
     owner[r] = w;
     load[w] += weights[r];
   }
   return owner;
 }
 
-TileUnits balance_tiles(const std::vector<uint64_t>& weights, uint32_t tiles_x, uint32_t workers) {
+std::vector<uint32_t> contiguous_runs(uint32_t rows, uint32_t workers, const std::vector<double>& speeds) {
+  workers = std::max(workers, 1u);
+  std::vector<uint32_t> owner(rows, 0);
+  if (equal_speeds(speeds, workers)) {
+    for (uint32_t r = 0; r < rows; ++r) owner[r] = uint32_t(uint64_t(r) * workers / std::max(rows, 1u));
+    return owner;
+  }
+  // worker w's run ends where the speeds before it and its own reach their share of the rows
+  const double total = std::accumulate(speeds.begin(), speeds.end(), 0.0);
+  double reached = 0.0;
+  uint32_t r = 0;
+  for (uint32_t w = 0; w < workers; ++w) {
+    reached += speeds[w];
+    const uint32_t end = w + 1 == workers ? rows : uint32_t(std::lround(double(rows) * reached / total));
+    for (; r < std::min(end, rows); ++r) owner[r] = w;
+  }
+  return owner;
+}
+
+TileUnits balance_tiles(const std::vector<uint64_t>& weights, uint32_t tiles_x, uint32_t workers,
+                        const std::vector<double>& speeds) {
   workers = std::max(workers, 1u);
   tiles_x = std::max(tiles_x, 1u);
   const uint64_t total = std::accumulate(weights.begin(), weights.end(), uint64_t(0));
@@ -35,7 +71,7 @@ TileUnits balance_tiles(const std::vector<uint64_t>& weights, uint32_t tiles_x, 
   const bool cut = workers > 1 && tiles_x > 1 &&
                    std::any_of(weights.begin(), weights.end(), [share](uint64_t w) { return w > share; });
   if (!cut) {  // whole rows, each worker's its own
-    const std::vector<uint32_t> rows = balance_rows(weights, workers);
+    const std::vector<uint32_t> rows = balance_rows(weights, workers, speeds);
     for (const uint32_t w : rows) units.unit.insert(units.unit.end(), tiles_x, w);
     units.count = workers;
     return units;

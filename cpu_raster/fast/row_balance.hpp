@@ -28,9 +28,12 @@ inline constexpr uint64_t kRowWeightPerFilledTile = 100;
 uint64_t tile_row_weight(uint64_t blocks, uint32_t tiles_x);
 
 // worker[r] for every row: rows by weight, heaviest first (ties: lower row first), each to the
-// least-loaded worker so far (ties: lower worker). Deterministic; every row gets exactly one of
+// worker that would finish it first, (load + weight) / speed (ties: lower worker): with equal
+// speeds (none given, or all 1) the least-loaded worker so far. `speeds` (WorkerPool::
+// relative_speeds): one per worker, in (0, 1]. Deterministic; every row gets exactly one of
 // 0..workers-1. workers >= 1.
-std::vector<uint32_t> balance_rows(const std::vector<uint64_t>& weights, uint32_t workers);
+std::vector<uint32_t> balance_rows(const std::vector<uint64_t>& weights, uint32_t workers,
+                                   const std::vector<double>& speeds = {});
 
 // How the band phase shares out the tiles (weights.size() rows of tiles_x tiles, row-major). When
 // no row weighs more than a worker's share (the total / workers): whole rows, unit[t] the worker
@@ -48,6 +51,13 @@ struct TileUnits {
   bool queued = false;
   bool operator==(const TileUnits&) const = default;
 };
-TileUnits balance_tiles(const std::vector<uint64_t>& weights, uint32_t tiles_x, uint32_t workers);
+// `speeds` as for balance_rows, for whole rows (queued pieces need none).
+TileUnits balance_tiles(const std::vector<uint64_t>& weights, uint32_t tiles_x, uint32_t workers,
+                        const std::vector<double>& speeds = {});
+
+// Which of `workers` runs of consecutive rows each of `rows` rows belongs to, the runs' lengths in
+// proportion to `speeds` (as for balance_rows): row r to worker r * workers / rows when they are
+// equal (none given, or all 1). Every worker's run is consecutive and they follow in order.
+std::vector<uint32_t> contiguous_runs(uint32_t rows, uint32_t workers, const std::vector<double>& speeds = {});
 
 }  // namespace rastercmp::cpu::fast

@@ -4,6 +4,7 @@
 #include <pthread.h>
 #include <sched.h>
 
+#include <algorithm>
 #include <chrono>
 #include <map>
 #include <memory>
@@ -116,6 +117,29 @@ void WorkerPool::thread_loop(uint32_t index) {
     }
     done_.notify_one();
   }
+}
+
+void WorkerPool::record_pace(const std::vector<double>& work, const std::vector<double>& seconds) {
+  if (work.size() != workers() || seconds.size() != workers()) return;
+  if (*std::max_element(seconds.begin(), seconds.end()) < kPaceMinSeconds) return;
+  const std::lock_guard<std::mutex> lock(pace_mutex_);
+  pace_.resize(workers(), 0.0);
+  for (size_t w = 0; w < pace_.size(); ++w) {
+    if (!(work[w] > 0.0 && seconds[w] > 0.0)) continue;
+    const double pace = seconds[w] / work[w];
+    pace_[w] = pace_[w] > 0.0 ? (1.0 - kPaceSmoothing) * pace_[w] + kPaceSmoothing * pace : pace;
+  }
+}
+
+std::vector<double> WorkerPool::relative_speeds() const {
+  std::vector<double> speeds(workers(), 1.0);
+  const std::lock_guard<std::mutex> lock(pace_mutex_);
+  if (pace_.size() != speeds.size() || std::any_of(pace_.begin(), pace_.end(), [](double p) { return p <= 0.0; }))
+    return speeds;
+  const double fastest = *std::min_element(pace_.begin(), pace_.end());
+  if (std::all_of(pace_.begin(), pace_.end(), [fastest](double p) { return fastest >= kPaceEven * p; })) return speeds;
+  for (size_t w = 0; w < speeds.size(); ++w) speeds[w] = std::max(kPaceSlowest, fastest / pace_[w]);
+  return speeds;
 }
 
 WorkerPool& worker_pool(uint32_t workers) {

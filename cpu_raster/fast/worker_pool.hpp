@@ -14,6 +14,10 @@
 // kCallerSpinMicros: it has nothing else to do, and once asleep it woke 0.1-0.2 ms after the last
 // worker finished (perspective after a lavapipe render, a worker 120 us behind the caller: 0.86-0.93
 // ms a render with 100 us, 0.73 with 1 ms; docs/performance-log.md, 134c834).
+// The pool also keeps each worker's pace in the band phase of the renders before (record_pace,
+// relative_speeds): a worker whose core another process shares finishes the same work later, and
+// the next render's static rows are shared out by it (row_balance.hpp). Which worker draws a row
+// changes no byte.
 #pragma once
 
 #include <atomic>
@@ -40,6 +44,21 @@ class WorkerPool {
   uint32_t workers() const { return uint32_t(threads_.size()) + 1; }
   void run(const std::function<void(uint32_t)>& job);
 
+  // A band phase measured: worker w was given `work[w]` (the row estimate's units) and finished
+  // `seconds[w]` after the phase began. Phases shorter than kPaceMinSeconds (waking and timer
+  // noise) and workers given no work are left out; each worker's pace (seconds a unit of work) is
+  // smoothed over the phases (kPaceSmoothing, the new measurement's share): a mean of paces, not
+  // of rates, so that a phase in which a shared core happened to be free moves it less.
+  static constexpr double kPaceMinSeconds = 1e-3;
+  static constexpr double kPaceSmoothing = 0.5;
+  void record_pace(const std::vector<double>& work, const std::vector<double>& seconds);
+  // Each worker's rate over the fastest's, in [kPaceSlowest, 1]; all exactly 1 until every worker
+  // has a rate, and while no rate is below kPaceEven of the fastest (a few percent between
+  // equal workers is noise, and equal speeds keep the assignment of an idle host).
+  static constexpr double kPaceEven = 0.8;
+  static constexpr double kPaceSlowest = 0.2;
+  std::vector<double> relative_speeds() const;
+
  private:
   void thread_loop(uint32_t index);
   void call(const std::function<void(uint32_t)>& job, uint32_t index);
@@ -57,6 +76,8 @@ class WorkerPool {
   std::exception_ptr error_;
   std::vector<std::thread> threads_;
   int placed_for_cpu_ = -1;  // the caller's CPU the threads' affinity was last set for
+  mutable std::mutex pace_mutex_;
+  std::vector<double> pace_;  // per worker, seconds a unit of work; 0 until measured
 };
 
 // The process's pool for this many workers, made on first use.
