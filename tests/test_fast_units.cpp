@@ -419,7 +419,8 @@ TEST(FastRowBalance, RowsSharedOutByTheWorkersSpeeds) {
   }
   const std::vector<uint64_t> two = worker_loads(weights, balance_rows(weights, 2, {1.0, 0.5}), 2);
   EXPECT_NEAR(double(two[1]) / double(sum), 1.0 / 3.0, 0.03);
-  EXPECT_EQ(contiguous_runs(16, 2, {1.0, 0.5}), (std::vector<uint32_t>{0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 1}));
+  EXPECT_EQ(contiguous_runs(16, 2, {1.0, 0.5}),
+            (std::vector<uint32_t>{0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 1}));
   EXPECT_EQ(contiguous_runs(16, 2), (std::vector<uint32_t>{0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1}));
 }
 

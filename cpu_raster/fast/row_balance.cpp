@@ -1,8 +1,8 @@
 #include "cpu_raster/fast/row_balance.hpp"
 
 #include <algorithm>
-#include <cstddef>
 #include <cmath>
+#include <cstddef>
 #include <numeric>
 
 namespace rastercmp::cpu::fast {

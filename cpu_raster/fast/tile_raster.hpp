@@ -25,7 +25,7 @@ struct DrawRaster {
   SmallKernelFn small_fn = nullptr;
   GridScatterFn grid_fn = nullptr;
   GridBlockFn grid_block_fn = nullptr;
-  WindowBlockFn window_block_fn = nullptr;  // set when the host has AVX-512 (small_window.hpp)
+  WindowBlockFn window_block_fn = nullptr;  // with avx2: 8 or 16 pixels a step (small_window.hpp)
 };
 
 // Shared by the workers of a frame; a tile (and its bounds) is only touched by the worker that
@@ -46,7 +46,8 @@ struct FrameRaster {
   }
 };
 
-// avx512 (which implies avx2): the window compositor too.
+// avx2: the AVX2 kernels and the eight-pixel window compositor; avx512 (which implies avx2):
+// their AVX-512 builds and the sixteen-pixel compositor.
 DrawRaster make_draw_raster(const DepthTestState& depth, bool frame_bounds, bool avx2, bool avx512);
 
 // What raster_in_tile computes first for a triangle and a rectangle of a tile: the kernel job's
