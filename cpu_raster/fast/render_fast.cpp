@@ -31,6 +31,7 @@
 #include "cpu_raster/fast/frame_memory.hpp"
 #include "cpu_raster/fast/row_balance.hpp"
 #include "cpu_raster/fast/small_block_input.hpp"
+#include "cpu_raster/fast/trailing_check.hpp"
 #include "cpu_raster/fast/worker_pool.hpp"
 #include "model/depth_format.hpp"
 #include "model/host.hpp"
@@ -199,120 +200,6 @@ struct VertexPiece {
 struct VertexTask {
   size_t first, last;
 };
-
-// The first primitive of the draw's trailing pipelined run (front_end.hpp), primitive_count(draw)
-// when there is none. A position past the draw's counts as unclipped here: such an index makes the
-// render throw (the profile check) before anything is drawn.
-uint32_t trailing_run_first(const FastFrame& frame, uint32_t d) {
-  const FastDraw& fd = frame.draws[d];
-  const Draw& draw = frame.scene->draws[d];
-  const size_t positions = draw.positions_clip.size();
-  const auto clipped = [&fd, positions](uint32_t position) {
-    return position < positions && (fd.vertices[position].flags & kVertexClipBits) != 0;
-  };
-  return trailing_pipeline_run_of(draw, pipelined_chunks_by(draw, clipped), clipped).first;
-}
-
-// Whether the set-up of a primitive in [begin, end) of the draw's trailing pipelined run meets a
-// denormal or a tiny value: the clip and set-up of each, watched (DenormalWatch, this thread's
-// flags). Both vertex orders of an unclipped triangle are tried (set-up may swap two vertices).
-// False: every set-up of the range gives the same bits with denormals flushed and kept. Primitives
-// with a position past the draw's are left out (the render throws on them). On AVX2 hosts, without
-// depth bias, the unclipped triangles' planes are formed eight at a time, in one order
-// (trailing_depth_planes_avx2: each lane the scalar operations, so the same flags, which the other
-// order raises too; a last group of fewer repeats its first triangle). With clipped_elsewhere the
-// triangles that need clipping are left to clip_block_triangles, which watches them as it clips
-// them (the block-row phase). With block_rows (the draw's measured block rows, the same phase) the
-// triangles of a block at kNoRow are left out: every one of them is outside one clip plane (the
-// clipper drops it) or has its corners' rows outside the draw region's (its set-up stops at the
-// region test, before the depth plane: setup_triangle, place_in_region), so none forms a plane.
-// ByBlockRows is a template argument because a test in the loop slowed the one-worker check,
-// which runs without block rows (its serial time 0.21-0.22 -> 0.24-0.27 ms, perspective).
-template <Topology T, bool Indexed, bool ByBlockRows>
-bool run_meets_denormals_of(const FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end, bool clipped_elsewhere,
-                            const uint32_t* block_rows) {
-  const FastDraw& fd = frame.draws[d];
-  const Draw& draw = frame.scene->draws[d];
-  const uint32_t* indices = draw.indices.data();
-  const size_t positions = draw.positions_clip.size();
-  const DepthBias& bias = draw.state.depth_bias;
-  const UnormBiasUnits units = unorm_bias_units(fd.setup.rules);
-  const bool eight_wide = frame.raster.avx2 && !bias.enable;
-  const auto window = [&](uint32_t position) {
-    const FastVertex& v = fd.vertices[position];
-    return WindowVertex{v.x, v.y, v.z};
-  };
-  // The results are stored where the compiler cannot drop the arithmetic that forms them.
-  volatile float sink = 0.0f;
-  volatile uint32_t sink_bits = 0;
-  const auto keep = [&sink](const DepthPlane& p, float offset) {
-    sink = p.a0;
-    sink = p.dzdx;
-    sink = p.dzdy;
-    sink = offset;
-  };
-  const auto keep_eight = [&sink_bits](uint32_t sign_bits) { sink_bits = sign_bits; };
-  alignas(32) uint32_t group[3][8];
-  uint32_t grouped = 0;
-  const DenormalWatch watch;
-  for (uint32_t i = begin; i < end; ++i) {
-    if constexpr (ByBlockRows) {
-      if (block_rows[i / 8] == kNoRow) {
-        i |= 7;  // the block's last primitive
-        continue;
-      }
-    }
-    const std::array<uint32_t, 3> n = vertex_numbers<T>(i);
-    const uint32_t a = Indexed ? indices[n[0]] : n[0], b = Indexed ? indices[n[1]] : n[1],
-                   c = Indexed ? indices[n[2]] : n[2];
-    if (a >= positions || b >= positions || c >= positions) continue;
-    const uint32_t flags = fd.vertices[a].flags | fd.vertices[b].flags | fd.vertices[c].flags;
-    if (flags & kVertexClipBits) {
-      if (!clipped_elsewhere && needs_clipping(fd.vertices[a].flags, fd.vertices[b].flags, fd.vertices[c].flags))
-        for_each_piece(
-            frame, d, i, a, b, c, [&](const FastTriangle& t) { keep(DepthPlane{t.a0, t.dzdx, t.dzdy}, t.offset); },
-            [&](const RasterPrimitive& p) { keep(p.depth, p.offset.offset); });
-      continue;
-    }
-    if (flags & kVertexSnapFailed) continue;
-    if (eight_wide) {
-      group[0][grouped] = a;
-      group[1][grouped] = b;
-      group[2][grouped] = c;
-      if (++grouped == 8) {
-        keep_eight(trailing_depth_planes_avx2(fd.vertices, group));
-        grouped = 0;
-      }
-      continue;
-    }
-    for (const std::array<WindowVertex, 3>& v :
-         {std::array<WindowVertex, 3>{window(a), window(b), window(c)},
-          std::array<WindowVertex, 3>{window(a), window(c), window(b)}}) {
-      keep(triangle_depth_plane(v, 0.5f),
-           bias.enable ? triangle_depth_offset(v, bias, fd.setup.depth_format, true, units).offset : 0.0f);
-    }
-  }
-  if (grouped > 0) {
-    for (uint32_t l = grouped; l < 8; ++l)
-      for (uint32_t k = 0; k < 3; ++k) group[k][l] = group[k][0];
-    keep_eight(trailing_depth_planes_avx2(fd.vertices, group));
-  }
-  return watch.met();
-}
-
-bool run_meets_denormals(const FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end,
-                         bool clipped_elsewhere = false, const uint32_t* block_rows = nullptr) {
-  return on_triangle_layout(
-      frame.scene->draws[d],
-      [&](auto topology, auto indexed) {
-        return block_rows != nullptr
-                   ? run_meets_denormals_of<topology(), indexed(), true>(frame, d, begin, end, clipped_elsewhere,
-                                                                         block_rows)
-                   : run_meets_denormals_of<topology(), indexed(), false>(frame, d, begin, end, clipped_elsewhere,
-                                                                          nullptr);
-      },
-      [] { return true; });  // not a fast draw: fast draws are triangle draws
-}
 
 // A draw's trailing pipelined run [first, primitive count) whose set-ups the block-row phase
 // checks for denormals (run_meets_denormals), a range of primitives per task.

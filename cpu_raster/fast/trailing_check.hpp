@@ -1,0 +1,25 @@
+// The denormal check of a fast draw's trailing pipelined run (render_fast.cpp): a draw whose last
+// chunks take the draw pipeline has those primitives set up outside lavapipe's denormal mode
+// (SetupDenormals, front_end.hpp, rules §7.11); the fast path sets up in the mode, so where that
+// can change a set-up the exact front end draws the draw. With one worker the check runs after the
+// vertex phase, with several in the block-row phase's tasks.
+#pragma once
+
+#include <cstdint>
+
+#include "cpu_raster/fast/fast_frame.hpp"
+
+namespace rastercmp::cpu::fast {
+
+// The first primitive of the draw's trailing pipelined run (front_end.hpp), primitive_count(draw)
+// when there is none, from the vertex phase's clip bits.
+uint32_t trailing_run_first(const FastFrame& frame, uint32_t d);
+
+// Whether the set-up of a primitive in [begin, end) of the draw's trailing pipelined run meets a
+// denormal or a tiny value (trailing_check.cpp says how it is watched). clipped_elsewhere: the
+// triangles that need clipping are left to clip_block_triangles; block_rows: the draw's measured
+// block rows, whose kNoRow blocks are left out.
+bool run_meets_denormals(const FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end,
+                         bool clipped_elsewhere = false, const uint32_t* block_rows = nullptr);
+
+}  // namespace rastercmp::cpu::fast
