@@ -447,6 +447,10 @@ TEST(FastWorkerPool, PaceFromTheBandPhasesBefore) {
   EXPECT_EQ(speeds[1], WorkerPool::kPaceSlowest);
   for (int k = 0; k < 8; ++k) pool.record_pace({100, 100}, {0.004, 0.004});  // even again
   EXPECT_EQ(pool.relative_speeds(), equal);
+  pool.record_pace({100, 100}, {0.004, 0.04});
+  EXPECT_LT(pool.relative_speeds()[1], 1.0);
+  pool.reset_pace();  // forgotten: equal until measured again
+  EXPECT_EQ(pool.relative_speeds(), equal);
 }
 
 // balance_tiles: rows as balance_rows while no row weighs more than a worker's share; otherwise

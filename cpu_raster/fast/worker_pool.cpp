@@ -142,6 +142,11 @@ std::vector<double> WorkerPool::relative_speeds() const {
   return speeds;
 }
 
+void WorkerPool::reset_pace() {
+  const std::lock_guard<std::mutex> lock(pace_mutex_);
+  pace_.clear();
+}
+
 WorkerPool& worker_pool(uint32_t workers) {
   static std::mutex mutex;
   static std::map<uint32_t, std::unique_ptr<WorkerPool>> pools;

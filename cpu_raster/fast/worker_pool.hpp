@@ -58,6 +58,8 @@ class WorkerPool {
   static constexpr double kPaceEven = 0.8;
   static constexpr double kPaceSlowest = 0.2;
   std::vector<double> relative_speeds() const;
+  // Forgets every pace measured: equal speeds until each worker is measured again.
+  void reset_pace();
 
  private:
   void thread_loop(uint32_t index);
