@@ -450,7 +450,8 @@ bool BandWorker::walk_exact(uint32_t d) {
           v[k] = make_clip_vertex(walk.draw->positions_clip[position], frame.viewport, depth_clip, frame.fma);
         }
       }
-      if (frame_.workers > 1 && misses_own_rows(v.data(), corners, margin, !flushed)) continue;
+      // a listed primitive had this test on these values above
+      if (frame_.workers > 1 && !listed && misses_own_rows(v.data(), corners, margin, !flushed)) continue;
       const uint32_t owner = encode_owner(d, prim.primitive_index);
       if (lines) {
         const ClippedLine clipped = clip_line({v[0], v[1]}, frame.viewport, inside_planes, line_xy);
