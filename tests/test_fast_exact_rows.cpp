@@ -1,0 +1,180 @@
+// Unit tests of the vector exact rows (exact_rows.hpp: rasterize_rows_avx2, and on AVX-512 hosts
+// rasterize_box_avx512) against the exact rasterizer, primitive by primitive on the same targets,
+// each primitive's visit cut as the tile rows and runs of tiles of several workers cut it.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdint>
+
+#include "cpu_raster/exact/front_end.hpp"
+#include "cpu_raster/exact/rasterize.hpp"
+#include "cpu_raster/exact/render_targets.hpp"
+#include "cpu_raster/fast/cpu_features.hpp"
+#include "cpu_raster/fast/exact_rows.hpp"
+#include "tests/test_fast_support.hpp"
+
+namespace rastercmp::cpu::fast {
+namespace {
+
+// Renders `scene` draw by draw with the exact rasterizer and, on a copy of the same targets (their
+// stored depths at random), with `rows` (rasterize_rows_avx2 unless given) on the pieces `cut(p)`
+// makes of each primitive's visit, as the tile rows and runs of tiles of several workers cut it
+// (rasterize_primitive_rows where it declines a piece); `seen(p, vector)` for each piece drawn. Both
+// targets must hold the same owner and depth bytes after every draw.
+bool vector_rows(const RasterPrimitive& p, int32_t y0, int32_t y1, const DepthTestState& depth, RenderTargets& targets) {
+  return rasterize_rows_avx2(p, y0, y1, depth, targets);
+}
+
+template <class Cut, class Seen, class Rows = decltype(&vector_rows)>
+void expect_vector_rows_match(const Scene& scene, uint64_t seed, fast_test::Random& r, Cut cut, Seen seen,
+                              Rows rows_kernel = &vector_rows) {
+  const bool fma = seed % 3 != 0;
+  const FrameContext frame = make_frame_context(scene, fma, {});
+  RenderTargets exact = make_render_targets(scene);
+  const uint32_t mask = depth_format_info(scene.depth_format).raw_mask;
+  for (uint32_t& raw : exact.depth_raw) raw = r.chance(0.3) ? raw : r.below(1u << 24) & mask;
+  if (is_float(scene.depth_format))
+    for (uint32_t& raw : exact.depth_raw) raw = float_bits(float(r.unit()));
+  RenderTargets vector = exact;
+  for (uint32_t d = 0; d < scene.draws.size(); ++d) {
+    const DepthTestState depth = make_depth_test_state(scene, scene.draws[d], frame.viewport, fma);
+    run_front_end(frame, d, [&](const PrimitiveOutcome& outcome) {
+      if (!outcome.rasterized()) return;
+      const RasterPrimitive& p = outcome.raster;
+      rasterize_primitive(p, depth, exact, WorkSkips{});
+      if (p.visit.empty()) return;
+      for (const PixelRect& piece : cut(p)) {
+        if (piece.empty()) continue;
+        RasterPrimitive band = p;
+        band.visit = piece;
+        const bool drawn = rows_kernel(band, piece.y0, piece.y1, depth, vector);
+        if (!drawn) rasterize_primitive_rows(band, depth, vector, true);
+        seen(p, drawn);
+      }
+    });
+    ASSERT_EQ(exact.owner, vector.owner) << "seed " << seed << " draw " << d;
+    ASSERT_EQ(exact.depth_raw, vector.depth_raw) << "seed " << seed << " draw " << d;
+  }
+}
+
+// rasterize_rows_avx2 (exact_rows.hpp) against the exact rasterizer, primitive by primitive on the
+// same targets: random scenes of lines (every mode, widths 0.5-6 px, non-integer too) and triangles,
+// half of them in 4x frames (per-sample triangles and rectangular lines, pixel-centre Bresenham
+// lines), every depth format and compare op, writes, clamp, bias, scissors and viewports that cut
+// primitives, stored depths at random, each primitive's rows split at a random row as the tile rows
+// split them. On AVX-512 hosts half of the 1x frames take the scattered writes (avx512_writes), the
+// others, and every frame on other hosts, the blended ones.
+TEST(FastExactRows, VectorRowsWriteWhatTheExactRasterizerWrites) {
+  if (!host_has_avx2_fma()) GTEST_SKIP() << "the host runs no AVX2";
+  uint64_t vector_primitives = 0, lines = 0, per_sample = 0, scattered_lines = 0;
+  for (uint64_t seed = 1; seed <= 160; ++seed) {
+    fast_test::Random r(seed * 7919);
+    fast_test::RandomSceneSpec spec;
+    spec.max_primitives = 60;
+    Scene scene = fast_test::random_scene(seed, spec);
+    if (seed % 2 == 0) scene.samples = 4;
+    for (Draw& draw : scene.draws) {
+      if (r.chance(0.5)) draw.state.line_width = float(r.range(0.5, 6.0));
+      if (r.chance(0.15)) draw.state.line_mode = LineMode::RectangularSmooth;
+    }
+    const auto rows = [&r](const RasterPrimitive& p) {
+      const int32_t split = p.visit.y0 + int32_t(r.below(uint32_t(p.visit.y1 - p.visit.y0 + 1)));
+      return std::array<PixelRect, 2>{PixelRect{p.visit.x0, p.visit.y0, p.visit.x1, split - 1},
+                                      PixelRect{p.visit.x0, split, p.visit.x1, p.visit.y1}};
+    };
+    const bool avx512_writes = host_has_avx512() && seed % 4 == 1;
+    const auto kernel = [avx512_writes](const RasterPrimitive& p, int32_t y0, int32_t y1, const DepthTestState& depth,
+                                        RenderTargets& targets) {
+      return rasterize_rows_avx2(p, y0, y1, depth, targets, avx512_writes);
+    };
+    expect_vector_rows_match(
+        scene, seed, r, rows,
+        [&](const RasterPrimitive& p, bool vector) {
+          vector_primitives += vector ? 1 : 0;
+          lines += vector && p.is_line ? 1 : 0;
+          per_sample += vector && p.per_sample ? 1 : 0;
+          scattered_lines += vector && p.is_line && avx512_writes ? 1 : 0;
+        },
+        kernel);
+    if (HasFatalFailure()) return;
+  }
+  EXPECT_GT(vector_primitives, 2000u);
+  EXPECT_GT(lines, 500u);
+  EXPECT_GT(per_sample, 500u);
+  if (host_has_avx512()) {
+    EXPECT_GT(scattered_lines, 200u);
+  }
+}
+
+// The box kernels' small per-sample primitives (sample_box_rows, exact_rows_avx2.cpp, through
+// rasterize_rows_avx2; and on AVX-512 hosts box16, exact_rows_avx512.cpp, through
+// rasterize_box_avx512) against the exact rasterizer: triangles of 0.3-40 px (and some far larger)
+// in 4x frames of odd and even widths (a row's first step starts up to three columns before the
+// visit), with scissors and viewports that cut them, every depth format and compare op, writes,
+// clamp and bias, each primitive's visit cut into runs of columns and rows as the tiles of several
+// workers cut it.
+void expect_small_per_sample_triangles_match(bool avx512) {
+  uint64_t small = 0, boxed = 0;
+  const auto box_first = [&boxed](const RasterPrimitive& p, int32_t y0, int32_t y1, const DepthTestState& depth,
+                                  RenderTargets& targets) {
+    if (rasterize_box_avx512(p, y0, y1, depth, targets)) {
+      ++boxed;
+      return true;
+    }
+    return rasterize_rows_avx2(p, y0, y1, depth, targets);
+  };
+  for (uint64_t seed = 1; seed <= 120; ++seed) {
+    fast_test::Random r(seed * 104729);
+    Scene scene = fast_test::random_scene(seed, fast_test::RandomSceneSpec{true, false, 90, 40});
+    scene.samples = 4;
+    if (seed % 4 == 0)  // a small scissor: small visits of the huge triangles below
+      scene.scissor = Rect2D{int32_t(r.below(scene.width / 2)), int32_t(r.below(scene.height / 2)), 1 + r.below(20),
+                             1 + r.below(12)};
+    if (seed % 3 == 1)  // a viewport far larger than the frame: edges of thousands of pixels
+      scene.viewport = Viewport{-4000.0f, -4000.0f, 8192.0f, 8192.0f, 0.0f, 1.0f};
+    for (Draw& draw : scene.draws) {
+      draw.topology = Topology::TriangleList;
+      draw.indices.clear();
+      draw.positions_clip.clear();
+      // in clip units: a few pixels, up to 40, or huge (edges whose values leave int32 across a
+      // small visit cut by a scissor: the box kernel declines them)
+      const double size = r.chance(0.1) ? 60.0 : r.chance(0.5) ? 0.05 : 0.4;
+      for (uint32_t t = 0, n = 6 + r.below(60); t < n; ++t) {
+        const double cx = r.range(-1.1, 1.1), cy = r.range(-1.1, 1.1), cz = r.range(-0.1, 1.1);
+        for (int k = 0; k < 3; ++k)
+          draw.positions_clip.emplace_back(float(cx + r.range(-size, size)), float(cy + r.range(-size, size)),
+                                           float(cz + r.range(-0.2, 0.2)), 1.0f);
+      }
+    }
+    const auto quarters = [&r](const RasterPrimitive& p) {
+      const PixelRect& v = p.visit;
+      const int32_t y = v.y0 + int32_t(r.below(uint32_t(v.y1 - v.y0 + 1)));
+      const int32_t x = v.x0 + int32_t(r.below(uint32_t(v.x1 - v.x0 + 1)));
+      return std::array<PixelRect, 4>{PixelRect{v.x0, v.y0, x - 1, y - 1}, PixelRect{x, v.y0, v.x1, y - 1},
+                                      PixelRect{v.x0, y, x - 1, v.y1}, PixelRect{x, y, v.x1, v.y1}};
+    };
+    const auto seen = [&](const RasterPrimitive& p, bool) { small += p.visit.x1 - p.visit.x0 < 24 ? 1 : 0; };
+    if (avx512)
+      expect_vector_rows_match(scene, seed, r, quarters, seen, box_first);
+    else
+      expect_vector_rows_match(scene, seed, r, quarters, seen);
+    if (::testing::Test::HasFatalFailure()) return;
+  }
+  EXPECT_GT(small, 1500u);
+  if (avx512) {
+    EXPECT_GT(boxed, 1500u);
+  }
+}
+
+TEST(FastExactRows, SmallPerSampleTrianglesWriteWhatTheExactRasterizerWrites) {
+  if (!host_has_avx2_fma()) GTEST_SKIP() << "host without AVX2/FMA: the box kernels never run here";
+  expect_small_per_sample_triangles_match(false);
+}
+
+TEST(FastExactRows, SixteenLaneBoxWritesWhatTheExactRasterizerWrites) {
+  if (!host_has_avx512()) GTEST_SKIP() << "host without AVX-512: the sixteen-lane box kernel never runs here";
+  expect_small_per_sample_triangles_match(true);
+}
+
+}  // namespace
+}  // namespace rastercmp::cpu::fast
