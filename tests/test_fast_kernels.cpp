@@ -1,9 +1,9 @@
 // Unit tests of the fast path's rasterizing stages against the exact path's own functions and
 // against each other: the eight- and sixteen-wide small-triangle set-ups (packed grid words, the
 // window compositors, the pair set-up), the 32-bit "G" edge form, the row columns, the vector tile
-// kernels against the scalar one, the binned tiles and the lean set-ups. test_fast_exact_rows.cpp
-// holds the vector exact rows; test_fast_units.cpp the stages around them (vertices, clears, the
-// pool, block rows, row balance, depth bounds, exact rows).
+// kernels against the scalar one and the binned tiles. test_fast_exact_rows.cpp holds the vector
+// exact rows, test_fast_lean_setup.cpp the lean set-ups; test_fast_units.cpp the stages around
+// them (vertices, clears, the pool, block rows, row balance, depth bounds, exact rows).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -19,12 +19,9 @@
 #include "cpu_raster/exact/float_ops.hpp"
 #include "cpu_raster/exact/fixed_point.hpp"
 #include "cpu_raster/exact/rasterize.hpp"
-#include "cpu_raster/exact/triangle_setup.hpp"
 #include "cpu_raster/fast/binned_tiles.hpp"
-#include "cpu_raster/fast/clipped_pieces.hpp"
 #include "cpu_raster/fast/cpu_features.hpp"
 #include "cpu_raster/fast/fast_vertices.hpp"
-#include "cpu_raster/fast/lean_setup.hpp"
 #include "cpu_raster/fast/small_triangles.hpp"
 #include "cpu_raster/fast/small_window.hpp"
 #include "cpu_raster/fast/tile_edges.hpp"
@@ -546,165 +543,6 @@ TEST(FastBinnedTiles, TileCoverageIsBinnedCoversPixelByPixel) {
   EXPECT_GT(partial_tiles, 200);
   EXPECT_GT(covered, 100000);
   EXPECT_GT(uncovered, 100000);
-}
-
-// A random draw state and set-up context for the set-up tests: every cull mode and facing, the
-// depth test on or off, bias, every depth format, a 256x192 frame whose draw region cuts it (or,
-// with chance `whole_frame`, is the frame).
-void random_setup_case(fast_test::Random& r, double whole_frame, RasterState& state, SetupContext& ctx) {
-  state.cull_mode = r.chance(0.5) ? CullMode::None : CullMode(r.below(4));
-  state.front_face = r.chance(0.5) ? FrontFace::CounterClockwise : FrontFace::Clockwise;
-  state.depth.test_enable = r.chance(0.8);
-  state.depth_bias =
-      DepthBias{r.chance(0.3), float(r.range(-4, 4)), float(r.range(-2, 2)), float(r.range(-0.01, 0.01))};
-  ctx.framebuffer = PixelRect{0, 0, 255, 191};
-  const int32_t x0 = int32_t(r.below(200)), y0 = int32_t(r.below(150));
-  const int32_t x1 = x0 + int32_t(r.below(256 - uint32_t(x0))), y1 = y0 + int32_t(r.below(192 - uint32_t(y0)));
-  ctx.region = r.chance(whole_frame) ? ctx.framebuffer : PixelRect{x0, y0, x1, y1};
-  ctx.state = &state;
-  ctx.depth_format = DepthFormat(r.below(4));
-}
-
-// setup_piece (the lean set-up of clipped pieces) gives setup_triangle then fast_triangle_of for
-// every piece it draws, drops exactly what setup_triangle does not rasterize, and hands back
-// (Full) only what takes llvmpipe's wrapping set-up or fails to snap: random window triangles of
-// every size and facing, corners past the direct range and the 24.8 bound, NaN corners, every
-// cull mode, depth format and bias, regions that cut them or miss them.
-TEST(FastClippedPieces, LeanSetUpGivesTheExactPathsTriangle) {
-  fast_test::Random r(29);
-  int drawn = 0, dropped = 0, full = 0;
-  for (int trial = 0; trial < 40000; ++trial) {
-    RasterState state;
-    SetupContext ctx;
-    random_setup_case(r, 0.0, state, ctx);
-    std::array<WindowVertex, 3> window;
-    // past the direct range (2^23 fixed units), large, small
-    const double spread = r.chance(0.1) ? 3e7 : r.chance(0.3) ? 400.0 : 12.0;
-    const bool near_region = r.chance(0.7);  // most around the region, some anywhere
-    const double cx = near_region ? r.range(ctx.region.x0 - 4, ctx.region.x1 + 4) : r.range(-40, 300);
-    const double cy = near_region ? r.range(ctx.region.y0 - 4, ctx.region.y1 + 4) : r.range(-40, 230);
-    for (WindowVertex& v : window) {
-      const float x = float(cx + r.range(-spread, spread)), y = float(cy + r.range(-spread, spread));
-      v = WindowVertex{x, y, float(r.range(-0.2, 1.2))};
-    }
-    if (r.chance(0.01)) window[r.below(3)].y = std::nanf("");
-    if (r.chance(0.02)) window[1] = window[0];  // degenerate
-    const uint32_t owner = 1 + r.below(1000);
-    const TriangleSetup setup = setup_triangle(window, owner, ctx);
-    FastTriangle lean;
-    switch (setup_piece(window, owner, ctx, ctx.region, lean)) {
-      case PieceSetup::Drawn: {
-        ++drawn;
-        ASSERT_EQ(setup.fate, SetupFate::Rasterized) << "trial " << trial;
-        ASSERT_FALSE(setup.raster.binned) << "trial " << trial;
-        const FastTriangle want = fast_triangle_of(setup.raster, ctx.region);
-        for (int k = 0; k < 3; ++k) {
-          ASSERT_EQ(lean.x_fixed[k], want.x_fixed[k]) << "trial " << trial;
-          ASSERT_EQ(lean.y_fixed[k], want.y_fixed[k]) << "trial " << trial;
-        }
-        ASSERT_EQ(lean.rect, want.rect) << "trial " << trial;
-        ASSERT_EQ(std::bit_cast<uint32_t>(lean.a0), std::bit_cast<uint32_t>(want.a0)) << "trial " << trial;
-        ASSERT_EQ(std::bit_cast<uint32_t>(lean.dzdx), std::bit_cast<uint32_t>(want.dzdx)) << "trial " << trial;
-        ASSERT_EQ(std::bit_cast<uint32_t>(lean.dzdy), std::bit_cast<uint32_t>(want.dzdy)) << "trial " << trial;
-        ASSERT_EQ(std::bit_cast<uint32_t>(lean.offset), std::bit_cast<uint32_t>(want.offset)) << "trial " << trial;
-        ASSERT_EQ(lean.owner, want.owner) << "trial " << trial;
-        break;
-      }
-      case PieceSetup::Dropped:
-        ++dropped;
-        ASSERT_NE(setup.fate, SetupFate::Rasterized) << "trial " << trial;
-        break;
-      case PieceSetup::Full:
-        ++full;
-        ASSERT_TRUE(setup.fate != SetupFate::Rasterized || setup.raster.binned) << "trial " << trial;
-        break;
-    }
-  }
-  EXPECT_GT(drawn, 12000);  // 16943, 18703 and 4354 of the 40000
-  EXPECT_GT(dropped, 12000);
-  EXPECT_GT(full, 2500);
-}
-
-// setup_triangle_lean (lean_setup.hpp) against setup_triangle on random triangles in 1x and 4x
-// frames: snapped to nearest even or half away (not lean), past the direct range, NaN, degenerate,
-// culled, around and across scissored regions (the scissor planes, the multisample quirk, the
-// sample-exact scissor of later releases), with and without depth and bias. Drawn must give
-// setup_triangle's raster field by field, Dropped a fate other than Rasterized, Full whatever it is.
-TEST(FastLeanSetup, LeanSetupEqualsSetupTriangle) {
-  if (!host_has_avx2_fma()) GTEST_SKIP() << "the host runs no AVX2";
-  fast_test::Random r(41);
-  int drawn = 0, dropped = 0, full = 0;
-  RasterPrimitive lean;  // reused, as BandWorker reuses it
-  const DenormalsFlushed ftz_daz;
-  for (int trial = 0; trial < 40000; ++trial) {
-    RasterState state;
-    SetupContext ctx;
-    random_setup_case(r, 0.3, state, ctx);
-    ctx.multisample = r.chance(0.5);
-    if (r.chance(0.05)) ctx.methods.snap = SnapRounding::HalfAwayFromZero;
-    if (r.chance(0.1)) ctx.skips.depth_only_when_attached = false;
-    std::array<WindowVertex, 3> window;
-    const double spread = r.chance(0.1) ? 3e7 : r.chance(0.3) ? 400.0 : r.chance(0.5) ? 12.0 : 2.0;
-    // the scissor planes of 26.2 (sample-exact); its set-up refuses the wrapping one
-    if (spread < 1e6 && r.chance(0.2)) ctx.rules = LavapipeRules::of(MesaVersion{26, 2, 6});
-    const bool near_region = r.chance(0.7);
-    const double cx = near_region ? r.range(ctx.region.x0 - 4, ctx.region.x1 + 4) : r.range(-40, 300);
-    const double cy = near_region ? r.range(ctx.region.y0 - 4, ctx.region.y1 + 4) : r.range(-40, 230);
-    for (WindowVertex& v : window) {
-      // a quarter on the 1/256 grid and its half steps (ties of the rounding)
-      const double x = cx + r.range(-spread, spread), y = cy + r.range(-spread, spread);
-      v = r.chance(0.25) ? WindowVertex{float(std::round(x * 512) / 512), float(std::round(y * 512) / 512), 0.5f}
-                         : WindowVertex{float(x), float(y), float(r.range(-0.2, 1.2))};
-    }
-    if (r.chance(0.01)) window[r.below(3)].y = std::nanf("");
-    if (r.chance(0.02)) window[1] = window[0];  // degenerate
-    const uint32_t owner = 1 + r.below(1000);
-    const TriangleSetup setup = setup_triangle(window, owner, ctx);
-    switch (setup_triangle_lean(window, owner, ctx, lean)) {
-      case LeanSetup::Drawn: {
-        ++drawn;
-        ASSERT_EQ(setup.fate, SetupFate::Rasterized) << "trial " << trial;
-        const RasterPrimitive& want = setup.raster;
-        ASSERT_FALSE(want.binned) << "trial " << trial;
-        ASSERT_FALSE(lean.binned) << "trial " << trial;
-        ASSERT_EQ(lean.owner, want.owner) << "trial " << trial;
-        ASSERT_EQ(lean.is_line, want.is_line) << "trial " << trial;
-        ASSERT_EQ(lean.edge_count, want.edge_count) << "trial " << trial;
-        ASSERT_EQ(lean.planes.count, want.planes.count) << "trial " << trial;
-        for (uint32_t i = 0; i < want.planes.count; ++i) {
-          ASSERT_EQ(lean.planes.plane[i].c, want.planes.plane[i].c) << "trial " << trial;
-          ASSERT_EQ(lean.planes.plane[i].dcdx, want.planes.plane[i].dcdx) << "trial " << trial;
-          ASSERT_EQ(lean.planes.plane[i].dcdy, want.planes.plane[i].dcdy) << "trial " << trial;
-          ASSERT_EQ(lean.planes.plane[i].inclusive, want.planes.plane[i].inclusive) << "trial " << trial;
-        }
-        for (int k = 0; k < 4; ++k) {
-          ASSERT_EQ(lean.vertex_fixed[k].x.raw, want.vertex_fixed[k].x.raw) << "trial " << trial;
-          ASSERT_EQ(lean.vertex_fixed[k].y.raw, want.vertex_fixed[k].y.raw) << "trial " << trial;
-        }
-        ASSERT_EQ(lean.bbox, want.bbox) << "trial " << trial;
-        ASSERT_EQ(lean.visit, want.visit) << "trial " << trial;
-        ASSERT_EQ(lean.per_sample, want.per_sample) << "trial " << trial;
-        ASSERT_EQ(lean.has_depth, want.has_depth) << "trial " << trial;
-        ASSERT_EQ(std::bit_cast<uint32_t>(lean.depth.a0), std::bit_cast<uint32_t>(want.depth.a0)) << "trial " << trial;
-        ASSERT_EQ(std::bit_cast<uint32_t>(lean.depth.dzdx), std::bit_cast<uint32_t>(want.depth.dzdx))
-            << "trial " << trial;
-        ASSERT_EQ(std::bit_cast<uint32_t>(lean.depth.dzdy), std::bit_cast<uint32_t>(want.depth.dzdy))
-            << "trial " << trial;
-        ASSERT_EQ(lean.offset.computed, want.offset.computed) << "trial " << trial;
-        ASSERT_EQ(std::bit_cast<uint32_t>(lean.offset.offset), std::bit_cast<uint32_t>(want.offset.offset))
-            << "trial " << trial;
-        break;
-      }
-      case LeanSetup::Dropped:
-        ++dropped;
-        ASSERT_NE(setup.fate, SetupFate::Rasterized) << "trial " << trial;
-        break;
-      case LeanSetup::Full: ++full; break;
-    }
-  }
-  EXPECT_GT(drawn, 12000);
-  EXPECT_GT(dropped, 8000);
-  EXPECT_GT(full, 2000);
 }
 
 }  // namespace

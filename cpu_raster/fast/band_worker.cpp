@@ -456,8 +456,14 @@ bool BandWorker::walk_exact(uint32_t d) {
       if (lines) {
         const ClippedLine clipped = clip_line({v[0], v[1]}, frame.viewport, inside_planes, line_xy);
         if (clipped.fate == ClipFate::Outside || clipped.fate == ClipFate::Discarded) continue;
-        const LineSetup setup = setup_line_flushed(mode, {clipped.line[0].window, clipped.line[1].window}, owner,
-                                                   walk.ctx, prim.primitive_index, bias_denormal);
+        const std::array<WindowVertex, 2> window{clipped.line[0].window, clipped.line[1].window};
+        const bool lean_line = frame_.raster.avx2 && (flushed || !bias_denormal);
+        const LeanSetup lean =
+            lean_line ? setup_line_lean_flushed(flushed, window, owner, walk.ctx) : LeanSetup::Full;
+        if (lean == LeanSetup::Drawn) raster_exact_in_band(lean_, depth);
+        if (lean != LeanSetup::Full) continue;
+        const LineSetup setup =
+            setup_line_flushed(mode, window, owner, walk.ctx, prim.primitive_index, bias_denormal);
         if (setup.fate == SetupFate::Rasterized) raster_exact_in_band(setup.raster, depth);
         continue;
       }
@@ -498,6 +504,20 @@ LineSetup BandWorker::setup_line_flushed(SetupDenormals mode, const std::array<W
   if (!denormal_flags_raised()) return setup;
   clear_denormal_flags();
   return setup_line_in_mode(mode, window, owner, ctx, primitive_index);
+}
+
+// setup_line_lean where setup_line_flushed would hand back setup_line's result: in the flushed
+// mode, and in a trailing run's mode when no operation raised a denormal flag (the lean set-up
+// makes setup_line's float operations in its order; its roundings raise none). Full otherwise, so
+// that setup_line_flushed sets the line up again (in both modes when a flag was raised).
+LeanSetup BandWorker::setup_line_lean_flushed(bool flushed, const std::array<WindowVertex, 2>& window, uint32_t owner,
+                                              const SetupContext& ctx) {
+  if (flushed) return setup_line_lean(window, owner, ctx, lean_);
+  if (denormal_flags_raised()) clear_denormal_flags();
+  const LeanSetup lean = setup_line_lean(window, owner, ctx, lean_);
+  if (lean == LeanSetup::Full || !denormal_flags_raised()) return lean;
+  clear_denormal_flags();
+  return LeanSetup::Full;
 }
 
 // begin_draw with the chunk flags and trailing run formed from the vertex phase's clip bits (as

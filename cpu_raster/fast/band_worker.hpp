@@ -15,6 +15,7 @@
 #include "cpu_raster/exact/clip_vertex.hpp"
 #include "cpu_raster/exact/front_end.hpp"
 #include "cpu_raster/fast/fast_frame.hpp"
+#include "cpu_raster/fast/lean_setup.hpp"
 #include "cpu_raster/fast/small_triangles.hpp"
 
 namespace rastercmp::cpu::fast {
@@ -63,6 +64,8 @@ class BandWorker {
   void walk_fast(uint32_t draw_index);
   bool walk_exact(uint32_t draw_index);  // false: a primitive threw (FastFrame::failure)
   DrawWalk begin_draw_transformed(uint32_t draw_index) const;
+  LeanSetup setup_line_lean_flushed(bool flushed, const std::array<WindowVertex, 2>& window, uint32_t owner,
+                                    const SetupContext& ctx);
   LineSetup setup_line_flushed(SetupDenormals mode, const std::array<WindowVertex, 2>& window, uint32_t owner,
                                const SetupContext& ctx, uint32_t primitive_index, bool bias_denormal);
   bool misses_own_rows(const ClipVertex* vertices, uint32_t count, float margin, bool may_throw) const;
@@ -132,7 +135,7 @@ class BandWorker {
   // Per tile row: this worker owns every tile of it (1), some (2), none (0). shared_ is whether any
   // row is 2; whole_before_ counts the rows of 1 below r, as owned_before_.
   std::vector<uint8_t> row_kind_;
-  RasterPrimitive lean_;  // walk_exact: the triangle setup_triangle_lean set up last
+  RasterPrimitive lean_;  // walk_exact: the triangle or line the lean set-ups (lean_setup.hpp) set up last
   std::vector<uint32_t> whole_before_;
   bool shared_ = false;
   SmallBlock block_, next_block_;       // the small-triangle blocks being set up and drawn
