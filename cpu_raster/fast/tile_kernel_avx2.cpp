@@ -38,35 +38,6 @@ RASTERCMP_AVX2 inline void store_lanes(uint32_t* p, __m256i value, __m256i old, 
 
 RASTERCMP_AVX2 inline bool all_lanes(__m256i mask) { return _mm256_movemask_ps(_mm256_castsi256_ps(mask)) == 0xFF; }
 
-// z = fl(FMA?(dzdy, py, FMA?(dzdx, px, a0)) + o), then min(z, 1), max(z, 0) and the depth clamp.
-RASTERCMP_AVX2 inline __m256 fragment_depth(const KernelJob& j, const KernelDepth& d, __m256 px, __m256 py) {
-  const __m256 a0 = _mm256_set1_ps(j.a0), dzdx = _mm256_set1_ps(j.dzdx), dzdy = _mm256_set1_ps(j.dzdy);
-  return finish_depth8(mul_add8(dzdy, py, mul_add8(dzdx, px, a0, d.fma), d.fma), _mm256_set1_ps(j.offset), d);
-}
-
-// Depth test and writes of one span; returns the lanes that passed.
-template <DepthFormat F, CompareOp Op>
-RASTERCMP_AVX2 inline __m256i depth_span(const KernelJob& j, const KernelDepth& d, uint32_t* depth_row, __m256i xv,
-                                         __m256 py, __m256i covered, __m256i in_row, bool row_end) {
-  const __m256 z = fragment_depth(j, d, _mm256_cvtepi32_ps(xv), py);
-  const __m256i raw = to_raw<F>(z);
-  __m256i pass = covered;
-  const bool full = !row_end && all_lanes(covered);
-  if constexpr (Op == CompareOp::Always) {
-    if (!d.write) return pass;
-    if (full) {
-      _mm256_storeu_si256(reinterpret_cast<__m256i*>(depth_row), raw);
-      return pass;
-    }
-    store_lanes(depth_row, raw, load_lanes(depth_row, in_row, row_end), pass, row_end);
-  } else {
-    const __m256i stored = load_lanes(depth_row, in_row, row_end);
-    pass = _mm256_and_si256(pass, depth_passes<F, Op>(z, raw, stored));
-    if (d.write && !_mm256_testz_si256(pass, pass)) store_lanes(depth_row, raw, stored, pass, row_end);
-  }
-  return pass;
-}
-
 // A rectangle every pixel of which is covered, in whole 8-pixel spans inside the row: no edge
 // or column masks, and the inner FMA?(dzdx, px, a0) of each of the tile's columns computed once.
 template <DepthFormat F, CompareOp Op>
@@ -126,12 +97,16 @@ RASTERCMP_AVX2 inline SpanDepth span_depth(const KernelJob& j, const KernelDepth
                    d.fma,                    d.clamp,                d.write};
 }
 
-// fragment_depth's operations in the same order (finish_depth8: + o, min 1, max 0, the clamp).
-RASTERCMP_AVX2 inline __m256 span_z(const SpanDepth& s, __m256 px, __m256 py) {
-  __m256 z = _mm256_add_ps(mul_add8(s.dzdy, py, mul_add8(s.dzdx, px, s.a0, s.fma), s.fma), s.offset);
+// z = fl(FMA?(dzdy, py, inner) + o), then min(z, 1), max(z, 0) and the depth clamp (finish_depth8's
+// operations), with inner = FMA?(dzdx, px, a0) (span_z), which depends on the columns only.
+RASTERCMP_AVX2 inline __m256 span_z_inner(const SpanDepth& s, __m256 inner, __m256 py) {
+  __m256 z = _mm256_add_ps(mul_add8(s.dzdy, py, inner, s.fma), s.offset);
   z = _mm256_max_ps(_mm256_min_ps(z, _mm256_set1_ps(1.0f)), _mm256_setzero_ps());
   if (s.clamp) z = _mm256_max_ps(_mm256_min_ps(z, s.zmax), s.zmin);
   return z;
+}
+RASTERCMP_AVX2 inline __m256 span_z(const SpanDepth& s, __m256 px, __m256 py) {
+  return span_z_inner(s, mul_add8(s.dzdx, px, s.a0, s.fma), py);
 }
 
 // One span of row_spans whose coverage is known: depth test and writes, then the owner. Lanes
@@ -199,54 +174,79 @@ RASTERCMP_AVX2 bool row_spans(const KernelJob& j, const KernelDepth& d, const Ti
   return any;
 }
 
+// Jobs of at most kNarrowSpans spans from origin_x: per row each span's edges' G - 1 (32-bit,
+// stepped by gy from row to row, as the loop below: at most 7 columns past the rectangle), covered
+// where all three are >= 0 and the column lies in the rectangle, then the depth test and writes
+// of the span whatever its coverage: no division per edge and four rows (the covered columns of
+// row_spans) and no branch on the data, as narrow16 on AVX-512 hosts. A span's stores are blends
+// of what it loaded: the columns from origin_x to the end of the tile of the rectangle's last
+// column (and the row) are this worker's (row_spans' limit); a span reaching past them takes
+// masked loads and stores.
+constexpr int kNarrowSpans = 3;
+
+template <DepthFormat F, CompareOp Op, int Spans>
+RASTERCMP_AVX2 bool narrow_spans(const KernelJob& j, const KernelDepth& d, const TileTarget& t) {
+  const SpanDepth s = span_depth(j, d);
+  const int32_t limit = std::min(t.width, (j.rect.x1 | (kTileSize - 1)) + 1);  // columns below it are ours
+  const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+  const __m256i owner = _mm256_set1_epi32(int32_t(j.owner));
+  const int32_t x = j.origin_x, y1 = j.rect.y1;
+  __m256i e[Spans][3], gy[3], in_rect[Spans], in_limit[Spans];
+  __m256 inner[Spans];
+  bool masked[Spans];
+  for (int k = 0; k < Spans; ++k) {
+    const __m256i column = _mm256_add_epi32(_mm256_set1_epi32(x + 8 * k), lane);
+    for (int i = 0; i < 3; ++i)
+      e[k][i] = _mm256_add_epi32(_mm256_set1_epi32(j.g_minus_1[i]),
+                                 _mm256_mullo_epi32(_mm256_sub_epi32(column, _mm256_set1_epi32(x)),
+                                                    _mm256_set1_epi32(j.gx[i])));
+    in_rect[k] = _mm256_and_si256(_mm256_cmpgt_epi32(column, _mm256_set1_epi32(j.rect.x0 - 1)),
+                                  _mm256_cmpgt_epi32(_mm256_set1_epi32(j.rect.x1 + 1), column));
+    in_limit[k] = _mm256_cmpgt_epi32(_mm256_set1_epi32(limit), column);
+    masked[k] = x + 8 * k + 8 > limit;
+    inner[k] = mul_add8(s.dzdx, _mm256_cvtepi32_ps(column), s.a0, s.fma);  // exact: integers below 2^24
+  }
+  for (int i = 0; i < 3; ++i) gy[i] = _mm256_set1_epi32(j.gy[i]);
+  const size_t width = size_t(t.width);
+  uint32_t* owner_row = t.owner + size_t(j.rect.y0) * width + size_t(x);
+  uint32_t* depth_row = F != DepthFormat::None ? t.depth + size_t(j.rect.y0) * width + size_t(x) : nullptr;
+  __m256i any = _mm256_setzero_si256();
+  for (int32_t y = j.rect.y0; y <= y1; ++y, owner_row += width) {
+    const __m256 py = _mm256_set1_ps(float(y));
+    for (int k = 0; k < Spans; ++k) {
+      const __m256i out = _mm256_or_si256(_mm256_or_si256(e[k][0], e[k][1]), e[k][2]);
+      __m256i pass = _mm256_andnot_si256(_mm256_srai_epi32(out, 31), in_rect[k]);
+      if constexpr (F != DepthFormat::None) {
+        const __m256 z = span_z_inner(s, inner[k], py);
+        const __m256i raw = to_raw<F>(z);
+        uint32_t* depth_span = depth_row + 8 * k;
+        const __m256i stored = load_lanes(depth_span, in_limit[k], masked[k]);
+        if constexpr (Op != CompareOp::Always) pass = _mm256_and_si256(pass, depth_passes<F, Op>(z, raw, stored));
+        if (s.write) store_lanes(depth_span, raw, stored, pass, masked[k]);
+      }
+      uint32_t* owner_span = owner_row + 8 * k;
+      store_lanes(owner_span, owner, load_lanes(owner_span, in_limit[k], masked[k]), pass, masked[k]);
+      any = _mm256_or_si256(any, pass);
+    }
+    if constexpr (F != DepthFormat::None) depth_row += width;
+    for (int k = 0; k < Spans; ++k)
+      for (int i = 0; i < 3; ++i) e[k][i] = _mm256_add_epi32(e[k][i], gy[i]);
+  }
+  return !_mm256_testz_si256(any, any);
+}
+
 template <DepthFormat F, CompareOp Op>
 RASTERCMP_AVX2 bool kernel(const KernelJob& j, const KernelDepth& d, const TileTarget& t) {
   if constexpr (Op == CompareOp::Never && F != DepthFormat::None) return false;
   if (j.all_in && (j.rect.x0 & 7) == 0 && ((j.rect.x1 + 1) & 7) == 0) return covered_spans<F, Op>(j, d, t);
-  if (j.rect.x1 - j.origin_x >= 8) return row_spans<F, Op>(j, d, t);
-  const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
-  __m256i lane_g[3], span_step[3];
-  for (int i = 0; i < 3; ++i) {
-    lane_g[i] = _mm256_mullo_epi32(lane, _mm256_set1_epi32(j.gx[i]));
-    span_step[i] = _mm256_set1_epi32(8 * j.gx[i]);
+  switch ((j.rect.x1 - j.origin_x) >> 3) {
+    case 0: return narrow_spans<F, Op, 1>(j, d, t);
+    case 1: return narrow_spans<F, Op, 2>(j, d, t);
+    case 2: return narrow_spans<F, Op, 3>(j, d, t);
+    default: break;
   }
-  const __m256i x_lo = _mm256_set1_epi32(j.rect.x0 - 1), x_hi = _mm256_set1_epi32(j.rect.x1 + 1);
-  const __m256i row_width = _mm256_set1_epi32(t.width);
-  const __m256i owner = _mm256_set1_epi32(int32_t(j.owner));
-  int32_t row_g[3] = {j.g_minus_1[0], j.g_minus_1[1], j.g_minus_1[2]};
-  bool any = false;
-  for (int32_t y = j.rect.y0; y <= j.rect.y1; ++y) {
-    __m256i e0 = _mm256_add_epi32(_mm256_set1_epi32(row_g[0]), lane_g[0]);
-    __m256i e1 = _mm256_add_epi32(_mm256_set1_epi32(row_g[1]), lane_g[1]);
-    __m256i e2 = _mm256_add_epi32(_mm256_set1_epi32(row_g[2]), lane_g[2]);
-    for (int i = 0; i < 3; ++i) row_g[i] += j.gy[i];
-    const __m256 py = _mm256_set1_ps(float(y));
-    const size_t row = size_t(y) * size_t(t.width);
-    for (int32_t x = j.origin_x; x <= j.rect.x1; x += 8) {
-      const __m256i xv = _mm256_add_epi32(_mm256_set1_epi32(x), lane);
-      __m256i covered = _mm256_and_si256(_mm256_cmpgt_epi32(xv, x_lo), _mm256_cmpgt_epi32(x_hi, xv));
-      covered = _mm256_andnot_si256(_mm256_srai_epi32(_mm256_or_si256(_mm256_or_si256(e0, e1), e2), 31), covered);
-      e0 = _mm256_add_epi32(e0, span_step[0]);
-      e1 = _mm256_add_epi32(e1, span_step[1]);
-      e2 = _mm256_add_epi32(e2, span_step[2]);
-      if (_mm256_testz_si256(covered, covered)) continue;
-      const bool row_end = x > t.width - 8;  // the span reaches past the row: masked loads and stores
-      const __m256i in_row = _mm256_cmpgt_epi32(row_width, xv);
-      __m256i pass = covered;
-      if constexpr (F != DepthFormat::None) {
-        pass = depth_span<F, Op>(j, d, t.depth + row + x, xv, py, covered, in_row, row_end);
-        if (_mm256_testz_si256(pass, pass)) continue;
-      }
-      uint32_t* owner_row = t.owner + row + x;
-      if (!row_end && all_lanes(pass)) {
-        _mm256_storeu_si256(reinterpret_cast<__m256i*>(owner_row), owner);
-      } else {
-        store_lanes(owner_row, owner, load_lanes(owner_row, in_row, row_end), pass, row_end);
-      }
-      any = true;
-    }
-  }
-  return any;
+  static_assert(kNarrowSpans == 3, "the cases above");
+  return row_spans<F, Op>(j, d, t);
 }
 
 // ---- small triangles (small_triangles.hpp): one lane of a SmallBlockOutput, everything that
@@ -424,7 +424,7 @@ RASTERCMP_AVX2 void fill_words_avx2(uint32_t* p, size_t count, uint32_t value) {
 
 // The raw depths of a row of samples for the exact rows (exact_rows.cpp): lane k is column x0 + k,
 // x = float(x0 + k) + sx as sample_point forms it, then sample_depth's operations one intrinsic each
-// (fragment_depth, to_raw).
+// (span_z, to_raw).
 template <DepthFormat F>
 RASTERCMP_AVX2 void sample_depths(const SampleRowDepth& row, const KernelDepth& d, int32_t x0, int32_t count,
                                   uint32_t* raw) {

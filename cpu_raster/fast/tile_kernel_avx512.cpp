@@ -31,7 +31,7 @@ RASTERCMP_AVX512 inline Plane16 plane16(const KernelJob& j, const KernelDepth& d
                  depth16(d)};
 }
 
-// fragment_depth (tile_kernel_avx2.cpp) in the same order: fl(FMA?(dzdy, py, FMA?(dzdx, px, a0)) + o),
+// span_z (tile_kernel_avx2.cpp) in the same order: fl(FMA?(dzdy, py, FMA?(dzdx, px, a0)) + o),
 // then finish_depth16 (min(z, 1), max(z, 0), the depth clamp). The inner FMA depends on the
 // columns only: `inner` (column_depth16) is formed once per step's columns where they repeat.
 RASTERCMP_AVX512 inline __m512 column_depth16(const Plane16& p, __m512i lane, int32_t x) {
