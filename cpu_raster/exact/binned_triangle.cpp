@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <bit>
 #include <cstdlib>
-#include <span>
 
 #include "cpu_raster/exact/raster_primitive.hpp"
 #include "model/errors.hpp"
@@ -82,22 +81,6 @@ PixelRect wrapped_triangle_bbox(const std::array<FixedPoint, 3>& v) {
                    sub32(max_y, 1) >> kFixedOrder};
 }
 
-namespace {
-
-// Every edge of the closed polygon has |dx| + |dy| < 2^23 fixed units.
-bool edges_in_direct_range(std::span<const FixedPoint> v) {
-  for (size_t i = 0; i < v.size(); ++i) {
-    const size_t j = (i + 1) % v.size();
-    const int64_t dx = std::abs(v[i].x.wide() - v[j].x.wide()), dy = std::abs(v[i].y.wide() - v[j].y.wide());
-    if (dx + dy >= (int64_t(1) << 23)) return false;
-  }
-  return true;
-}
-
-}  // namespace
-
-bool in_direct_range(const std::array<FixedPoint, 3>& v) { return edges_in_direct_range(v); }
-
 void refuse_if_overflow_reworked(const LavapipeRules& rules) {
   if (rules.has(LavapipeRule::RasterizerOverflowReworked))
     throw NotSupportedError(
@@ -105,8 +88,6 @@ void refuse_if_overflow_reworked(const LavapipeRules& rules) {
         "131072 px): Mesa 26.2 changed how that arithmetic wraps, which this profile does not model "
         "(docs/lavapipe-rules.md §8.7)");
 }
-
-bool quad_in_direct_range(const std::array<FixedPoint, 4>& corners) { return edges_in_direct_range(corners); }
 
 std::array<LpPlane, 4> lp_line_planes(const std::array<FixedPoint, 4>& corners) {
   std::array<LpPlane, 4> planes;

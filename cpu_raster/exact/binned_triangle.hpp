@@ -54,7 +54,17 @@ PixelRect wrapped_triangle_bbox(const std::array<FixedPoint, 3>& v);
 
 // Whether no step above can overflow, so that the direct plane test is exact: every edge has
 // |dcdx| + |dcdy| < 2^23 fixed units (dcdx << 8 and eo fit in int32, and a tile's c >> 8 in int32).
-bool in_direct_range(const std::array<FixedPoint, 3>& v);
+// Inline (with quad_in_direct_range): set-up tests every primitive.
+template <size_t N>
+inline bool edges_in_direct_range(const std::array<FixedPoint, N>& v) {
+  for (size_t i = 0; i < N; ++i) {
+    const size_t j = (i + 1) % N;
+    const int64_t dx = v[i].x.wide() - v[j].x.wide(), dy = v[i].y.wide() - v[j].y.wide();
+    if ((dx < 0 ? -dx : dx) + (dy < 0 ? -dy : dy) >= (int64_t(1) << 23)) return false;
+  }
+  return true;
+}
+inline bool in_direct_range(const std::array<FixedPoint, 3>& v) { return edges_in_direct_range(v); }
 
 // Mesa 26.2 reworked this arithmetic (dcdx and dcdy no longer shifted, binning in exact int64,
 // other wrap points: lavapipe-rules §8.7); the profile does not model it and refuses a primitive
@@ -69,7 +79,7 @@ std::array<LpPlane, 3> lp_edge_planes(const std::array<FixedPoint, 3>& v);
 // (int32 differences, c in int64, c += 1 when dcdx < 0 or (dcdx == 0 and dcdy > 0), then dcdx,
 // dcdy *= 256 in int32 and eo from the shifted values' signs) and its box, x0 = (min + 255) >> 8,
 // x1 = ((max + 255) >> 8) - 1, in int32.
-bool quad_in_direct_range(const std::array<FixedPoint, 4>& corners);
+inline bool quad_in_direct_range(const std::array<FixedPoint, 4>& corners) { return edges_in_direct_range(corners); }
 std::array<LpPlane, 4> lp_line_planes(const std::array<FixedPoint, 4>& corners);
 PixelRect wrapped_line_bbox(const std::array<FixedPoint, 4>& corners);
 

@@ -8,6 +8,8 @@
 //    multisample quirk, line bounding boxes rounded up).
 #pragma once
 
+#include <algorithm>
+#include <bit>
 #include <cstdint>
 
 #include "cpu_raster/exact/edge_plane.hpp"
@@ -24,11 +26,16 @@ struct PixelRect {
   friend bool operator==(const PixelRect&, const PixelRect&) = default;
 };
 
-PixelRect intersect(const PixelRect& a, const PixelRect& b);
+// Inline, as the small helpers below: set-up calls them for every primitive.
+inline PixelRect intersect(const PixelRect& a, const PixelRect& b) {
+  return PixelRect{std::max(a.x0, b.x0), std::max(a.y0, b.y0), std::min(a.x1, b.x1), std::min(a.y1, b.y1)};
+}
 
 // u_rect_test_intersection: the bounds overlap and neither rectangle is empty (x1 < x0 or
 // y1 < y0): an empty draw region or line box never intersects (docs/lavapipe-rules.md §2.5).
-bool rects_touch(const PixelRect& a, const PixelRect& b);
+inline bool rects_touch(const PixelRect& a, const PixelRect& b) {
+  return !(a.empty() || b.empty() || a.x1 < b.x0 || b.x1 < a.x0 || a.y1 < b.y0 || b.y1 < a.y0);
+}
 
 // lp_setup_set_viewports: the viewport's pixel rectangle, from float translate/scale.
 PixelRect viewport_pixel_rect(const ViewportTransform& viewport);
@@ -44,6 +51,22 @@ void add_scissor_planes(const PixelRect& bbox, const PixelRect& region, bool mul
 
 // The pixels lavapipe's rasterizer evaluates for a primitive with this (non-negative-clamped)
 // bounding box: its 64x64 tile, or the tiles of the box's part inside the region.
-PixelRect binned_area(const PixelRect& bbox, const PixelRect& region);
+// lp_setup_bin_triangle: a box inside one 64x64 tile is binned to that tile. (The 4x4 and 16x16
+// "contained" commands it may pick instead cover the triangle's own box, which bounds every
+// sample a 3-plane triangle can cover; for 4-plane lines the driver covers samples anywhere in
+// the tile, as the 4x line differential tests show.) dx: lp_setup_tri.c floor_pot, the largest
+// power of two <= n (0 for 0), which is std::bit_floor.
+inline PixelRect binned_area(const PixelRect& bbox, const PixelRect& region) {
+  constexpr int32_t kTileSize = 64;  // lp_limits.h TILE_SIZE
+  const int32_t dx = int32_t(std::bit_floor(uint32_t((bbox.x0 ^ bbox.x1) | (bbox.y0 ^ bbox.y1))));
+  if (dx < kTileSize) {
+    const int32_t x = bbox.x0 / kTileSize * kTileSize, y = bbox.y0 / kTileSize * kTileSize;
+    return PixelRect{x, y, x + kTileSize - 1, y + kTileSize - 1};
+  }
+  const PixelRect trimmed = intersect(bbox, region);  // otherwise the tiles of bbox ∩ draw region
+  return PixelRect{trimmed.x0 / kTileSize * kTileSize, trimmed.y0 / kTileSize * kTileSize,
+                   trimmed.x1 / kTileSize * kTileSize + kTileSize - 1,
+                   trimmed.y1 / kTileSize * kTileSize + kTileSize - 1};
+}
 
 }  // namespace rastercmp::cpu

@@ -56,12 +56,6 @@ int64_t doubled_area(const std::array<FixedPoint, 3>& v) {
 }
 
 // do_triangle_ccw: x0 = min >> 8, x1 = (max - 1) >> 8 (bottom_edge_rule = 0).
-PixelRect triangle_bbox(const std::array<FixedPoint, 3>& v) {
-  const auto [min_x, max_x] = std::minmax({v[0].x.raw, v[1].x.raw, v[2].x.raw});
-  const auto [min_y, max_y] = std::minmax({v[0].y.raw, v[1].y.raw, v[2].y.raw});
-  return PixelRect{min_x >> kFixedOrder, min_y >> kFixedOrder, (max_x - 1) >> kFixedOrder, (max_y - 1) >> kFixedOrder};
-}
-
 bool face_culled(bool front_facing, CullMode cull) {
   switch (cull) {
     case CullMode::None: return false;

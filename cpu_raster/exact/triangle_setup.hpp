@@ -4,6 +4,7 @@
 // and bias. Takes window coordinates of one (possibly clipped) triangle in emit order.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -41,7 +42,11 @@ bool face_culled(bool front_facing, CullMode cull);
 std::optional<std::array<FixedPoint, 3>> snap_triangle(const std::array<WindowVertex, 3>& window, float pixel_offset,
                                                        SnapRounding rounding);
 int64_t doubled_area(const std::array<FixedPoint, 3>& v);
-PixelRect triangle_bbox(const std::array<FixedPoint, 3>& v);
+inline PixelRect triangle_bbox(const std::array<FixedPoint, 3>& v) {
+  const auto [min_x, max_x] = std::minmax({v[0].x.raw, v[1].x.raw, v[2].x.raw});
+  const auto [min_y, max_y] = std::minmax({v[0].y.raw, v[1].y.raw, v[2].y.raw});
+  return PixelRect{min_x >> kFixedOrder, min_y >> kFixedOrder, (max_x - 1) >> kFixedOrder, (max_y - 1) >> kFixedOrder};
+}
 
 TriangleSetup setup_triangle(const std::array<WindowVertex, 3>& window, uint32_t owner, const SetupContext& context);
 
