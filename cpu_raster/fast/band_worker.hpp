@@ -58,6 +58,7 @@ class BandWorker {
   // Whether this worker sets up a block of draw d whose block rows are `rows` (block_rows.hpp), its
   // corners filled: it may reach one of its tiles (in a shared row: by its lanes' columns).
   bool wants_block(uint32_t d, uint32_t rows, const SmallBlock& block) const;
+  uint32_t block_tile_columns(uint32_t d, const SmallBlock& block) const;
 
   template <Topology T, bool Indexed>
   void walk_triangles(uint32_t draw_index);

@@ -1,6 +1,7 @@
 // BandWorker's small-triangle blocks: drawing a set-up block into the worker's tiles, and the
 // phase before the walks that measures which tile rows each block may reach.
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <climits>
 #include <cmath>
@@ -116,12 +117,32 @@ BandWorker::Reach BandWorker::small_reach(int32_t x0, int32_t x1, int32_t lead, 
 // In a shared row the block's lanes say which tiles it may reach: an unclipped triangle's pixels
 // lie within its corners' columns, a clipped one's within its pieces' rectangles (the block-row
 // phase's table; one clipped in place: any column); a lane with its corners outside one plane, or
-// one that failed to snap, draws nothing.
+// one that failed to snap, draws nothing. The columns are the block's alone: the first unit of a
+// shared row to need them stores them for the others (FastDraw::block_columns).
 bool BandWorker::wants_block(uint32_t d, uint32_t rows, const SmallBlock& block) const {
   if (rows == kBlockAnyRow) return true;
   const int32_t lo = std::max(int32_t(rows & 0xFFFFu), 0), hi = std::min(int32_t(rows >> 16), frame_.raster.tiles_y - 1);
   if (lo > hi) return false;
   if (whole_before_[size_t(hi) + 1] != whole_before_[size_t(lo)]) return true;  // a row of its own
+  uint32_t* const cached = frame_.draws[d].block_columns;
+  uint32_t columns = kColumnsUnknown;
+  if (cached != nullptr) columns = std::atomic_ref<uint32_t>(cached[block.first / 8]).load(std::memory_order_relaxed);
+  if (columns == kColumnsUnknown) {
+    columns = block_tile_columns(d, block);
+    // any unit computes the same value: a relaxed store suffices
+    if (cached != nullptr) std::atomic_ref<uint32_t>(cached[block.first / 8]).store(columns, std::memory_order_relaxed);
+  }
+  if (columns == kColumnsAny) return true;
+  const int32_t x0 = int32_t(columns & 0xFFFFu) - 1, x1 = int32_t(columns >> 16) - 1;
+  for (int32_t ty = lo; ty <= hi; ++ty)
+    if (row_kind_[size_t(ty)] == 2 && owned_tiles(ty, x0, x1) > 0) return true;
+  return false;
+}
+
+// The tile columns [x0, x1] the block's lanes may reach (wants_block), clamped to [-1, tiles_x]
+// (owned_tiles' answer does not change) and packed (x0 + 1) | (x1 + 1) << 16; x0 > x1: none;
+// kColumnsAny: a lane clipped in place.
+uint32_t BandWorker::block_tile_columns(uint32_t d, const SmallBlock& block) const {
   const SmallBlockInput& in = block.in;
   const ClippedTable& clipped = frame_.draws[d].clipped;
   int32_t x0 = INT32_MAX, x1 = INT32_MIN;
@@ -135,7 +156,7 @@ bool BandWorker::wants_block(uint32_t d, uint32_t rows, const SmallBlock& block)
       const uint32_t primitive = block.first + l;
       const auto entry = std::lower_bound(clipped.primitives.begin(), clipped.primitives.end(), primitive,
                                           [](const ClippedPrimitive& p, uint32_t q) { return p.primitive < q; });
-      if (entry == clipped.primitives.end() || entry->primitive != primitive || entry->in_place) return true;
+      if (entry == clipped.primitives.end() || entry->primitive != primitive || entry->in_place) return kColumnsAny;
       for (uint32_t k = entry->first; k < entry->first + entry->count; ++k) {
         const PixelRect& r = clipped.pieces[k].rect;
         if (r.empty()) continue;
@@ -156,10 +177,10 @@ bool BandWorker::wants_block(uint32_t d, uint32_t rows, const SmallBlock& block)
     x0 = std::min(x0, int32_t(std::floor(x_min)) - 2);
     x1 = std::max(x1, int32_t(std::ceil(x_max)) + 1);
   }
-  if (x0 > x1) return false;
-  for (int32_t ty = lo; ty <= hi; ++ty)
-    if (row_kind_[size_t(ty)] == 2 && owned_tiles(ty, x0 >> kTileOrder, x1 >> kTileOrder) > 0) return true;
-  return false;
+  const int32_t tiles = frame_.raster.tiles_x;
+  if (x0 > x1) return uint32_t(tiles + 1) | 0u << 16;  // none: x0 = tiles_x, x1 = -1
+  const int32_t t0 = std::clamp(x0 >> kTileOrder, -1, tiles), t1 = std::clamp(x1 >> kTileOrder, -1, tiles);
+  return uint32_t(t0 + 1) | uint32_t(t1 + 1) << 16;
 }
 
 // A block without scalar lanes whose lanes all lie in one tile row of this worker: the tiles of

@@ -52,11 +52,17 @@ struct FastDraw {
   DrawRaster raster;
   bool small_blocks = false;       // set up eight triangles at a time (small_triangles.hpp)
   uint32_t* block_rows = nullptr;  // per block of 8: the tile rows it may reach (band_worker.cpp)
+  // Per block of 8 (with block_rows): the tile columns its lanes may reach in a shared row, stored
+  // by the first unit that works them out (BandWorker::wants_block), kColumnsUnknown before.
+  uint32_t* block_columns = nullptr;
   ClippedTable clipped;            // several workers: its clipped triangles, set up once
 };
 
 // block_rows value of a block that must be set up by every worker.
 inline constexpr uint32_t kBlockAnyRow = 0xFFFFFFFFu;
+// block_columns values: not worked out yet; any column (a lane clipped in place).
+inline constexpr uint32_t kColumnsUnknown = 0xFFFFFFFFu;
+inline constexpr uint32_t kColumnsAny = 0xFFFFFFFEu;
 
 // TileState::worker of the tiles of a row no worker (or unit) owns (FastFrame::unowned_rows).
 inline constexpr uint32_t kUnownedRow = 0xFFFFFFFFu;

@@ -309,6 +309,7 @@ void drop_fast_draw(FastDraw& fd) {
   fd.fast = false;
   fd.small_blocks = false;
   fd.block_rows = nullptr;
+  fd.block_columns = nullptr;
   fd.clipped = ClippedTable{};
   fd.pipelined_chunks.clear();
 }
@@ -446,12 +447,13 @@ void measure_all_block_rows(FastFrame& frame, const std::vector<TrailingCheck>& 
     if (frame.draws[d].small_blocks) blocks += (primitive_count(frame.scene->draws[d]) + 7) / 8;
   if (blocks == 0) contiguous_rows(frame);
   if (blocks == 0 && check_tasks.empty()) return;
-  uint32_t* rows = blocks > 0 ? thread_word_scratch(blocks) : nullptr;
+  uint32_t* rows = blocks > 0 ? thread_word_scratch(2 * blocks) : nullptr;  // the rows, then the columns
   std::vector<RowTask> tasks;
   for (uint32_t d = 0; d < frame.draws.size(); ++d) {
     if (!frame.draws[d].small_blocks) continue;
     const uint32_t count = (primitive_count(frame.scene->draws[d]) + 7) / 8;
     frame.draws[d].block_rows = rows;
+    frame.draws[d].block_columns = rows + blocks;
     rows += count;
     for (uint32_t b = 0; b < count; b += kRowTaskBlocks) tasks.push_back({d, b, std::min(count, b + kRowTaskBlocks)});
   }
@@ -470,6 +472,8 @@ void measure_all_block_rows(FastFrame& frame, const std::vector<TrailingCheck>& 
   TaskTimes times(frame, check_tasks.size() + tasks.size());
   const auto row_task = [&](size_t t) {
     const RowTask& task = tasks[t];
+    std::fill(frame.draws[task.draw].block_columns + task.begin, frame.draws[task.draw].block_columns + task.end,
+              kColumnsUnknown);
     if (!measure_block_rows(frame, task.draw, task.begin, task.end)) {
       bad_index = true;
       return;
