@@ -145,7 +145,20 @@ void BandWorker::walk_small_blocks(uint32_t d) {
   };
   fill_block_draw(frame_, d, block_);
   fill_block_draw(frame_, d, next_block_);
+  const uint32_t* const group_rows = fd.group_rows;
+  uint32_t group_end = 0;  // the groups of the blocks before it are tested
   for (uint32_t b = 0; b < blocks; ++b) {
+    // a group none of whose blocks reaches this worker's rows: skipped whole (wanted() would
+    // refuse each of its blocks by its rows)
+    if (group_rows && b >= group_end) {
+      const uint32_t rows = group_rows[b / kGroupBlocks];
+      group_end = (b / kGroupBlocks + 1) * kGroupBlocks;
+      const int32_t lo = int32_t(rows & 0xFFFFu), hi = int32_t(rows >> 16);
+      if (rows != kBlockAnyRow && (lo > hi || !owns_tile_rows(lo, hi))) {
+        b = std::min(group_end, blocks) - 1;
+        continue;
+      }
+    }
     // a run of blocks nobody sets up: skipped eight at a time (small blocks: AVX2 hosts only)
     if (block_rows && block_rows[b] == kNoRow) {
       b = next_reaching_block_avx2(block_rows, b, blocks);

@@ -55,6 +55,10 @@ struct FastDraw {
   // Per block of 8 (with block_rows): the tile columns its lanes may reach in a shared row, stored
   // by the first unit that works them out (BandWorker::wants_block), kColumnsUnknown before.
   uint32_t* block_columns = nullptr;
+  // Per group of kGroupBlocks blocks (with block_rows): the rows its blocks reach, packed as
+  // block_rows (the least lo and the greatest hi; kNoRow: none; kBlockAnyRow: one may reach any).
+  // A walk skips a group that reaches none of its worker's rows.
+  uint32_t* group_rows = nullptr;
   ClippedTable clipped;            // several workers: its clipped triangles, set up once
 };
 
@@ -63,6 +67,8 @@ inline constexpr uint32_t kBlockAnyRow = 0xFFFFFFFFu;
 // block_columns values: not worked out yet; any column (a lane clipped in place).
 inline constexpr uint32_t kColumnsUnknown = 0xFFFFFFFFu;
 inline constexpr uint32_t kColumnsAny = 0xFFFFFFFEu;
+// Blocks per group_rows entry.
+inline constexpr uint32_t kGroupBlocks = 64;
 
 // TileState::worker of the tiles of a row no worker (or unit) owns (FastFrame::unowned_rows).
 inline constexpr uint32_t kUnownedRow = 0xFFFFFFFFu;

@@ -310,6 +310,7 @@ void drop_fast_draw(FastDraw& fd) {
   fd.small_blocks = false;
   fd.block_rows = nullptr;
   fd.block_columns = nullptr;
+  fd.group_rows = nullptr;
   fd.clipped = ClippedTable{};
   fd.pipelined_chunks.clear();
 }
@@ -356,6 +357,20 @@ bool count_block_rows(const uint32_t* block_rows, uint32_t n, size_t tiles_y, in
     diff[hi + 1] -= int32_t(b - first);
   }
   return any_row;
+}
+
+// The rows n blocks reach together (FastDraw::group_rows): kBlockAnyRow if one may reach any, the
+// least lo and greatest hi of the others' rows, kNoRow if none reaches a row.
+uint32_t group_tile_rows(const uint32_t* block_rows, uint32_t n) {
+  uint32_t lo = 0xFFFFu, hi = 0;
+  for (uint32_t b = 0; b < n; ++b) {
+    const uint32_t packed = block_rows[b];
+    if (packed == kBlockAnyRow) return kBlockAnyRow;
+    if ((packed & 0xFFFFu) > (packed >> 16)) continue;  // kNoRow, or no row of the region
+    lo = std::min(lo, packed & 0xFFFFu);
+    hi = std::max(hi, packed >> 16);
+  }
+  return lo > hi ? kNoRow : lo | hi << 16;
 }
 
 // The workers' relative speeds for the static rows (WorkerPool::relative_speeds): equal with
@@ -442,19 +457,28 @@ void measure_all_block_rows(FastFrame& frame, const std::vector<TrailingCheck>& 
     for (uint32_t p = c.first; p < count; p += kCheckTaskPrimitives)
       check_tasks.push_back({c.draw, p, std::min(count, p + kCheckTaskPrimitives)});
   }
-  size_t blocks = 0;
-  for (uint32_t d = 0; d < frame.draws.size(); ++d)
-    if (frame.draws[d].small_blocks) blocks += (primitive_count(frame.scene->draws[d]) + 7) / 8;
+  size_t blocks = 0, groups = 0;
+  for (uint32_t d = 0; d < frame.draws.size(); ++d) {
+    if (!frame.draws[d].small_blocks) continue;
+    const size_t count = (primitive_count(frame.scene->draws[d]) + 7) / 8;
+    blocks += count;
+    groups += (count + kGroupBlocks - 1) / kGroupBlocks;
+  }
   if (blocks == 0) contiguous_rows(frame);
   if (blocks == 0 && check_tasks.empty()) return;
-  uint32_t* rows = blocks > 0 ? thread_word_scratch(2 * blocks) : nullptr;  // the rows, then the columns
+  // the blocks' rows, then their columns, then their groups' rows
+  uint32_t* rows = blocks > 0 ? thread_word_scratch(2 * blocks + groups) : nullptr;
+  uint32_t* group_rows = blocks > 0 ? rows + 2 * blocks : nullptr;
   std::vector<RowTask> tasks;
+  static_assert(kRowTaskBlocks % kGroupBlocks == 0, "a task's groups are its own");
   for (uint32_t d = 0; d < frame.draws.size(); ++d) {
     if (!frame.draws[d].small_blocks) continue;
     const uint32_t count = (primitive_count(frame.scene->draws[d]) + 7) / 8;
     frame.draws[d].block_rows = rows;
     frame.draws[d].block_columns = rows + blocks;
+    frame.draws[d].group_rows = group_rows;
     rows += count;
+    group_rows += (count + kGroupBlocks - 1) / kGroupBlocks;
     for (uint32_t b = 0; b < count; b += kRowTaskBlocks) tasks.push_back({d, b, std::min(count, b + kRowTaskBlocks)});
   }
   // Per task, the blocks that reach each tile row, as differences (+1 at a block's first row, -1
@@ -488,8 +512,11 @@ void measure_all_block_rows(FastFrame& frame, const std::vector<TrailingCheck>& 
       if (lo < hi && run_meets_denormals(frame, task.draw, lo, hi, true, frame.draws[task.draw].block_rows))
         row_met[t] = 1;
     }
-    if (count_block_rows(frame.draws[task.draw].block_rows + task.begin, task.end - task.begin, tiles_y,
-                         reach.data() + t * (tiles_y + 1)))
+    const uint32_t* block_rows = frame.draws[task.draw].block_rows;
+    uint32_t* groups_of_draw = frame.draws[task.draw].group_rows;
+    for (uint32_t g = task.begin; g < task.end; g += kGroupBlocks)
+      groups_of_draw[g / kGroupBlocks] = group_tile_rows(block_rows + g, std::min(kGroupBlocks, task.end - g));
+    if (count_block_rows(block_rows + task.begin, task.end - task.begin, tiles_y, reach.data() + t * (tiles_y + 1)))
       any_row = true;
   };
   run_phase(frame, "block rows", frame.workers, [&](uint32_t w) {
