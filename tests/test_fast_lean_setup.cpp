@@ -66,6 +66,26 @@ void expect_same_raster(const RasterPrimitive& lean, const RasterPrimitive& want
       << "trial " << trial;
 }
 
+// Counts a lean set-up's outcome and holds it to the full set-up's: Drawn must be its raster
+// field by field, Dropped a fate other than Rasterized; Full is left to it.
+struct LeanTally {
+  int drawn = 0, dropped = 0, full = 0;
+};
+void expect_lean_outcome(LeanSetup outcome, const RasterPrimitive& lean, SetupFate fate, const RasterPrimitive& want,
+                         int trial, LeanTally& tally) {
+  switch (outcome) {
+    case LeanSetup::Drawn:
+      ++tally.drawn;
+      ASSERT_EQ(fate, SetupFate::Rasterized) << "trial " << trial;
+      expect_same_raster(lean, want, trial);
+      break;
+    case LeanSetup::Dropped:
+      ++tally.dropped;
+      ASSERT_NE(fate, SetupFate::Rasterized) << "trial " << trial;
+      break;
+    case LeanSetup::Full: ++tally.full; break;
+  }
+}
 
 // setup_piece (the lean set-up of clipped pieces) gives setup_triangle then fast_triangle_of for
 // every piece it draws, drops exactly what setup_triangle does not rasterize, and hands back
@@ -135,7 +155,7 @@ TEST(FastClippedPieces, LeanSetUpGivesTheExactPathsTriangle) {
 TEST(FastLeanSetup, LeanSetupEqualsSetupTriangle) {
   if (!host_has_avx2_fma()) GTEST_SKIP() << "the host runs no AVX2";
   fast_test::Random r(41);
-  int drawn = 0, dropped = 0, full = 0;
+  LeanTally tally;
   RasterPrimitive lean;  // reused, as BandWorker reuses it
   const DenormalsFlushed ftz_daz;
   for (int trial = 0; trial < 40000; ++trial) {
@@ -162,22 +182,12 @@ TEST(FastLeanSetup, LeanSetupEqualsSetupTriangle) {
     if (r.chance(0.02)) window[1] = window[0];  // degenerate
     const uint32_t owner = 1 + r.below(1000);
     const TriangleSetup setup = setup_triangle(window, owner, ctx);
-    switch (setup_triangle_lean(window, owner, ctx, lean)) {
-      case LeanSetup::Drawn:
-        ++drawn;
-        ASSERT_EQ(setup.fate, SetupFate::Rasterized) << "trial " << trial;
-        expect_same_raster(lean, setup.raster, trial);
-        break;
-      case LeanSetup::Dropped:
-        ++dropped;
-        ASSERT_NE(setup.fate, SetupFate::Rasterized) << "trial " << trial;
-        break;
-      case LeanSetup::Full: ++full; break;
-    }
+    expect_lean_outcome(setup_triangle_lean(window, owner, ctx, lean), lean, setup.fate, setup.raster, trial, tally);
+    if (HasFatalFailure()) return;
   }
-  EXPECT_GT(drawn, 12000);
-  EXPECT_GT(dropped, 8000);
-  EXPECT_GT(full, 2000);
+  EXPECT_GT(tally.drawn, 12000);
+  EXPECT_GT(tally.dropped, 8000);
+  EXPECT_GT(tally.full, 2000);
 }
 
 // setup_line_lean against setup_line on random lines in 1x and 4x frames of the three releases
@@ -192,7 +202,8 @@ TEST(FastLeanSetup, LeanSetupEqualsSetupTriangle) {
 TEST(FastLeanSetup, LeanLineSetupEqualsSetupLine) {
   if (!host_has_avx2_fma()) GTEST_SKIP() << "the host runs no AVX2";
   fast_test::Random r(43);
-  int drawn = 0, dropped = 0, full = 0, flagged = 0;
+  LeanTally tally;
+  int flagged = 0;
   RasterPrimitive lean;  // reused, as BandWorker reuses it
   const DenormalsFlushed ftz_daz;
   const std::array<MesaVersion, 4> releases{MesaVersion{22, 3, 6}, MesaVersion{25, 0, 7}, MesaVersion{25, 3, 0},
@@ -239,25 +250,13 @@ TEST(FastLeanSetup, LeanLineSetupEqualsSetupLine) {
       ASSERT_EQ(lean_flags, setup_flags) << "trial " << trial;
       flagged += lean_flags ? 1 : 0;
     }
-    switch (outcome) {
-      case LeanSetup::Drawn:
-        ++drawn;
-        ASSERT_EQ(setup.fate, SetupFate::Rasterized) << "trial " << trial;
-        expect_same_raster(lean, setup.raster, trial);
-        break;
-      case LeanSetup::Dropped:
-        ++dropped;
-        ASSERT_NE(setup.fate, SetupFate::Rasterized) << "trial " << trial;
-        break;
-      case LeanSetup::Full:
-        ++full;
-        break;
-    }
+    expect_lean_outcome(outcome, lean, setup.fate, setup.raster, trial, tally);
+    if (HasFatalFailure()) break;
   }
   clear_denormal_flags();
-  EXPECT_GT(drawn, 15000);  // 19725, 17059, 3216 and 1103 of the 40000
-  EXPECT_GT(dropped, 12000);
-  EXPECT_GT(full, 2000);
+  EXPECT_GT(tally.drawn, 15000);  // 19725, 17059, 3216 and 1103 of the 40000
+  EXPECT_GT(tally.dropped, 12000);
+  EXPECT_GT(tally.full, 2000);
   EXPECT_GT(flagged, 500);
 }
 
