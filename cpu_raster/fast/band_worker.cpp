@@ -26,6 +26,17 @@
 namespace rastercmp::cpu::fast {
 namespace {
 
+// set_up() watched for the MXCSR's denormal flags (DE, UE): read before (cleared when raised) and
+// after, written only when raised; `raised` says whether set_up raised one. Its result.
+template <class SetUp>
+auto watch_denormal_flags(SetUp&& set_up, bool& raised) {
+  if (denormal_flags_raised()) clear_denormal_flags();
+  auto result = set_up();
+  raised = denormal_flags_raised();
+  if (raised) clear_denormal_flags();
+  return result;
+}
+
 WindowVertex window_of(const FastVertex& v) { return WindowVertex{v.x, v.y, v.z}; }
 
 // Whether an edge reaches |dx| + |dy| >= 2^23 fixed units (binned_triangle.hpp in_direct_range),
@@ -512,10 +523,9 @@ LineSetup BandWorker::setup_line_flushed(SetupDenormals mode, const std::array<W
                                          bool bias_denormal) {
   if (mode == SetupDenormals::Flushed) return setup_line(window, owner, ctx);
   if (bias_denormal) return setup_line_in_mode(mode, window, owner, ctx, primitive_index);
-  if (denormal_flags_raised()) clear_denormal_flags();
-  LineSetup setup = setup_line(window, owner, ctx);
-  if (!denormal_flags_raised()) return setup;
-  clear_denormal_flags();
+  bool raised = false;
+  LineSetup setup = watch_denormal_flags([&] { return setup_line(window, owner, ctx); }, raised);
+  if (!raised) return setup;
   return setup_line_in_mode(mode, window, owner, ctx, primitive_index);
 }
 
@@ -526,11 +536,9 @@ LineSetup BandWorker::setup_line_flushed(SetupDenormals mode, const std::array<W
 LeanSetup BandWorker::setup_line_lean_flushed(bool flushed, const std::array<WindowVertex, 2>& window, uint32_t owner,
                                               const SetupContext& ctx) {
   if (flushed) return setup_line_lean(window, owner, ctx, lean_);
-  if (denormal_flags_raised()) clear_denormal_flags();
-  const LeanSetup lean = setup_line_lean(window, owner, ctx, lean_);
-  if (lean == LeanSetup::Full || !denormal_flags_raised()) return lean;
-  clear_denormal_flags();
-  return LeanSetup::Full;
+  bool raised = false;
+  const LeanSetup lean = watch_denormal_flags([&] { return setup_line_lean(window, owner, ctx, lean_); }, raised);
+  return raised ? LeanSetup::Full : lean;
 }
 
 // begin_draw with the chunk flags and trailing run formed from the vertex phase's clip bits (as

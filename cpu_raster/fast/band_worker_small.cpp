@@ -124,13 +124,12 @@ bool BandWorker::wants_block(uint32_t d, uint32_t rows, const SmallBlock& block)
   const int32_t lo = std::max(int32_t(rows & 0xFFFFu), 0), hi = std::min(int32_t(rows >> 16), frame_.raster.tiles_y - 1);
   if (lo > hi) return false;
   if (whole_before_[size_t(hi) + 1] != whole_before_[size_t(lo)]) return true;  // a row of its own
-  uint32_t* const cached = frame_.draws[d].block_columns;
-  uint32_t columns = kColumnsUnknown;
-  if (cached != nullptr) columns = std::atomic_ref<uint32_t>(cached[block.first / 8]).load(std::memory_order_relaxed);
+  // set with block_rows (the block-row phase), without which every block is kBlockAnyRow here
+  std::atomic_ref<uint32_t> cached(frame_.draws[d].block_columns[block.first / 8]);
+  uint32_t columns = cached.load(std::memory_order_relaxed);
   if (columns == kColumnsUnknown) {
     columns = block_tile_columns(d, block);
-    // any unit computes the same value: a relaxed store suffices
-    if (cached != nullptr) std::atomic_ref<uint32_t>(cached[block.first / 8]).store(columns, std::memory_order_relaxed);
+    cached.store(columns, std::memory_order_relaxed);  // any unit computes the same value
   }
   if (columns == kColumnsAny) return true;
   const int32_t x0 = int32_t(columns & 0xFFFFu) - 1, x1 = int32_t(columns >> 16) - 1;
