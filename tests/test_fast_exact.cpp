@@ -258,6 +258,11 @@ TEST(FastSharedRows, HeavyRowCutIntoRunsOfTilesMatchesExactPath) {
   }
   expect_fast_matches(bench::perspective_scene(120, 256), true, {4u, 16u});
   expect_fast_matches(bench::perspective_scene(200, 512), false, {16u});
+  // Each pixel keeps the last triangle drawn over it: a lane a unit draws into another unit's
+  // tile (or twice) shows, which under LESS it mostly would not.
+  Scene last_wins = bench::perspective_scene(200, 512);
+  last_wins.draws[0].state.depth.compare_op = CompareOp::Always;
+  expect_fast_matches(last_wins, true, {16u});
   CpuOptions options;
   options.threads = 4;
   options.fma = false;

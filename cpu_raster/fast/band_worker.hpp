@@ -47,12 +47,16 @@ class BandWorker {
   // Where a small triangle's writes to columns [x0, x1] of rows [row_lo, row_hi] (at most two tile
   // rows) may go, for this worker: None (no tile of it is this worker's), All (rows cut to those
   // whose tiles from x0 - lead to x1 are all this worker's), or Mixed (they cross into another
-  // worker's tile: the scalar set-up, tile by tile, draws it). lead: the columns left of x0 that
-  // its kernel may load and store back (kJobLead for an AVX2 kernel job, whose spans may start up
-  // to 7 columns left of x0 and end in x1's tile; 0 for grid lanes and windows, written pixel by
-  // pixel or by masked stores).
+  // worker's tile: the scalar set-up, tile by tile, draws it, or for a kernel job on AVX-512 hosts
+  // its pieces in this worker's tiles: draw_job_pieces). lead: the columns left of x0 that its
+  // kernel may load and store back (job_lead: kJobLead for an AVX2 kernel job, whose spans may
+  // start up to 7 columns left of x0 and end in x1's tile; 0 for grid lanes and windows, written
+  // pixel by pixel or by masked stores, and for AVX-512 kernel jobs, masked to their rectangle).
   enum class Reach { None, All, Mixed };
   static constexpr int32_t kJobLead = 7;
+  // A kernel job's lead with this draw's small kernel: none where it writes nothing outside the
+  // job's rectangle (the AVX-512 kernel, which also draws pieces: small_piece_fn).
+  static int32_t job_lead(const DrawRaster& raster) { return raster.small_piece_fn != nullptr ? 0 : kJobLead; }
   Reach small_reach(int32_t x0, int32_t x1, int32_t lead, int32_t& row_lo, int32_t& row_hi) const;
   Reach row_reach(int32_t tile_y, int32_t x0, int32_t x1, int32_t lead) const;
   // Whether this worker sets up a block of draw d whose block rows are `rows` (block_rows.hpp), its
@@ -90,6 +94,7 @@ class BandWorker {
   void draw_lane(const SmallBlockOutput& block, int lane, uint32_t owner, int32_t row_lo, int32_t row_hi,
                  const DrawRaster& raster);
   void lane_triangle(uint32_t draw_index, const SmallBlock& block, int lane);
+  void draw_job_pieces(uint32_t draw_index, const SmallBlock& block, int lane, const DrawRaster& raster);
   void prepare_small_tiles(int32_t x0, int32_t x1, int32_t row_lo, int32_t row_hi, const DrawRaster& raster);
   void triangle(uint32_t draw_index, uint32_t primitive, uint32_t a, uint32_t b, uint32_t c);
   void clipped_triangle(uint32_t draw_index, uint32_t primitive, uint32_t a, uint32_t b, uint32_t c);

@@ -198,7 +198,7 @@ bool BandWorker::draw_lanes_in_one_row(const SmallBlock& block, uint32_t owner_o
   const int32_t ty = y0 >> kTileOrder;
   if (ty != (y1 >> kTileOrder)) return false;
   int32_t row_lo = y0, row_hi = y1;
-  const Reach reach = small_reach(x0, x1, out.job_mask != 0 ? kJobLead : 0, row_lo, row_hi);
+  const Reach reach = small_reach(x0, x1, out.job_mask != 0 ? job_lead(raster) : 0, row_lo, row_hi);
   if (reach != Reach::All) return reach == Reach::None;  // Mixed: lane by lane
   prepare_small_tiles(x0, x1, y0, y1, raster);
   for (uint32_t bits = lanes; bits != 0; bits &= bits - 1) {
@@ -271,12 +271,36 @@ void BandWorker::prepare_small_tiles(int32_t x0, int32_t x1, int32_t row_lo, int
 void BandWorker::draw_small(uint32_t d, const SmallBlock& block, int lane, const DrawRaster& raster) {
   const SmallBlockOutput& out = block.out;
   int32_t row_lo = out.y0[lane], row_hi = out.y1[lane];  // a lane spans at most two tile rows
-  const int32_t lead = (out.job_mask >> lane) & 1u ? kJobLead : 0;
-  const Reach reach = small_reach(out.x0[lane], out.x1[lane], lead, row_lo, row_hi);
+  const bool job = (out.job_mask >> lane) & 1u;
+  const Reach reach = small_reach(out.x0[lane], out.x1[lane], job ? job_lead(raster) : 0, row_lo, row_hi);
   if (reach == Reach::None) return;
-  if (reach == Reach::Mixed) return lane_triangle(d, block, lane);
+  if (reach == Reach::Mixed) {
+    if (job && raster.small_piece_fn != nullptr) return draw_job_pieces(d, block, lane, raster);
+    return lane_triangle(d, block, lane);
+  }
   prepare_small_tiles(out.x0[lane], out.x1[lane], row_lo, row_hi, raster);
   draw_lane(out, lane, encode_owner(d, block.first + uint32_t(lane)), row_lo, row_hi, raster);
+}
+
+// A kernel job lane that crosses into another worker's tile, where the kernel writes nothing
+// outside its rectangle (small_piece_fn): the lane's rectangle cut to each of this worker's
+// tiles, each piece's tile prepared and drawn. A lane covers each pixel once, so drawing it piece
+// by piece writes what one call over its rectangle would; the next lane comes after the last piece.
+void BandWorker::draw_job_pieces(uint32_t d, const SmallBlock& block, int lane, const DrawRaster& raster) {
+  const SmallBlockOutput& out = block.out;
+  const uint32_t owner = encode_owner(d, block.first + uint32_t(lane));
+  const int32_t x0 = out.x0[lane], y0 = out.y0[lane], x1 = out.x1[lane], y1 = out.y1[lane];
+  const int32_t ty_hi = std::min(y1 >> kTileOrder, frame_.raster.tiles_y - 1);
+  const int32_t tx_hi = std::min(x1 >> kTileOrder, frame_.raster.tiles_x - 1);
+  for (int32_t ty = std::max(y0 >> kTileOrder, 0); ty <= ty_hi; ++ty) {
+    for (int32_t tx = std::max(x0 >> kTileOrder, 0); tx <= tx_hi; ++tx) {
+      if (!owns_tile(tx, ty)) continue;
+      const PixelRect piece{std::max(x0, tx * kTileSize), std::max(y0, ty * kTileSize),
+                            std::min(x1, tx * kTileSize + kTileSize - 1), std::min(y1, ty * kTileSize + kTileSize - 1)};
+      prepare_small_tiles(piece.x0, piece.x1, piece.y0, piece.y1, raster);
+      raster.small_piece_fn(out, lane, owner, piece, raster.kernel, frame_.raster.target);
+    }
+  }
 }
 
 // A grid lane or a kernel job in rows [row_lo, row_hi], its tiles prepared.

@@ -78,5 +78,12 @@ KernelFn select_kernel_avx2(DepthFormat format, CompareOp op);
 // the same values. Call only when host_has_avx512().
 KernelFn select_kernel_avx512(DepthFormat format, CompareOp op);
 SmallKernelFn select_small_kernel_avx512(DepthFormat format, CompareOp op);
+// The AVX-512 small kernel over `piece`, a rectangle within the lane's (its rows and columns):
+// the lane's pixels there, and no other pixel written (every store is masked to the covered,
+// passing pixels of the job's rectangle). Lets a lane that crosses into another worker's tile be
+// drawn tile by tile.
+using SmallPieceFn = bool (*)(const SmallBlockOutput&, int lane, uint32_t owner, const PixelRect& piece,
+                              const KernelDepth&, const TileTarget&);
+SmallPieceFn select_small_piece_avx512(DepthFormat format, CompareOp op);
 
 }  // namespace rastercmp::cpu::fast

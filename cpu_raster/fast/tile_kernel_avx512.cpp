@@ -78,11 +78,13 @@ RASTERCMP_AVX512 bool narrow16(const KernelJob& j, const KernelDepth& d, const T
     gy[i] = _mm512_set1_epi32(j.gy[i]);
     half[i] = _mm512_set1_epi32(16 * j.gx[i]);
   }
+  // both strips masked to the rectangle's columns (a small lane's piece may start right of origin_x + 16)
   const __m512i column = _mm512_add_epi32(_mm512_set1_epi32(j.origin_x), lane);
+  const __m512i column2 = _mm512_add_epi32(column, _mm512_set1_epi32(16));
+  const __m512i rect_x0 = _mm512_set1_epi32(j.rect.x0), rect_x1 = _mm512_set1_epi32(j.rect.x1);
   const __mmask16 in_rect[2] = {
-      __mmask16(_mm512_cmpge_epi32_mask(column, _mm512_set1_epi32(j.rect.x0)) &
-                _mm512_cmple_epi32_mask(column, _mm512_set1_epi32(j.rect.x1))),
-      __mmask16(_mm512_cmple_epi32_mask(_mm512_add_epi32(column, _mm512_set1_epi32(16)), _mm512_set1_epi32(j.rect.x1)))};
+      __mmask16(_mm512_cmpge_epi32_mask(column, rect_x0) & _mm512_cmple_epi32_mask(column, rect_x1)),
+      __mmask16(_mm512_cmpge_epi32_mask(column2, rect_x0) & _mm512_cmple_epi32_mask(column2, rect_x1))};
   // the job's and target's fields in locals: the stores below may alias them (no reload per row)
   const size_t width = size_t(t.width);
   const int32_t x = j.origin_x, y1 = j.rect.y1;
@@ -146,6 +148,17 @@ RASTERCMP_AVX512 bool small_kernel16(const SmallBlockOutput& b, int lane, uint32
   return kernel16<F, Op>(b.job(lane, owner, Op, row_lo, row_hi), d, t);
 }
 
+// The same over a piece of the lane's rectangle: the job's edges and depth are the lane's (from
+// its origin), its rectangle the piece, to which kernel16 masks every store.
+template <DepthFormat F, CompareOp Op>
+RASTERCMP_AVX512 bool small_piece16(const SmallBlockOutput& b, int lane, uint32_t owner, const PixelRect& piece,
+                                    const KernelDepth& d, const TileTarget& t) {
+  KernelJob j = b.job(lane, owner, Op, piece.y0, piece.y1);
+  j.rect.x0 = piece.x0;
+  j.rect.x1 = piece.x1;
+  return kernel16<F, Op>(j, d, t);
+}
+
 struct SmallKernels {
   template <DepthFormat F, CompareOp Op>
   static constexpr SmallKernelFn get() {
@@ -153,6 +166,14 @@ struct SmallKernels {
   }
 };
 constexpr auto kSmallKernels = kernel_table<SmallKernels>();
+
+struct SmallPieces {
+  template <DepthFormat F, CompareOp Op>
+  static constexpr SmallPieceFn get() {
+    return &small_piece16<F, Op>;
+  }
+};
+constexpr auto kSmallPieces = kernel_table<SmallPieces>();
 
 struct Kernels {
   template <DepthFormat F, CompareOp Op>
@@ -168,6 +189,10 @@ KernelFn select_kernel_avx512(DepthFormat format, CompareOp op) { return select_
 
 SmallKernelFn select_small_kernel_avx512(DepthFormat format, CompareOp op) {
   return select_kernel(kSmallKernels, format, op);
+}
+
+SmallPieceFn select_small_piece_avx512(DepthFormat format, CompareOp op) {
+  return select_kernel(kSmallPieces, format, op);
 }
 
 }  // namespace rastercmp::cpu::fast

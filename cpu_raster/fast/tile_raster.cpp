@@ -46,6 +46,7 @@ DrawRaster make_draw_raster(const DepthTestState& depth, bool frame_bounds, bool
   if (avx2) {
     draw.small_fn = avx512 ? select_small_kernel_avx512(draw.kernel.format, depth.op)
                            : select_small_kernel_avx2(draw.kernel.format, depth.op);
+    if (avx512) draw.small_piece_fn = select_small_piece_avx512(draw.kernel.format, depth.op);
     draw.grid_fn = select_grid_scatter(draw.kernel.format, depth.op);
     draw.grid_block_fn = select_grid_block(draw.kernel.format, depth.op);
     draw.window_block_fn = avx512 ? select_window_block_avx512(draw.kernel.format, depth.op)

@@ -23,6 +23,9 @@ struct DrawRaster {
   bool vector_ok = true;         // the AVX2 kernels reproduce this state (UNORM depth stays below 2^24)
   bool bounds = false;           // tile depth bounds are used and kept for this draw
   SmallKernelFn small_fn = nullptr;
+  // AVX-512 hosts: small_fn over a piece of a lane's rectangle, writing nothing outside it (null
+  // elsewhere: the AVX2 kernel stores back whole spans, up to kJobLead columns left of a lane).
+  SmallPieceFn small_piece_fn = nullptr;
   GridScatterFn grid_fn = nullptr;
   GridBlockFn grid_block_fn = nullptr;
   WindowBlockFn window_block_fn = nullptr;  // with avx2: 8 or 16 pixels a step (small_window.hpp)
