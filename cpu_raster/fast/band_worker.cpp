@@ -62,8 +62,17 @@ BandWorker::BandWorker(FastFrame& frame, uint32_t index) : frame_(frame), index_
   owned_before_.assign(size_t(rows) + 1, 0);
   whole_before_.assign(size_t(rows) + 1, 0);
   row_kind_.assign(size_t(rows), 0);
+  owned_first_.assign(size_t(rows), columns);
+  owned_last_.assign(size_t(rows), -1);
   for (int32_t r = 0; r < rows; ++r) {
-    const int32_t owned = owned_tiles(r, 0, columns - 1);
+    int32_t owned = 0;
+    for (int32_t tx = 0; tx < columns; ++tx) {
+      if (!owns_tile(tx, r)) continue;
+      ++owned;
+      owned_first_[size_t(r)] = std::min(owned_first_[size_t(r)], tx);
+      owned_last_[size_t(r)] = tx;
+    }
+    runs_ &= owned == 0 || owned == owned_last_[size_t(r)] - owned_first_[size_t(r)] + 1;
     row_kind_[size_t(r)] = owned == 0 ? 0 : owned == columns ? 1 : 2;
     shared_ |= row_kind_[size_t(r)] == 2;
     owned_before_[size_t(r) + 1] = owned_before_[size_t(r)] + (owned > 0 ? 1 : 0);
@@ -87,6 +96,11 @@ void BandWorker::run() {
 }
 
 int32_t BandWorker::owned_tiles(int32_t tile_y, int32_t tile_x0, int32_t tile_x1) const {
+  if (runs_) {
+    const int32_t first = std::max(tile_x0, owned_first_[size_t(tile_y)]);
+    const int32_t last = std::min(tile_x1, owned_last_[size_t(tile_y)]);
+    return std::max(last - first + 1, 0);
+  }
   tile_x0 = std::max(tile_x0, 0);
   tile_x1 = std::min(tile_x1, frame_.raster.tiles_x - 1);
   int32_t owned = 0;

@@ -144,6 +144,11 @@ class BandWorker {
   RasterPrimitive lean_;  // walk_exact: the triangle or line the lean set-ups (lean_setup.hpp) set up last
   std::vector<uint32_t> whole_before_;
   bool shared_ = false;
+  // Per tile row: the first and last of its tiles this worker owns (first > last: none). Where
+  // they are all it owns between them (a unit's run of tiles, or whole rows: every assignment
+  // row_balance.hpp makes), owned_tiles counts from them; otherwise (`runs_` false) tile by tile.
+  std::vector<int32_t> owned_first_, owned_last_;
+  bool runs_ = true;
   SmallBlock block_, next_block_;       // the small-triangle blocks being set up and drawn
   BoundsAudit audit_;
 };
