@@ -25,6 +25,17 @@ namespace rastercmp::cpu::fast {
 // position: the draw's index range is checked here, where its indices are read anyway.
 bool measure_block_rows(FastFrame& frame, uint32_t draw_index, uint32_t begin, uint32_t end);
 
+// The tile columns [x0, x1] a block's lanes may reach in a shared row (BandWorker::wants_block),
+// clamped to [-1, tiles_x] and packed (x0 + 1) | (x1 + 1) << 16; x0 > x1: none; kColumnsAny: a
+// lane clipped in place.
+uint32_t block_tile_columns(const FastFrame& frame, uint32_t draw_index, const SmallBlock& block);
+
+// Fills frame.draws[d].block_columns[b] for each block b in [begin, end) whose block rows meet a
+// shared tile row (one whose tiles more than one unit draws): shared_before[r], the shared rows
+// below r, for r up to tiles_y. The others keep kColumnsUnknown.
+void measure_block_columns(FastFrame& frame, uint32_t draw_index, uint32_t begin, uint32_t end,
+                           const std::vector<uint32_t>& shared_before);
+
 class BandWorker {
  public:
   // index: the worker, or with FastFrame::queued_units the unit, whose tiles (TileState::worker) it draws.
@@ -61,8 +72,12 @@ class BandWorker {
   Reach row_reach(int32_t tile_y, int32_t x0, int32_t x1, int32_t lead) const;
   // Whether this worker sets up a block of draw d whose block rows are `rows` (block_rows.hpp), its
   // corners filled: it may reach one of its tiles (in a shared row: by its lanes' columns).
+  // known_want: the same answer for block b before its corners are read, Unknown where they are
+  // needed (its columns not worked out yet).
+  enum class Want { Yes, No, Unknown };
+  Want known_want(uint32_t d, uint32_t rows, uint32_t b) const;
   bool wants_block(uint32_t d, uint32_t rows, const SmallBlock& block) const;
-  uint32_t block_tile_columns(uint32_t d, const SmallBlock& block) const;
+  bool columns_reach_own_tiles(int32_t lo, int32_t hi, uint32_t columns) const;
 
   template <Topology T, bool Indexed>
   void walk_triangles(uint32_t draw_index);

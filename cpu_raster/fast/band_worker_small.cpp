@@ -117,20 +117,34 @@ BandWorker::Reach BandWorker::small_reach(int32_t x0, int32_t x1, int32_t lead, 
 // In a shared row the block's lanes say which tiles it may reach: an unclipped triangle's pixels
 // lie within its corners' columns, a clipped one's within its pieces' rectangles (the block-row
 // phase's table; one clipped in place: any column); a lane with its corners outside one plane, or
-// one that failed to snap, draws nothing. The columns are the block's alone: the first unit of a
-// shared row to need them stores them for the others (FastDraw::block_columns).
-bool BandWorker::wants_block(uint32_t d, uint32_t rows, const SmallBlock& block) const {
-  if (rows == kBlockAnyRow) return true;
+// one that failed to snap, draws nothing. The columns are the block's alone, worked out before the
+// walks for every block of a shared row (the block-column phase, render_fast.cpp), so that a unit
+// decides from them before it reads the block's corners (known_want); a block they were not
+// worked out for has them worked out by the first unit that needs them, for the others.
+BandWorker::Want BandWorker::known_want(uint32_t d, uint32_t rows, uint32_t b) const {
+  if (rows == kBlockAnyRow) return Want::Yes;
   const int32_t lo = std::max(int32_t(rows & 0xFFFFu), 0), hi = std::min(int32_t(rows >> 16), frame_.raster.tiles_y - 1);
-  if (lo > hi) return false;
-  if (whole_before_[size_t(hi) + 1] != whole_before_[size_t(lo)]) return true;  // a row of its own
+  if (lo > hi) return Want::No;
+  if (whole_before_[size_t(hi) + 1] != whole_before_[size_t(lo)]) return Want::Yes;  // a row of its own
   // set with block_rows (the block-row phase), without which every block is kBlockAnyRow here
-  std::atomic_ref<uint32_t> cached(frame_.draws[d].block_columns[block.first / 8]);
-  uint32_t columns = cached.load(std::memory_order_relaxed);
-  if (columns == kColumnsUnknown) {
-    columns = block_tile_columns(d, block);
-    cached.store(columns, std::memory_order_relaxed);  // any unit computes the same value
-  }
+  const uint32_t columns = std::atomic_ref<uint32_t>(frame_.draws[d].block_columns[b]).load(std::memory_order_relaxed);
+  if (columns == kColumnsUnknown) return Want::Unknown;
+  return columns_reach_own_tiles(lo, hi, columns) ? Want::Yes : Want::No;
+}
+
+bool BandWorker::wants_block(uint32_t d, uint32_t rows, const SmallBlock& block) const {
+  const Want known = known_want(d, rows, block.first / 8);
+  if (known != Want::Unknown) return known == Want::Yes;
+  const uint32_t columns = block_tile_columns(frame_, d, block);
+  // any unit computes the same value
+  std::atomic_ref<uint32_t>(frame_.draws[d].block_columns[block.first / 8]).store(columns, std::memory_order_relaxed);
+  return columns_reach_own_tiles(std::max(int32_t(rows & 0xFFFFu), 0),
+                                 std::min(int32_t(rows >> 16), frame_.raster.tiles_y - 1), columns);
+}
+
+// Whether tile columns `columns` (block_tile_columns) of tile rows [lo, hi] hold a tile of this
+// worker's in a shared row (none of those rows is all its own: known_want).
+bool BandWorker::columns_reach_own_tiles(int32_t lo, int32_t hi, uint32_t columns) const {
   if (columns == kColumnsAny) return true;
   const int32_t x0 = int32_t(columns & 0xFFFFu) - 1, x1 = int32_t(columns >> 16) - 1;
   for (int32_t ty = lo; ty <= hi; ++ty)
@@ -138,12 +152,9 @@ bool BandWorker::wants_block(uint32_t d, uint32_t rows, const SmallBlock& block)
   return false;
 }
 
-// The tile columns [x0, x1] the block's lanes may reach (wants_block), clamped to [-1, tiles_x]
-// (owned_tiles' answer does not change) and packed (x0 + 1) | (x1 + 1) << 16; x0 > x1: none;
-// kColumnsAny: a lane clipped in place.
-uint32_t BandWorker::block_tile_columns(uint32_t d, const SmallBlock& block) const {
+uint32_t block_tile_columns(const FastFrame& frame, uint32_t d, const SmallBlock& block) {
   const SmallBlockInput& in = block.in;
-  const ClippedTable& clipped = frame_.draws[d].clipped;
+  const ClippedTable& clipped = frame.draws[d].clipped;
   int32_t x0 = INT32_MAX, x1 = INT32_MIN;
   float x_min = INFINITY, x_max = -INFINITY;
   for (uint32_t l = 0; l < in.count; ++l) {
@@ -176,7 +187,7 @@ uint32_t BandWorker::block_tile_columns(uint32_t d, const SmallBlock& block) con
     x0 = std::min(x0, int32_t(std::floor(x_min)) - 2);
     x1 = std::max(x1, int32_t(std::ceil(x_max)) + 1);
   }
-  const int32_t tiles = frame_.raster.tiles_x;
+  const int32_t tiles = frame.raster.tiles_x;
   if (x0 > x1) return uint32_t(tiles + 1) | 0u << 16;  // none: x0 = tiles_x, x1 = -1
   const int32_t t0 = std::clamp(x0 >> kTileOrder, -1, tiles), t1 = std::clamp(x1 >> kTileOrder, -1, tiles);
   return uint32_t(t0 + 1) | uint32_t(t1 + 1) << 16;
@@ -310,6 +321,36 @@ void BandWorker::draw_lane(const SmallBlockOutput& block, int lane, uint32_t own
     raster.grid_fn(block, lane, owner, row_lo, row_hi, raster.kernel.write, frame_.raster.target);
   else
     raster.small_fn(block, lane, owner, row_lo, row_hi, raster.kernel, frame_.raster.target);
+}
+
+namespace {
+
+template <Topology T, bool Indexed>
+void measure_columns(FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end,
+                     const std::vector<uint32_t>& shared_before) {
+  const uint32_t* block_rows = frame.draws[d].block_rows;
+  uint32_t* block_columns = frame.draws[d].block_columns;
+  const uint32_t count = primitive_count(frame.scene->draws[d]);
+  SmallBlock block;
+  fill_block_draw(frame, d, block);
+  for (uint32_t b = begin; b < end; ++b) {
+    const uint32_t rows = block_rows[b];
+    if (rows == kBlockAnyRow) continue;  // every unit that meets it sets it up (known_want)
+    const int32_t lo = std::max(int32_t(rows & 0xFFFFu), 0), hi = std::min(int32_t(rows >> 16), frame.raster.tiles_y - 1);
+    if (lo > hi || shared_before[size_t(hi) + 1] == shared_before[size_t(lo)]) continue;
+    fill_block_corners<T, Indexed>(frame.scene->draws[d].indices.data(), count, b, block);
+    block_columns[b] = block_tile_columns(frame, d, block);
+  }
+}
+
+}  // namespace
+
+void measure_block_columns(FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end,
+                           const std::vector<uint32_t>& shared_before) {
+  on_triangle_layout(
+      frame.scene->draws[d],
+      [&](auto topology, auto indexed) { measure_columns<topology(), indexed()>(frame, d, begin, end, shared_before); },
+      [] {});
 }
 
 bool measure_block_rows(FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end) {

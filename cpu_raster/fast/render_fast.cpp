@@ -547,6 +547,49 @@ void measure_all_block_rows(FastFrame& frame, const std::vector<TrailingCheck>& 
   balance_tile_rows(frame, reach, tasks.size(), !any_row);
 }
 
+// Phase 3b (queued units, several of them in a tile row): the tile columns of every block that
+// reaches such a shared row (measure_block_columns), worked out once before the walks, where
+// each unit of the row that meets the block would otherwise work them out, all of them at once
+// on as many cores. A task whose groups reach no shared row is left out.
+void measure_shared_columns(FastFrame& frame) {
+  constexpr uint32_t kColumnTaskBlocks = 256;
+  if (frame.queued_units == 0) return;
+  const size_t tiles_x = size_t(std::max(frame.raster.tiles_x, 0)), tiles_y = size_t(std::max(frame.raster.tiles_y, 0));
+  std::vector<uint32_t> shared_before(tiles_y + 1, 0);
+  for (size_t r = 0; r < tiles_y; ++r) {
+    const TileState* row = frame.tiles.data() + r * tiles_x;
+    const bool shared = std::any_of(row, row + tiles_x, [row](const TileState& t) { return t.worker != row[0].worker; });
+    shared_before[r + 1] = shared_before[r] + (shared ? 1 : 0);
+  }
+  if (shared_before[tiles_y] == 0) return;
+  const auto meets_shared = [&](uint32_t rows) {
+    if (rows == kBlockAnyRow) return true;
+    const int32_t lo = std::max(int32_t(rows & 0xFFFFu), 0), hi = std::min(int32_t(rows >> 16), int32_t(tiles_y) - 1);
+    return lo <= hi && shared_before[size_t(hi) + 1] != shared_before[size_t(lo)];
+  };
+  std::vector<RowTask> tasks;
+  static_assert(kColumnTaskBlocks % kGroupBlocks == 0, "a task's groups are its own");
+  for (uint32_t d = 0; d < frame.draws.size(); ++d) {
+    const FastDraw& fd = frame.draws[d];
+    if (!fd.small_blocks || fd.block_columns == nullptr) continue;
+    const uint32_t count = (primitive_count(frame.scene->draws[d]) + 7) / 8;
+    for (uint32_t b = 0; b < count; b += kColumnTaskBlocks) {
+      const uint32_t end = std::min(count, b + kColumnTaskBlocks);
+      bool meets = false;
+      for (uint32_t g = b; g < end && !meets; g += kGroupBlocks) meets = meets_shared(fd.group_rows[g / kGroupBlocks]);
+      if (meets) tasks.push_back({d, b, end});
+    }
+  }
+  if (tasks.empty()) return;
+  std::atomic<size_t> next{0};
+  TaskTimes times(frame, tasks.size());
+  run_phase(frame, "block columns", frame.workers, [&](uint32_t w) {
+    for (size_t i = next++; i < tasks.size(); i = next++)
+      times.run(i, w, [&] { measure_block_columns(frame, tasks[i].draw, tasks[i].begin, tasks[i].end, shared_before); });
+  });
+  times.attach(frame);
+}
+
 // Phase 4: every worker walks every draw into its own tiles; with queued units (balance_tiles),
 // each worker takes the next unit from the queue and walks every draw into that unit's tiles, until
 // none is left.
@@ -599,6 +642,7 @@ void render_fast_into(const Scene& scene, const CpuOptions& options, const FastC
   if (check_pending) {
     check_index_ranges(frame);
     measure_all_block_rows(frame, checks);
+    measure_shared_columns(frame);
   }
   run_workers(frame);
   if (frame.failure.error) std::rethrow_exception(frame.failure.error);
