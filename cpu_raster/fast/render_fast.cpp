@@ -435,6 +435,20 @@ void contiguous_rows(FastFrame& frame) {
   for (const uint32_t w : owner) frame.worker_work[w] += 1.0;
 }
 
+// Blocks per task of the block-row phase: about kRowTasksPerWorker tasks per worker, in whole
+// groups (a task's groups are its own), at least kMinRowTaskBlocks and at most kMaxRowTaskBlocks.
+// Each task has its own set-up, row counts and clipped table (merged after the phase): with two
+// workers tiny_1m's 131,000 blocks make 64 tasks instead of 512, and its render at two threads
+// takes 5% less. Tasks of fewer than 256 blocks did not pay at 16 workers: perspective's far-plane
+// rows make one task of 33-40 us however they are cut (their clipping; performance-log.md).
+uint32_t row_task_blocks(size_t blocks, uint32_t workers) {
+  constexpr size_t kRowTasksPerWorker = 32, kMinRowTaskBlocks = 256, kMaxRowTaskBlocks = 4096;
+  static_assert(kMinRowTaskBlocks % kGroupBlocks == 0 && kMaxRowTaskBlocks % kGroupBlocks == 0);
+  const size_t per_task = blocks / (size_t(std::max(workers, 1u)) * kRowTasksPerWorker);
+  const size_t groups = (per_task + kGroupBlocks - 1) / kGroupBlocks;
+  return uint32_t(std::clamp<size_t>(groups * kGroupBlocks, kMinRowTaskBlocks, kMaxRowTaskBlocks));
+}
+
 // Phase 3 (several workers): which tile rows each block of small triangles may reach, measured
 // once, so that a worker sets up only the blocks it may draw into. Each block's indices are
 // checked before they are read through; a bad one: the full profile check, which throws. The
@@ -443,8 +457,7 @@ void contiguous_rows(FastFrame& frame) {
 // another a range of primitives per task. A draw that meets one is dropped from the fast draws
 // (drop_fast_draw) and from the row balance.
 void measure_all_block_rows(FastFrame& frame, const std::vector<TrailingCheck>& checks) {
-  // Tasks small enough to share out between 16 workers (perspective: 40 row tasks, its check in them).
-  constexpr uint32_t kRowTaskBlocks = 256, kCheckTaskPrimitives = 2048;
+  constexpr uint32_t kCheckTaskPrimitives = 2048;
   struct CheckTask {
     uint32_t draw, begin, end;
   };
@@ -470,7 +483,7 @@ void measure_all_block_rows(FastFrame& frame, const std::vector<TrailingCheck>& 
   uint32_t* rows = blocks > 0 ? thread_word_scratch(2 * blocks + groups) : nullptr;
   uint32_t* group_rows = blocks > 0 ? rows + 2 * blocks : nullptr;
   std::vector<RowTask> tasks;
-  static_assert(kRowTaskBlocks % kGroupBlocks == 0, "a task's groups are its own");
+  const uint32_t task_blocks = row_task_blocks(blocks, frame.workers);
   for (uint32_t d = 0; d < frame.draws.size(); ++d) {
     if (!frame.draws[d].small_blocks) continue;
     const uint32_t count = (primitive_count(frame.scene->draws[d]) + 7) / 8;
@@ -479,7 +492,7 @@ void measure_all_block_rows(FastFrame& frame, const std::vector<TrailingCheck>& 
     frame.draws[d].group_rows = group_rows;
     rows += count;
     group_rows += (count + kGroupBlocks - 1) / kGroupBlocks;
-    for (uint32_t b = 0; b < count; b += kRowTaskBlocks) tasks.push_back({d, b, std::min(count, b + kRowTaskBlocks)});
+    for (uint32_t b = 0; b < count; b += task_blocks) tasks.push_back({d, b, std::min(count, b + task_blocks)});
   }
   // Per task, the blocks that reach each tile row, as differences (+1 at a block's first row, -1
   // past its last): the rows' work estimate (balance_tile_rows).
