@@ -1,10 +1,12 @@
-// render_cpu_fast: phases of a fast render (docs/performance.md).
+// render_cpu_fast: phases of a fast render (docs/performance.md; how a phase runs on the pool and
+// is timed: phase_run.hpp).
 //  1. frame: the exact path's frame context, the result buffers (not cleared: tiles are cleared
 //     by their workers), per-draw raster state and tiles;
 //  2. vertices: per fast draw, every position transformed and snapped once (in parallel);
 //  3. block rows (several workers): the tile rows each block of 8 small triangles may reach, the
 //     trailing runs' denormal checks, and from the rows which worker draws each tile
-//     (row_balance.hpp: whole rows, or runs of a heavy row's tiles in queued units);
+//     (row_balance.hpp: whole rows, or runs of a heavy row's tiles in queued units); then, where
+//     a row is shared between units, the tile columns of the blocks that reach it (block columns);
 //  4. bands: one BandWorker per worker (or per queued unit) walks all draws and rasterizes its
 //     own tiles.
 #include "cpu_raster/fast/render_fast.hpp"
@@ -29,6 +31,7 @@
 #include "cpu_raster/fast/clipped_pieces.hpp"
 #include "cpu_raster/fast/cpu_features.hpp"
 #include "cpu_raster/fast/frame_memory.hpp"
+#include "cpu_raster/fast/phase_run.hpp"
 #include "cpu_raster/fast/row_balance.hpp"
 #include "cpu_raster/fast/small_block_input.hpp"
 #include "cpu_raster/fast/trailing_check.hpp"
@@ -43,74 +46,6 @@ namespace {
 
 constexpr size_t kVertexBlock = 4096;  // positions per task of the vertex phase
 
-// job(0) .. job(workers - 1) at once (job(0) on the calling thread; one worker: just job(0)),
-// each one's thread CPU time recorded under `phase` when the render is profiled. Profiled with
-// FastConfig::profile_threads below `workers`, that many threads run the jobs, each taking the next
-// job not started: no job waits for another inside a phase, so any order gives the same bytes,
-// and each job's time is measured without more threads than cores taking turns.
-void run_phase(FastFrame& frame, const char* phase, uint32_t workers, const std::function<void(uint32_t)>& job) {
-  const auto dispatch = [workers](const std::function<void(uint32_t)>& f) {
-    if (workers == 1)
-      f(0);
-    else
-      worker_pool(workers).run(f);
-  };
-  if (frame.profile == nullptr) {
-    dispatch(job);
-    return;
-  }
-  const uint32_t threads = frame.profile_threads > 0 ? std::min(workers, frame.profile_threads) : workers;
-  // The calling thread's time since the last phase is serial; its time inside the pool's run
-  // outside job(0) (waking the others, spinning until they finish) belongs to no phase: on N free
-  // cores it would overlap the busiest worker's.
-  const double phase_start = thread_cpu_seconds();
-  frame.profile->serial_seconds += phase_start - frame.serial_mark;
-  PhaseTimes times{phase, std::vector<double>(workers, 0.0), {}};
-  const auto timed = [&](uint32_t w) {
-    const double start = thread_cpu_seconds();
-    job(w);
-    times.worker_seconds[w] = thread_cpu_seconds() - start;
-  };
-  if (threads == workers) {
-    dispatch(timed);
-  } else {
-    std::atomic<uint32_t> next{0};
-    const std::function<void(uint32_t)> jobs = [&](uint32_t) {
-      for (uint32_t w = next++; w < workers; w = next++) timed(w);
-    };
-    if (threads == 1)
-      jobs(0);
-    else
-      worker_pool(threads).run(jobs);
-  }
-  frame.profile->phases.push_back(std::move(times));
-  frame.serial_mark = thread_cpu_seconds();
-}
-
-// Times a queue phase's tasks when the render is profiled (PhaseTimes::tasks): run(i, w, f) calls
-// f, task i taken by worker w; attach() hands the times to the phase that just ran.
-class TaskTimes {
- public:
-  TaskTimes(const FastFrame& frame, size_t tasks) : on_(frame.profile != nullptr) {
-    if (on_) times_.resize(tasks);
-  }
-  template <class F>
-  void run(size_t i, uint32_t w, F&& f) {
-    if (!on_) return f();
-    const double start = thread_cpu_seconds();
-    f();
-    times_[i] = TaskTime{thread_cpu_seconds() - start, w};
-  }
-  void attach(FastFrame& frame) {
-    if (on_ && !frame.profile->phases.empty()) frame.profile->phases.back().tasks = std::move(times_);
-  }
-
- private:
-  bool on_;
-  std::vector<TaskTime> times_;
-};
-
-// Stored depth values keep the order the bounds rely on (tile_depth_bounds.hpp) in every draw.
 bool frame_bounds_usable(const Scene& scene, const std::vector<FastDraw>& draws) {
   if (!scene.has_depth() || scene.samples != 1) return false;
   if (is_float(scene.depth_format) && !(scene.depth_clear >= 0.0f && !std::signbit(scene.depth_clear))) return false;
@@ -661,17 +596,6 @@ void render_fast_into(const Scene& scene, const CpuOptions& options, const FastC
   if (frame.failure.error) std::rethrow_exception(frame.failure.error);
   move_into_result(std::move(frame.targets), lavapipe_profile_device(options), options.fma, result);
   if (config.profile) config.profile->serial_seconds += thread_cpu_seconds() - frame.serial_mark;
-}
-
-double projected_seconds(const PhaseTimes& phase) {
-  std::vector<double> free = phase.worker_seconds;
-  if (free.empty()) return 0;
-  if (phase.tasks.empty()) return *std::max_element(free.begin(), free.end());
-  for (const TaskTime& task : phase.tasks)
-    if (task.worker < free.size()) free[task.worker] -= task.seconds;
-  for (double& f : free) f = std::max(f, 0.0);
-  for (const TaskTime& task : phase.tasks) *std::min_element(free.begin(), free.end()) += task.seconds;
-  return *std::max_element(free.begin(), free.end());
 }
 
 // render_fast_side_by_side's queue order: a vertex weighs as much as this many samples' clears.
