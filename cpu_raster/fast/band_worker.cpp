@@ -158,7 +158,7 @@ void BandWorker::walk_small_blocks(uint32_t d) {
   const SmallPairSetupFn pair_setup = frame_.raster.small_pair_setup;
   const uint32_t* const block_rows = fd.block_rows;  // null: one worker owns every row
   // Whether this worker sets block b up; its corners filled into `slot` when its rows are this
-  // worker's and, in a shared row, its columns (known_want, or from the corners: wants_block).
+  // worker's and, in a shared row, its columns (known_want, or from the corners: wants_by_corners).
   const auto wanted = [&](uint32_t b, SmallBlock& slot) {
     const uint32_t rows = block_rows ? block_rows[b] : kBlockAnyRow;
     if (rows != kBlockAnyRow) {
@@ -168,7 +168,7 @@ void BandWorker::walk_small_blocks(uint32_t d) {
     const Want known = shared_ ? known_want(d, rows, b) : Want::Yes;
     if (known == Want::No) return false;
     fill_block_corners<T, Indexed>(draw.indices.data(), count, b, slot);
-    return known == Want::Yes || wants_block(d, rows, slot);
+    return known == Want::Yes || wants_by_corners(d, rows, slot);
   };
   fill_block_draw(frame_, d, block_);
   fill_block_draw(frame_, d, next_block_);

@@ -14,6 +14,7 @@
 
 #include "cpu_raster/exact/clip_vertex.hpp"
 #include "cpu_raster/exact/front_end.hpp"
+#include "cpu_raster/fast/block_rows.hpp"
 #include "cpu_raster/fast/fast_frame.hpp"
 #include "cpu_raster/fast/lean_setup.hpp"
 #include "cpu_raster/fast/small_triangles.hpp"
@@ -25,7 +26,7 @@ namespace rastercmp::cpu::fast {
 // position: the draw's index range is checked here, where its indices are read anyway.
 bool measure_block_rows(FastFrame& frame, uint32_t draw_index, uint32_t begin, uint32_t end);
 
-// The tile columns [x0, x1] a block's lanes may reach in a shared row (BandWorker::wants_block),
+// The tile columns [x0, x1] a block's lanes may reach in a shared row (BandWorker::known_want),
 // clamped to [-1, tiles_x] and packed (x0 + 1) | (x1 + 1) << 16; x0 > x1: none; kColumnsAny: a
 // lane clipped in place.
 uint32_t block_tile_columns(const FastFrame& frame, uint32_t draw_index, const SmallBlock& block);
@@ -70,14 +71,14 @@ class BandWorker {
   static int32_t job_lead(const DrawRaster& raster) { return raster.small_piece_fn != nullptr ? 0 : kJobLead; }
   Reach small_reach(int32_t x0, int32_t x1, int32_t lead, int32_t& row_lo, int32_t& row_hi) const;
   Reach row_reach(int32_t tile_y, int32_t x0, int32_t x1, int32_t lead) const;
-  // Whether this worker sets up a block of draw d whose block rows are `rows` (block_rows.hpp), its
-  // corners filled: it may reach one of its tiles (in a shared row: by its lanes' columns).
-  // known_want: the same answer for block b before its corners are read, Unknown where they are
-  // needed (its columns not worked out yet).
+  // Whether this worker sets up block b of draw d, whose block rows are `rows` (block_rows.hpp)
+  // and reach its rows: whether it may reach one of its tiles (in a shared row: by its lanes'
+  // columns), before its corners are read; Unknown where its columns are not worked out yet.
+  // wants_by_corners answers then, from the block's corners filled in, and stores the columns.
   enum class Want { Yes, No, Unknown };
   Want known_want(uint32_t d, uint32_t rows, uint32_t b) const;
-  bool wants_block(uint32_t d, uint32_t rows, const SmallBlock& block) const;
-  bool columns_reach_own_tiles(int32_t lo, int32_t hi, uint32_t columns) const;
+  bool wants_by_corners(uint32_t d, uint32_t rows, const SmallBlock& block) const;
+  bool columns_reach_own_tiles(TileRowRange rows, uint32_t columns) const;
 
   template <Topology T, bool Indexed>
   void walk_triangles(uint32_t draw_index);

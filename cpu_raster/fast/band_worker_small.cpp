@@ -123,31 +123,28 @@ BandWorker::Reach BandWorker::small_reach(int32_t x0, int32_t x1, int32_t lead, 
 // worked out for has them worked out by the first unit that needs them, for the others.
 BandWorker::Want BandWorker::known_want(uint32_t d, uint32_t rows, uint32_t b) const {
   if (rows == kBlockAnyRow) return Want::Yes;
-  const int32_t lo = std::max(int32_t(rows & 0xFFFFu), 0), hi = std::min(int32_t(rows >> 16), frame_.raster.tiles_y - 1);
-  if (lo > hi) return Want::No;
-  if (whole_before_[size_t(hi) + 1] != whole_before_[size_t(lo)]) return Want::Yes;  // a row of its own
+  const TileRowRange r = rows_in_frame(rows, frame_.raster.tiles_y);
+  if (r.lo > r.hi) return Want::No;
+  if (whole_before_[size_t(r.hi) + 1] != whole_before_[size_t(r.lo)]) return Want::Yes;  // a row of its own
   // set with block_rows (the block-row phase), without which every block is kBlockAnyRow here
   const uint32_t columns = std::atomic_ref<uint32_t>(frame_.draws[d].block_columns[b]).load(std::memory_order_relaxed);
   if (columns == kColumnsUnknown) return Want::Unknown;
-  return columns_reach_own_tiles(lo, hi, columns) ? Want::Yes : Want::No;
+  return columns_reach_own_tiles(r, columns) ? Want::Yes : Want::No;
 }
 
-bool BandWorker::wants_block(uint32_t d, uint32_t rows, const SmallBlock& block) const {
-  const Want known = known_want(d, rows, block.first / 8);
-  if (known != Want::Unknown) return known == Want::Yes;
+bool BandWorker::wants_by_corners(uint32_t d, uint32_t rows, const SmallBlock& block) const {
   const uint32_t columns = block_tile_columns(frame_, d, block);
   // any unit computes the same value
   std::atomic_ref<uint32_t>(frame_.draws[d].block_columns[block.first / 8]).store(columns, std::memory_order_relaxed);
-  return columns_reach_own_tiles(std::max(int32_t(rows & 0xFFFFu), 0),
-                                 std::min(int32_t(rows >> 16), frame_.raster.tiles_y - 1), columns);
+  return columns_reach_own_tiles(rows_in_frame(rows, frame_.raster.tiles_y), columns);
 }
 
-// Whether tile columns `columns` (block_tile_columns) of tile rows [lo, hi] hold a tile of this
-// worker's in a shared row (none of those rows is all its own: known_want).
-bool BandWorker::columns_reach_own_tiles(int32_t lo, int32_t hi, uint32_t columns) const {
+// Whether tile columns `columns` (block_tile_columns) of tile rows r hold a tile of this worker's
+// in a shared row (none of those rows is all its own: known_want).
+bool BandWorker::columns_reach_own_tiles(TileRowRange r, uint32_t columns) const {
   if (columns == kColumnsAny) return true;
   const int32_t x0 = int32_t(columns & 0xFFFFu) - 1, x1 = int32_t(columns >> 16) - 1;
-  for (int32_t ty = lo; ty <= hi; ++ty)
+  for (int32_t ty = r.lo; ty <= r.hi; ++ty)
     if (row_kind_[size_t(ty)] == 2 && owned_tiles(ty, x0, x1) > 0) return true;
   return false;
 }
@@ -336,8 +333,8 @@ void measure_columns(FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end,
   for (uint32_t b = begin; b < end; ++b) {
     const uint32_t rows = block_rows[b];
     if (rows == kBlockAnyRow) continue;  // every unit that meets it sets it up (known_want)
-    const int32_t lo = std::max(int32_t(rows & 0xFFFFu), 0), hi = std::min(int32_t(rows >> 16), frame.raster.tiles_y - 1);
-    if (lo > hi || shared_before[size_t(hi) + 1] == shared_before[size_t(lo)]) continue;
+    const TileRowRange r = rows_in_frame(rows, frame.raster.tiles_y);
+    if (r.lo > r.hi || shared_before[size_t(r.hi) + 1] == shared_before[size_t(r.lo)]) continue;
     fill_block_corners<T, Indexed>(frame.scene->draws[d].indices.data(), count, b, block);
     block_columns[b] = block_tile_columns(frame, d, block);
   }

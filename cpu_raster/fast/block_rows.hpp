@@ -3,6 +3,7 @@
 // draw region's rows (lo > hi: none), or kBlockAnyRow.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 
 #include "cpu_raster/fast/small_triangles.hpp"
@@ -12,6 +13,15 @@ namespace rastercmp::cpu::fast {
 // Tile rows lo..hi cut to the draw region's, packed; kNoRow (lo > hi) when none is left.
 inline constexpr uint32_t kNoRow = 0xFFFFu;
 uint32_t pack_rows(int32_t lo, int32_t hi, const PixelRect& region);
+
+// Packed rows (not kBlockAnyRow) unpacked and cut to the frame's tile rows [0, tiles_y - 1];
+// lo > hi: none.
+struct TileRowRange {
+  int32_t lo, hi;
+};
+inline TileRowRange rows_in_frame(uint32_t rows, int32_t tiles_y) {
+  return {std::max(int32_t(rows & 0xFFFFu), 0), std::min(int32_t(rows >> 16), tiles_y - 1)};
+}
 
 // Any block: kBlockAnyRow when a corner needs clipping or failed to snap (its window position
 // says nothing then), or names no position (`bad` is set then).

@@ -46,6 +46,7 @@ namespace {
 
 constexpr size_t kVertexBlock = 4096;  // positions per task of the vertex phase
 
+// Stored depth values keep the order the bounds rely on (tile_depth_bounds.hpp) in every draw.
 bool frame_bounds_usable(const Scene& scene, const std::vector<FastDraw>& draws) {
   if (!scene.has_depth() || scene.samples != 1) return false;
   if (is_float(scene.depth_format) && !(scene.depth_clear >= 0.0f && !std::signbit(scene.depth_clear))) return false;
@@ -512,14 +513,14 @@ void measure_shared_columns(FastFrame& frame) {
   if (shared_before[tiles_y] == 0) return;
   const auto meets_shared = [&](uint32_t rows) {
     if (rows == kBlockAnyRow) return true;
-    const int32_t lo = std::max(int32_t(rows & 0xFFFFu), 0), hi = std::min(int32_t(rows >> 16), int32_t(tiles_y) - 1);
-    return lo <= hi && shared_before[size_t(hi) + 1] != shared_before[size_t(lo)];
+    const TileRowRange r = rows_in_frame(rows, int32_t(tiles_y));
+    return r.lo <= r.hi && shared_before[size_t(r.hi) + 1] != shared_before[size_t(r.lo)];
   };
   std::vector<RowTask> tasks;
   static_assert(kColumnTaskBlocks % kGroupBlocks == 0, "a task's groups are its own");
   for (uint32_t d = 0; d < frame.draws.size(); ++d) {
     const FastDraw& fd = frame.draws[d];
-    if (!fd.small_blocks || fd.block_columns == nullptr) continue;
+    if (!fd.small_blocks) continue;  // block_columns and group_rows are set with its block rows
     const uint32_t count = (primitive_count(frame.scene->draws[d]) + 7) / 8;
     for (uint32_t b = 0; b < count; b += kColumnTaskBlocks) {
       const uint32_t end = std::min(count, b + kColumnTaskBlocks);
