@@ -376,7 +376,8 @@ void contiguous_rows(FastFrame& frame) {
 // Each task has its own set-up, row counts and clipped table (merged after the phase): with two
 // workers tiny_1m's 131,000 blocks make 64 tasks instead of 512, and its render at two threads
 // takes 5% less. Tasks of fewer than 256 blocks did not pay at 16 workers: perspective's far-plane
-// rows make one task of 33-40 us however they are cut (their clipping; performance-log.md).
+// triangles fill about 30 neighbouring blocks, one task of 33-40 us however the tasks are cut (their
+// clipping; the clip phase of measure_all_block_rows now shares it out).
 uint32_t row_task_blocks(size_t blocks, uint32_t workers) {
   constexpr size_t kRowTasksPerWorker = 32, kMinRowTaskBlocks = 256, kMaxRowTaskBlocks = 4096;
   static_assert(kMinRowTaskBlocks % kGroupBlocks == 0 && kMaxRowTaskBlocks % kGroupBlocks == 0);
@@ -391,7 +392,8 @@ uint32_t row_task_blocks(size_t blocks, uint32_t workers) {
 // same phase checks the trailing runs' set-ups for denormals (`checks`, transform_all_vertices):
 // a draw of small blocks in its row tasks, each on its own blocks once their rows are known;
 // another a range of primitives per task. A draw that meets one is dropped from the fast draws
-// (drop_fast_draw) and from the row balance.
+// (drop_fast_draw) and from the row balance. With few row tasks a worker, a clip phase follows
+// for the row tasks with many blocks to clip (below).
 void measure_all_block_rows(FastFrame& frame, const std::vector<TrailingCheck>& checks) {
   constexpr uint32_t kCheckTaskPrimitives = 2048;
   struct CheckTask {
@@ -440,8 +442,42 @@ void measure_all_block_rows(FastFrame& frame, const std::vector<TrailingCheck>& 
   // its trailing run's first on; the check tasks leave them out.
   std::vector<uint32_t> watch_from(frame.draws.size(), UINT32_MAX);
   for (const TrailingCheck& c : checks) watch_from[c.draw] = c.first;
+  // A row task clips the triangles of its kBlockAnyRow blocks (a corner needs clipping) itself.
+  // With fewer than kClipPhaseTasksPerWorker row tasks a worker, one task's clipping can outlast
+  // the rest of the phase (perspective at 16 workers: 2.5 tasks a worker, one of them 33-40 us of
+  // far-plane clipping, the others about 3-14): there a row task clips its first
+  // kInPlaceClipBlocks such blocks and leaves the rest (from deferred_from[t] on) to the clip phase
+  // below. With more tasks a worker (perspective at 2 workers: 20) the extra phase cost more than it saved.
+  constexpr size_t kClipPhaseTasksPerWorker = 8;
+  constexpr uint32_t kInPlaceClipBlocks = 8;
+  const uint32_t in_place_blocks =
+      tasks.size() < kClipPhaseTasksPerWorker * size_t(frame.workers) ? kInPlaceClipBlocks : UINT32_MAX;
+  std::vector<uint32_t> deferred_from(tasks.size(), UINT32_MAX);
   std::atomic<size_t> next{0};
   std::atomic<bool> bad_index{false}, any_row{false};
+  // Blocks [begin, end) of row task t after their rows are measured: the clipped triangles (which
+  // narrow kBlockAnyRow) into `table`, the trailing run's check on their primitives.
+  const auto clip_and_check = [&](size_t t, uint32_t begin, uint32_t end, ClippedTable& table) {
+    const RowTask& task = tasks[t];
+    bool found = clip_block_triangles(frame, task.draw, begin, end, table, watch_from[task.draw]);
+    const uint32_t run_first = watch_from[task.draw];  // the trailing run's check on these blocks
+    if (run_first != UINT32_MAX) {
+      const uint32_t lo = std::max(run_first, begin * 8);
+      const uint32_t hi = std::min(primitive_count(frame.scene->draws[task.draw]), end * 8);
+      found |= lo < hi && run_meets_denormals(frame, task.draw, lo, hi, true, frame.draws[task.draw].block_rows);
+    }
+    return found;
+  };
+  // Row task t's groups and row counts, once every block's rows are final.
+  const auto finish_rows = [&](size_t t) {
+    const RowTask& task = tasks[t];
+    const uint32_t* block_rows = frame.draws[task.draw].block_rows;
+    uint32_t* groups_of_draw = frame.draws[task.draw].group_rows;
+    for (uint32_t g = task.begin; g < task.end; g += kGroupBlocks)
+      groups_of_draw[g / kGroupBlocks] = group_tile_rows(block_rows + g, std::min(kGroupBlocks, task.end - g));
+    if (count_block_rows(block_rows + task.begin, task.end - task.begin, tiles_y, reach.data() + t * (tiles_y + 1)))
+      any_row = true;
+  };
   TaskTimes times(frame, check_tasks.size() + tasks.size());
   const auto row_task = [&](size_t t) {
     const RowTask& task = tasks[t];
@@ -451,22 +487,19 @@ void measure_all_block_rows(FastFrame& frame, const std::vector<TrailingCheck>& 
       bad_index = true;
       return;
     }
-    // narrows kBlockAnyRow
-    if (clip_block_triangles(frame, task.draw, task.begin, task.end, clipped[t], watch_from[task.draw]))
-      row_met[t] = 1;
-    const uint32_t run_first = watch_from[task.draw];  // the trailing run's check on these blocks
-    if (run_first != UINT32_MAX) {
-      const uint32_t lo = std::max(run_first, task.begin * 8);
-      const uint32_t hi = std::min(primitive_count(frame.scene->draws[task.draw]), task.end * 8);
-      if (lo < hi && run_meets_denormals(frame, task.draw, lo, hi, true, frame.draws[task.draw].block_rows))
-        row_met[t] = 1;
-    }
     const uint32_t* block_rows = frame.draws[task.draw].block_rows;
-    uint32_t* groups_of_draw = frame.draws[task.draw].group_rows;
-    for (uint32_t g = task.begin; g < task.end; g += kGroupBlocks)
-      groups_of_draw[g / kGroupBlocks] = group_tile_rows(block_rows + g, std::min(kGroupBlocks, task.end - g));
-    if (count_block_rows(block_rows + task.begin, task.end - task.begin, tiles_y, reach.data() + t * (tiles_y + 1)))
-      any_row = true;
+    uint32_t in_place_end = task.end;
+    for (uint32_t b = task.begin, any = 0; b < task.end; ++b) {
+      if (block_rows[b] == kBlockAnyRow && ++any > in_place_blocks) {
+        in_place_end = b;
+        break;
+      }
+    }
+    if (clip_and_check(t, task.begin, in_place_end, clipped[t])) row_met[t] = 1;
+    if (in_place_end < task.end)
+      deferred_from[t] = in_place_end;
+    else
+      finish_rows(t);
   };
   run_phase(frame, "block rows", frame.workers, [&](uint32_t w) {
     for (size_t i = next++; i < check_tasks.size() + tasks.size(); i = next++) {
@@ -482,16 +515,62 @@ void measure_all_block_rows(FastFrame& frame, const std::vector<TrailingCheck>& 
   });
   times.attach(frame);
   if (bad_index) check_lavapipe_profile_support(*frame.scene);
+  // The clip phase: the rest of each such row task's blocks cut into clip tasks of at most
+  // kClipTaskBlocks kBlockAnyRow blocks (perspective's far-plane triangles fill about 30
+  // neighbouring blocks: one row task's clipping took 33-40 us of a 16-worker block-row phase); the
+  // last of a row task's clip tasks to finish forms its groups and row counts.
+  constexpr uint32_t kClipTaskBlocks = 4;
+  struct ClipTask {
+    uint32_t row_task, begin, end;
+  };
+  std::vector<ClipTask> clip_tasks;
+  std::vector<std::atomic<uint32_t>> pending(tasks.size());
+  for (size_t t = 0; t < tasks.size(); ++t) {
+    if (deferred_from[t] == UINT32_MAX) continue;
+    const RowTask& task = tasks[t];
+    const uint32_t* block_rows = frame.draws[task.draw].block_rows;
+    uint32_t begin = deferred_from[t], any = 0;
+    for (uint32_t b = begin; b < task.end; ++b) {
+      if (block_rows[b] != kBlockAnyRow || ++any < kClipTaskBlocks) continue;
+      clip_tasks.push_back({uint32_t(t), begin, b + 1});
+      begin = b + 1;
+      any = 0;
+    }
+    if (begin < task.end) clip_tasks.push_back({uint32_t(t), begin, task.end});
+  }
+  for (const ClipTask& c : clip_tasks) pending[c.row_task].fetch_add(1, std::memory_order_relaxed);
+  std::vector<ClippedTable> clip_tables(clip_tasks.size());  // the clip tasks' clipped triangles
+  std::vector<uint8_t> clip_met(clip_tasks.size(), 0);
+  if (!clip_tasks.empty()) {
+    std::atomic<size_t> next_clip{0};
+    TaskTimes clip_times(frame, clip_tasks.size());
+    run_phase(frame, "clipped blocks", frame.workers, [&](uint32_t w) {
+      for (size_t i = next_clip++; i < clip_tasks.size(); i = next_clip++) {
+        clip_times.run(i, w, [&] {
+          const ClipTask& c = clip_tasks[i];
+          if (clip_and_check(c.row_task, c.begin, c.end, clip_tables[i])) clip_met[i] = 1;
+          // the last clip task of its row task sees every other one's block rows (acq_rel)
+          if (pending[c.row_task].fetch_sub(1, std::memory_order_acq_rel) == 1) finish_rows(c.row_task);
+        });
+      }
+    });
+    clip_times.attach(frame);
+  }
   for (size_t i = 0; i < check_tasks.size(); ++i)
     if (met[i]) drop_fast_draw(frame.draws[check_tasks[i].draw]);
   for (size_t t = 0; t < tasks.size(); ++t)
     if (row_met[t]) drop_fast_draw(frame.draws[tasks[t].draw]);
-  for (size_t t = 0; t < tasks.size(); ++t) {
-    if (!frame.draws[tasks[t].draw].small_blocks) {  // dropped: its blocks count nowhere
+  for (size_t i = 0; i < clip_tasks.size(); ++i)
+    if (clip_met[i]) drop_fast_draw(frame.draws[tasks[clip_tasks[i].row_task].draw]);
+  // the clipped triangles in primitive order: each row task's own, then its clip tasks'
+  for (size_t t = 0, i = 0; t < tasks.size(); ++t) {
+    FastDraw& fd = frame.draws[tasks[t].draw];
+    if (!fd.small_blocks)  // dropped: its blocks count nowhere
       std::fill_n(reach.begin() + std::ptrdiff_t(t * (tiles_y + 1)), tiles_y + 1, 0);
-      continue;
-    }
-    append_clipped(frame.draws[tasks[t].draw].clipped, clipped[t]);
+    else
+      append_clipped(fd.clipped, clipped[t]);
+    for (; i < clip_tasks.size() && clip_tasks[i].row_task == t; ++i)
+      if (fd.small_blocks) append_clipped(fd.clipped, clip_tables[i]);
   }
   balance_tile_rows(frame, reach, tasks.size(), !any_row);
 }
