@@ -295,6 +295,48 @@ TEST(FastBlockRows, SpanAnswersAsBlockByBlock) {
   EXPECT_EQ(several_rows, 0);
 }
 
+// The walks' skip for a unit of one run of tiles: next_block_in_run_avx2 returns the first block
+// whose rows hold the unit's tile row (or are kBlockAnyRow) and whose columns meet its run (or are
+// kColumnsAny or kColumnsUnknown), eight at a time and in its last few blocks alone. Random rows
+// and columns, every kind of value, runs of blocks that miss before the one that meets.
+TEST(FastBlockRows, RunSkipFindsTheFirstBlockThatMayReachTheRun) {
+  if (!host_has_avx2_fma()) GTEST_SKIP() << "host without AVX2/FMA: the walks of small blocks do not run";
+  fast_test::Random r(23);
+  const int32_t tiles = 16;
+  const auto reference = [](uint32_t rows, uint32_t columns, int32_t row, int32_t first, int32_t last) {
+    if (rows == kBlockAnyRow) return true;
+    if (int32_t(rows & 0xFFFFu) > row || int32_t(rows >> 16) < row) return false;
+    if (columns == kColumnsAny || columns == kColumnsUnknown) return true;
+    const int32_t x0 = int32_t(columns & 0xFFFFu) - 1, x1 = int32_t(columns >> 16) - 1;
+    return x0 <= last && x1 >= first;
+  };
+  int found = 0, none = 0, past_eight = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    const uint32_t n = 1 + r.below(80);
+    std::vector<uint32_t> rows(n), columns(n);
+    const int32_t row = int32_t(r.below(tiles)), first = int32_t(r.below(tiles));
+    const int32_t last = first + int32_t(r.below(uint32_t(tiles - first)));
+    const double meets = r.chance(0.5) ? 0.02 : 0.3;  // mostly long runs of blocks that miss
+    for (uint32_t b = 0; b < n; ++b) {
+      const uint32_t lo = r.below(tiles), hi = r.chance(0.1) ? r.below(tiles) : lo + r.below(3);
+      rows[b] = r.chance(meets * 0.1) ? kBlockAnyRow : r.chance(0.1) ? kNoRow : lo | hi << 16;
+      const int32_t t0 = int32_t(r.below(tiles + 2)) - 1, t1 = r.chance(0.1) ? -1 : t0 + int32_t(r.below(4));
+      const uint32_t packed = uint32_t(t0 + 1) | uint32_t(std::min(t1, tiles) + 1) << 16;
+      columns[b] = r.chance(meets * 0.1) ? kColumnsAny : r.chance(meets * 0.1) ? kColumnsUnknown : packed;
+    }
+    const uint32_t begin = r.below(n), end = begin + r.below(n - begin + 1);
+    uint32_t expected = begin;
+    while (expected < end && !reference(rows[expected], columns[expected], row, first, last)) ++expected;
+    const uint32_t got = next_block_in_run_avx2(rows.data(), columns.data(), begin, end, row, first, last);
+    ASSERT_EQ(got, expected) << "trial " << trial << " row " << row << " run " << first << ".." << last;
+    (expected < end ? found : none) += 1;
+    past_eight += expected >= begin + 8 && expected < end ? 1 : 0;
+  }
+  EXPECT_GT(found, 5000);
+  EXPECT_GT(none, 2000);
+  EXPECT_GT(past_eight, 1000);
+}
+
 // A full block with a corner to clip: kNoRow exactly when every lane has its three corners outside
 // one clip plane (the set-up would drop every lane), else kBlockAnyRow; without such a corner the
 // block's rows. Blocks of corners mostly outside, some outside different planes, some inside.

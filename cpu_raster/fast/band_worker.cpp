@@ -77,7 +77,9 @@ BandWorker::BandWorker(FastFrame& frame, uint32_t index) : frame_(frame), index_
     shared_ |= row_kind_[size_t(r)] == 2;
     owned_before_[size_t(r) + 1] = owned_before_[size_t(r)] + (owned > 0 ? 1 : 0);
     whole_before_[size_t(r) + 1] = whole_before_[size_t(r)] + (owned == columns ? 1 : 0);
+    if (row_kind_[size_t(r)] == 2) run_row_ = r;
   }
+  if (!runs_ || owned_before_[size_t(rows)] != 1 || run_row_ < 0) run_row_ = -1;
 }
 
 void BandWorker::run() {
@@ -186,8 +188,18 @@ void BandWorker::walk_small_blocks(uint32_t d) {
         continue;
       }
     }
-    // a run of blocks nobody sets up: skipped eight at a time (small blocks: AVX2 hosts only)
-    if (block_rows && block_rows[b] == kNoRow) {
+    // a run of blocks nobody sets up, or, for a unit of one run of tiles, of blocks that reach
+    // none of its tiles: skipped eight at a time (small blocks: AVX2 hosts only)
+    if (block_rows && run_row_ >= 0) {
+      const int32_t row = run_row_;
+      const uint32_t scan_end = group_rows ? std::min(group_end, blocks) : blocks;  // to the next group's test
+      b = next_block_in_run_avx2(block_rows, fd.block_columns, b, scan_end, row, owned_first_[size_t(row)],
+                                 owned_last_[size_t(row)]);
+      if (b == scan_end) {
+        b = scan_end - 1;
+        continue;
+      }
+    } else if (block_rows && block_rows[b] == kNoRow) {
       b = next_reaching_block_avx2(block_rows, b, blocks);
       if (b == blocks) break;
     }

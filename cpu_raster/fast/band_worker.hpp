@@ -73,8 +73,9 @@ class BandWorker {
   Reach row_reach(int32_t tile_y, int32_t x0, int32_t x1, int32_t lead) const;
   // Whether this worker sets up block b of draw d, whose block rows are `rows` (block_rows.hpp)
   // and reach its rows: whether it may reach one of its tiles (in a shared row: by its lanes'
-  // columns), before its corners are read; Unknown where its columns are not worked out yet.
-  // wants_by_corners answers then, from the block's corners filled in, and stores the columns.
+  // columns), before its corners are read; Unknown where its columns are not worked out (the
+  // block-column phase works out those of every block that reaches a shared row).
+  // wants_by_corners answers then, from the block's corners filled in.
   enum class Want { Yes, No, Unknown };
   Want known_want(uint32_t d, uint32_t rows, uint32_t b) const;
   bool wants_by_corners(uint32_t d, uint32_t rows, const SmallBlock& block) const;
@@ -165,6 +166,10 @@ class BandWorker {
   // row_balance.hpp makes), owned_tiles counts from them; otherwise (`runs_` false) tile by tile.
   std::vector<int32_t> owned_first_, owned_last_;
   bool runs_ = true;
+  // A unit that draws a run of tiles of one shared row and nothing else (every queued unit of a
+  // row cut into pieces, row_balance.hpp): that row; -1 otherwise. Its walks skip the blocks of
+  // other columns eight at a time (next_block_in_run_avx2).
+  int32_t run_row_ = -1;
   SmallBlock block_, next_block_;       // the small-triangle blocks being set up and drawn
   BoundsAudit audit_;
 };

@@ -1,7 +1,6 @@
 // BandWorker's small-triangle blocks: drawing a set-up block into the worker's tiles, and the
 // phase before the walks that measures which tile rows each block may reach.
 #include <algorithm>
-#include <atomic>
 #include <bit>
 #include <climits>
 #include <cmath>
@@ -120,23 +119,21 @@ BandWorker::Reach BandWorker::small_reach(int32_t x0, int32_t x1, int32_t lead, 
 // one that failed to snap, draws nothing. The columns are the block's alone, worked out before the
 // walks for every block of a shared row (the block-column phase, render_fast.cpp), so that a unit
 // decides from them before it reads the block's corners (known_want); a block they were not
-// worked out for has them worked out by the first unit that needs them, for the others.
+// worked out for (none where the phase ran) has them worked out by each unit that needs them. The
+// walks only read block_columns (next_block_in_run_avx2 reads eight at a time).
 BandWorker::Want BandWorker::known_want(uint32_t d, uint32_t rows, uint32_t b) const {
   if (rows == kBlockAnyRow) return Want::Yes;
   const TileRowRange r = rows_in_frame(rows, frame_.raster.tiles_y);
   if (r.lo > r.hi) return Want::No;
   if (whole_before_[size_t(r.hi) + 1] != whole_before_[size_t(r.lo)]) return Want::Yes;  // a row of its own
   // set with block_rows (the block-row phase), without which every block is kBlockAnyRow here
-  const uint32_t columns = std::atomic_ref<uint32_t>(frame_.draws[d].block_columns[b]).load(std::memory_order_relaxed);
+  const uint32_t columns = frame_.draws[d].block_columns[b];
   if (columns == kColumnsUnknown) return Want::Unknown;
   return columns_reach_own_tiles(r, columns) ? Want::Yes : Want::No;
 }
 
 bool BandWorker::wants_by_corners(uint32_t d, uint32_t rows, const SmallBlock& block) const {
-  const uint32_t columns = block_tile_columns(frame_, d, block);
-  // any unit computes the same value
-  std::atomic_ref<uint32_t>(frame_.draws[d].block_columns[block.first / 8]).store(columns, std::memory_order_relaxed);
-  return columns_reach_own_tiles(rows_in_frame(rows, frame_.raster.tiles_y), columns);
+  return columns_reach_own_tiles(rows_in_frame(rows, frame_.raster.tiles_y), block_tile_columns(frame_, d, block));
 }
 
 // Whether tile columns `columns` (block_tile_columns) of tile rows r hold a tile of this worker's

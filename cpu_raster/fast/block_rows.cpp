@@ -184,4 +184,42 @@ RASTERCMP_AVX2 uint32_t next_reaching_block_avx2(const uint32_t* block_rows, uin
   return b;
 }
 
+namespace {
+// next_block_in_run_avx2's test of one block.
+bool block_in_run(uint32_t rows, uint32_t columns, int32_t tile_y, int32_t first, int32_t last) {
+  if (rows == kBlockAnyRow) return true;
+  if (int32_t(rows & 0xFFFFu) > tile_y || int32_t(rows >> 16) < tile_y) return false;
+  if (columns == kColumnsAny || columns == kColumnsUnknown) return true;
+  return int32_t(columns & 0xFFFFu) - 1 <= last && int32_t(columns >> 16) - 1 >= first;
+}
+}  // namespace
+
+RASTERCMP_AVX2 uint32_t next_block_in_run_avx2(const uint32_t* block_rows, const uint32_t* block_columns,
+                                               uint32_t begin, uint32_t end, int32_t tile_y, int32_t first,
+                                               int32_t last) {
+  const __m256i low = _mm256_set1_epi32(0xFFFF), row = _mm256_set1_epi32(tile_y);
+  const __m256i any_row = _mm256_set1_epi32(int32_t(kBlockAnyRow));
+  // kColumnsAny and kColumnsUnknown are the two largest values: columns > kColumnsAny - 1 unsigned
+  const __m256i any_columns = _mm256_set1_epi32(int32_t(kColumnsAny));
+  // columns x0 + 1 <= last + 1 and x1 + 1 >= first + 1, in the packed halves
+  const __m256i last1 = _mm256_set1_epi32(last + 1), first1 = _mm256_set1_epi32(first + 1);
+  uint32_t b = begin;
+  for (; b + 8 <= end; b += 8) {
+    const __m256i rows = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(block_rows + b));
+    const __m256i columns = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(block_columns + b));
+    const __m256i lo = _mm256_and_si256(rows, low), hi = _mm256_srli_epi32(rows, 16);
+    const __m256i outside_rows = _mm256_or_si256(_mm256_cmpgt_epi32(lo, row), _mm256_cmpgt_epi32(row, hi));
+    const __m256i c0 = _mm256_and_si256(columns, low), c1 = _mm256_srli_epi32(columns, 16);
+    const __m256i outside_columns = _mm256_or_si256(_mm256_cmpgt_epi32(c0, last1), _mm256_cmpgt_epi32(first1, c1));
+    const __m256i any = _mm256_cmpeq_epi32(_mm256_max_epu32(columns, any_columns), columns);
+    const __m256i miss = _mm256_or_si256(outside_rows, _mm256_andnot_si256(any, outside_columns));
+    const uint32_t mask = (~uint32_t(_mm256_movemask_ps(_mm256_castsi256_ps(miss))) |
+                           uint32_t(_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(rows, any_row))))) &
+                          0xFFu;
+    if (mask != 0) return b + uint32_t(std::countr_zero(mask));
+  }
+  while (b < end && !block_in_run(block_rows[b], block_columns[b], tile_y, first, last)) ++b;
+  return b;
+}
+
 }  // namespace rastercmp::cpu::fast

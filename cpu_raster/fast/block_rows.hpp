@@ -49,4 +49,13 @@ bool span_tile_rows_avx2(const uint32_t* indices, uint32_t n, const int16_t* til
 // (perspective: 8,911 of its 10,000 blocks).
 uint32_t next_reaching_block_avx2(const uint32_t* block_rows, uint32_t begin, uint32_t end);
 
+// AVX2 hosts only: the first b in [begin, end) that a unit drawing tile columns [first, last] of
+// tile row tile_y alone may set up: block_rows[b] kBlockAnyRow, or rows that hold tile_y with
+// block_columns[b] (packed as block_tile_columns packs them) kColumnsAny, kColumnsUnknown or
+// meeting [first, last]; end if none. Every block BandWorker::known_want does not answer No for
+// such a unit is one (it may answer No for one of them); the walks of perspective's horizon units
+// skip the blocks of the other units' columns eight at a time.
+uint32_t next_block_in_run_avx2(const uint32_t* block_rows, const uint32_t* block_columns, uint32_t begin,
+                                uint32_t end, int32_t tile_y, int32_t first, int32_t last);
+
 }  // namespace rastercmp::cpu::fast

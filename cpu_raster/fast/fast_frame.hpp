@@ -53,8 +53,8 @@ struct FastDraw {
   bool small_blocks = false;       // set up eight triangles at a time (small_triangles.hpp)
   uint32_t* block_rows = nullptr;  // per block of 8: the tile rows it may reach (band_worker.cpp)
   // Per block of 8 (with block_rows): the tile columns its lanes may reach in a shared row, worked
-  // out by the block-column phase for the blocks of shared rows (render_fast.cpp), by the first
-  // unit that needs them for any other (BandWorker::wants_by_corners); kColumnsUnknown before.
+  // out by the block-column phase for the blocks of shared rows (render_fast.cpp);
+  // kColumnsUnknown for the others. Read only by the walks.
   uint32_t* block_columns = nullptr;
   // Per group of kGroupBlocks blocks (with block_rows): the rows its blocks reach, packed as
   // block_rows (the least lo and the greatest hi; kNoRow: none; kBlockAnyRow: one may reach any).
