@@ -199,7 +199,7 @@ RASTERCMP_AVX2 uint32_t next_block_in_run_avx2(const uint32_t* block_rows, const
                                                int32_t last) {
   const __m256i low = _mm256_set1_epi32(0xFFFF), row = _mm256_set1_epi32(tile_y);
   const __m256i any_row = _mm256_set1_epi32(int32_t(kBlockAnyRow));
-  // kColumnsAny and kColumnsUnknown are the two largest values: columns > kColumnsAny - 1 unsigned
+  // kColumnsAny and kColumnsUnknown are the two largest values: columns >= kColumnsAny, unsigned
   const __m256i any_columns = _mm256_set1_epi32(int32_t(kColumnsAny));
   // columns x0 + 1 <= last + 1 and x1 + 1 >= first + 1, in the packed halves
   const __m256i last1 = _mm256_set1_epi32(last + 1), first1 = _mm256_set1_epi32(first + 1);
