@@ -1,11 +1,12 @@
 // rastercmp bench [--json FILE] [--reps N] [--scene NAME|FILE]... [--suite DIR] [--threads N]
-//                 [--scaling [--chart-dir DIR]]
+//                 [--scaling [--model [--tasks N]] [--chart-dir DIR]]
 // Times, in one run and interleaved rep by rep, the exact CPU path (threads = 0), the fast CPU path
 // (threads = N, default 2) and lavapipe (submit to fence; instance, pipeline and resource creation
 // and read-back excluded; LP_NUM_THREADS=2 unless set) on the benchmark scenes of
 // bench/bench_scenes.hpp, on any scene file and on the whole built-in suite (docs/performance.md).
 // --scaling times the fast path alone at 1, 2, 4, ... threads up to the host's cores and charts
-// time against threads (gnuplot).
+// time against threads (gnuplot); with --model it projects 1 to 64 workers from each worker's
+// thread CPU time per phase (run_scaling_model), --tasks N listing each queue phase's tasks at N.
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -52,6 +53,7 @@ struct BenchArgs {
   std::string suite_dir;            // empty: the built-in suite (default_suite_dir)
   bool scaling = false;             // the fast path alone at 1, 2, 4, ... threads
   bool model = false;               // with scaling: N workers' phase times projected to N cores
+  uint32_t tasks_at = 0;            // with model: each queue phase's tasks printed at this N (0: none)
   std::string chart_dir = "bench-scaling";
 };
 
@@ -420,10 +422,15 @@ int run_scaling(const BenchArgs& args) {
 // time plus that per phase, and the projected speed-up at N is projected(1) / projected(N). What it
 // leaves out: waking the workers, memory bandwidth and caches shared by N cores. Checked against the
 // measured wall time where N <= hardware threads. Median over --reps per N.
+// The worker counts the model projects (--tasks takes one of them).
+const std::vector<uint32_t> kModelWorkers = {1, 2, 4, 8, 16, 32, 64};
+
 struct ModelPoint {
   double projected = 0, wall = 0;  // seconds per render of the case, medians over the reps
   std::vector<std::pair<std::string, double>> phases;  // per phase: the busiest worker, summed over scenes
   double worker_spread = 0;        // bands phase: projected / mean worker time (1 = even)
+  // With keep_profiles: the profiles of the rep the phases are from, per scene run on N workers.
+  std::vector<std::pair<std::string, cpu::fast::RenderProfile>> profiles;
 };
 
 // The projection of queued scenes rendered side by side (render_fast_side_by_side) on `workers`
@@ -436,7 +443,7 @@ double side_by_side_seconds(const std::vector<double>& scene_seconds, uint32_t w
 }
 
 ModelPoint model_point(std::vector<Scene>& scenes, std::vector<RenderResult>& results, CpuOptions options,
-                       uint32_t workers, unsigned reps, bool side_by_side) {
+                       uint32_t workers, unsigned reps, bool side_by_side, bool keep_profiles) {
   options.threads = workers;
   cpu::fast::RenderProfile profile;
   cpu::fast::FastConfig config;
@@ -444,10 +451,12 @@ ModelPoint model_point(std::vector<Scene>& scenes, std::vector<RenderResult>& re
   config.profile_threads = std::max(1u, std::thread::hardware_concurrency());
   std::vector<double> projected, wall;
   std::vector<std::vector<std::pair<std::string, double>>> phases;
+  std::vector<std::vector<std::pair<std::string, cpu::fast::RenderProfile>>> kept_profiles;
   std::vector<double> spreads;
   for (unsigned rep = 0; rep < reps; ++rep) {
     double rep_projected = 0, rep_wall = 0, busiest_bands = 0, mean_bands = 0;
     std::vector<std::pair<std::string, double>> rep_phases{{"serial", 0.0}};  // summed over the scenes
+    std::vector<std::pair<std::string, cpu::fast::RenderProfile>> rep_profiles;
     std::vector<cpu::fast::RenderProfile> profiles(scenes.size());
     if (side_by_side)
       rep_wall = seconds_of([&] { cpu::fast::render_fast_side_by_side(scenes, options, config, results, &profiles); });
@@ -469,6 +478,7 @@ ModelPoint model_point(std::vector<Scene>& scenes, std::vector<RenderResult>& re
       } else {
         rep_wall += seconds_of([&] { cpu::fast::render_fast_into(scenes[i], options, config, results[i]); });
       }
+      if (keep_profiles) rep_profiles.emplace_back(scenes[i].name, profile);
       rep_projected += profile.serial_seconds;
       rep_phases.front().second += profile.serial_seconds;
       for (const cpu::fast::PhaseTimes& phase : profile.phases) {
@@ -493,6 +503,7 @@ ModelPoint model_point(std::vector<Scene>& scenes, std::vector<RenderResult>& re
     projected.push_back(rep_projected);
     wall.push_back(rep_wall);
     phases.push_back(std::move(rep_phases));
+    kept_profiles.push_back(std::move(rep_profiles));
     spreads.push_back(mean_bands > 0 ? busiest_bands / mean_bands : 1.0);
   }
   ModelPoint point;
@@ -506,12 +517,43 @@ ModelPoint model_point(std::vector<Scene>& scenes, std::vector<RenderResult>& re
                                                     }) -
                                    projected.begin());
   point.phases = phases[median_rep];
+  point.profiles = std::move(kept_profiles[median_rep]);
   return point;
+}
+
+// --tasks: each queue phase of each scene at N workers (the median rep's), its tasks' count, their
+// CPU time summed, the largest and every task's time in queue order (the times the list
+// scheduling of projected_seconds hands out): a line each appended to `text`, and as JSON.
+nlohmann::ordered_json describe_tasks(const ModelPoint& point, uint32_t workers, std::string& text) {
+  nlohmann::ordered_json out = nlohmann::ordered_json::array();
+  for (const auto& [scene, profile] : point.profiles) {
+    for (const cpu::fast::PhaseTimes& phase : profile.phases) {
+      if (phase.tasks.empty()) continue;
+      double sum = 0;
+      size_t largest = 0;
+      std::string times;
+      nlohmann::ordered_json tasks = nlohmann::ordered_json::array();
+      for (size_t i = 0; i < phase.tasks.size(); ++i) {
+        sum += phase.tasks[i].seconds;
+        if (phase.tasks[i].seconds > phase.tasks[largest].seconds) largest = i;
+        times += fmt::format(" {:.1f}", phase.tasks[i].seconds * 1e6);
+        tasks.push_back({{"seconds", phase.tasks[i].seconds}, {"worker", phase.tasks[i].worker}});
+      }
+      const double projected = cpu::fast::projected_seconds(phase);
+      text += fmt::format(
+          "{} at {} workers, {}: {} tasks, {:.1f} us of CPU, the largest {:.1f} us (task {}), "
+          "the phase projected {:.1f} us; us in queue order:{}\n",
+          scene, workers, phase.phase, phase.tasks.size(), sum * 1e6, phase.tasks[largest].seconds * 1e6, largest,
+          projected * 1e6, times);
+      out.push_back({{"scene", scene}, {"phase", phase.phase}, {"projected_seconds", projected}, {"tasks", tasks}});
+    }
+  }
+  return out;
 }
 
 int run_scaling_model(const BenchArgs& args) {
   std::vector<BenchCase> cases = make_cases(args);
-  const std::vector<uint32_t> counts = {1, 2, 4, 8, 16, 32, 64};
+  const std::vector<uint32_t>& counts = kModelWorkers;
   const uint32_t cores = std::max(1u, std::thread::hardware_concurrency());
   CpuOptions options;
   options.fma = lavapipe_fuses_on_this_host();
@@ -533,6 +575,7 @@ int run_scaling_model(const BenchArgs& args) {
   j["reps"] = args.reps;
   std::vector<experiments::DataBlock> blocks;
   std::string plot = "plot ";
+  std::string tasks_text;  // --tasks, after the table
   for (BenchCase& c : cases) {
     std::vector<Scene> kept;
     std::vector<RenderResult> results;
@@ -547,7 +590,7 @@ int run_scaling_model(const BenchArgs& args) {
     nlohmann::ordered_json row{{"name", c.name}};
     double one = 0;
     for (const uint32_t n : counts) {
-      const ModelPoint point = model_point(kept, results, options, n, args.reps, c.side_by_side);
+      const ModelPoint point = model_point(kept, results, options, n, args.reps, c.side_by_side, n == args.tasks_at);
       if (n == 1) one = point.projected;
       const double speedup = point.projected > 0 ? one / point.projected : 0;
       const auto largest = std::max_element(point.phases.begin(), point.phases.end(),
@@ -555,6 +598,8 @@ int run_scaling_model(const BenchArgs& args) {
       fmt::print("| {} | {} | {:.2f} | {:.2f}x | {} | {:.2f} | {} {:.0f}% |\n", c.name, n, point.projected * 1e3, speedup,
                  n <= cores ? fmt::format("{:.2f}", point.wall * 1e3) : std::string("-"), point.worker_spread,
                  largest->first, point.projected > 0 ? 100.0 * largest->second / point.projected : 0.0);
+      const nlohmann::ordered_json tasks =
+          n == args.tasks_at ? describe_tasks(point, n, tasks_text) : nlohmann::ordered_json();
       std::fflush(stdout);
       block.rows.push_back({fmt::format("{}", n), fmt::format("{}", speedup), "x"});
       nlohmann::ordered_json phases;
@@ -565,12 +610,16 @@ int run_scaling_model(const BenchArgs& args) {
                                 {"measured_wall_seconds", n <= cores ? nlohmann::json(point.wall) : nlohmann::json()},
                                 {"bands_busiest_over_mean", point.worker_spread},
                                 {"phases_busiest_seconds", phases}});
+      if (n == args.tasks_at) row["workers"].back()["tasks"] = tasks;
     }
     plot += fmt::format("DATA index {} using 1:2 title columnheader(3) with linespoints lw 2 pt 7, ", blocks.size());
     blocks.push_back(std::move(block));
     j["scenes"].push_back(std::move(row));
   }
   load.stop();
+  if (args.tasks_at != 0)
+    fmt::print("\nqueue phases' tasks at {} workers (thread CPU time; --tasks):\n{}", args.tasks_at,
+               tasks_text.empty() ? std::string("none: no scene ran a queue phase\n") : tasks_text);
   j["load"] = {{"other_processes_cores", load.other_cores()},
                {"this_run_cores", load.own_cores()},
                {"load_average_1min", load.load_average_1min()},
@@ -592,6 +641,8 @@ int run_scaling_model(const BenchArgs& args) {
 }
 
 int run_bench(const BenchArgs& args) {
+  if (args.tasks_at != 0 && !(args.scaling && args.model))
+    throw UsageError("--tasks: expected with --scaling --model (the tasks are those of the model's renders)");
   if (args.scaling && args.model) return run_scaling_model(args);
   if (args.scaling) return run_scaling(args);
   setenv("LP_NUM_THREADS", "2", 0);  // before the device exists; an explicit setting wins
@@ -636,6 +687,10 @@ void add_bench_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--model", args->model,
                 "with --scaling: render with 1, 2, 4, ..., 64 threads on the cores there are and project each N's time "
                 "on N cores from every worker's thread CPU time per phase");
+  cmd->add_option("--tasks", args->tasks_at,
+                  "with --scaling --model: print each queue phase's tasks at N workers (1, 2, 4, ..., 64): their "
+                  "count, CPU time summed, the largest and each one's time in queue order (also in --json)")
+      ->check(CLI::IsMember(kModelWorkers));
   cmd->add_option("--chart-dir", args->chart_dir, "folder of the --scaling chart (default bench-scaling)");
   cmd->callback([args, &exit_code] { exit_code = run_bench(*args); });
 }

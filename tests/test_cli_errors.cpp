@@ -132,6 +132,8 @@ TEST(CliErrors, BadOrMissingOptionsExitTwoAndWriteNothing) {
       {"conformance", "--out", out, "--suite", (tmp / "none").string()},  // no such suite
       {"merge"},                                                          // nothing to merge
       {"bench", "--scene", "suite", "--suite", (tmp / "none").string()},  // no such suite (was exit 4)
+      {"bench", "--tasks", "16"},                                         // --tasks without --scaling --model
+      {"bench", "--scaling", "--model", "--tasks", "3"},                  // not a worker count the model projects
   };
   for (const std::vector<std::string>& args : command_lines) {
     const RunResult r = run_cli(args, kNoVulkanDriver);
