@@ -117,7 +117,7 @@ BandWorker::Reach BandWorker::small_reach(int32_t x0, int32_t x1, int32_t lead, 
 // lie within its corners' columns, a clipped one's within its pieces' rectangles (the block-row
 // phase's table; one clipped in place: any column); a lane with its corners outside one plane, or
 // one that failed to snap, draws nothing. The columns are the block's alone, worked out before the
-// walks for every block of a shared row (the block-column phase, render_fast.cpp), so that a unit
+// walks for every block of a shared row (the block-column phase, block_phases.cpp), so that a unit
 // decides from them before it reads the block's corners (known_want); a block they were not
 // worked out for (none where the phase ran) has them worked out by each unit that needs them. The
 // walks only read block_columns (next_block_in_run_avx2 reads eight at a time).

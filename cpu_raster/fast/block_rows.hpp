@@ -1,4 +1,4 @@
-// Which tile rows a block of eight small triangles may reach (the block-row phase, render_fast.cpp
+// Which tile rows a block of eight small triangles may reach (the block-row phase, block_phases.cpp
 // phase 3): from its corners' tile rows (fast_vertices.hpp), packed lo | hi << 16 and cut to the
 // draw region's rows (lo > hi: none), or kBlockAnyRow.
 #pragma once

@@ -82,7 +82,7 @@ void for_each_piece(const FastFrame& frame, uint32_t d, uint32_t primitive, uint
 // perspective's 201 such blocks, and a worker whose rows none reached walked 11 us longer.
 // Returns whether the clipping and set-up of a triangle numbered watch_from or later met a
 // denormal or a tiny value (the MXCSR flags, watched over those triangles): the trailing-run check's verdict on the
-// clipped triangles of those blocks (render_fast.cpp), which are the draw's clipped triangles
+// clipped triangles of those blocks (block_phases.cpp), which are the draw's clipped triangles
 // there (a lane that needs clipping keeps its block at kBlockAnyRow until here).
 bool clip_block_triangles(FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end, ClippedTable& table,
                           uint32_t watch_from);

@@ -53,7 +53,7 @@ struct FastDraw {
   bool small_blocks = false;       // set up eight triangles at a time (small_triangles.hpp)
   uint32_t* block_rows = nullptr;  // per block of 8: the tile rows it may reach (band_worker.cpp)
   // Per block of 8 (with block_rows): the tile columns its lanes may reach in a shared row, worked
-  // out by the block-column phase for the blocks of shared rows (render_fast.cpp);
+  // out by the block-column phase for the blocks of shared rows (block_phases.cpp);
   // kColumnsUnknown for the others. Read only by the walks.
   uint32_t* block_columns = nullptr;
   // Per group of kGroupBlocks blocks (with block_rows): the rows its blocks reach, packed as
@@ -85,7 +85,7 @@ struct FastFrame {
   // 0: TileState::worker is the worker that draws the tile. Otherwise the tiles are in this many
   // units, TileState::worker the unit, which the workers take from a queue (render_fast.cpp).
   uint32_t queued_units = 0;
-  // The tile rows nothing draws into (render_fast.cpp, balance_tile_rows): no worker owns them;
+  // The tile rows nothing draws into (block_phases.cpp, balance_tile_rows): no worker owns them;
   // each worker, its walk done, clears the next one not taken yet, so the first to finish clears
   // more of them (a camera's sky: six of perspective's sixteen rows).
   std::vector<int32_t> unowned_rows;
