@@ -84,6 +84,7 @@ class BandWorker {
   template <Topology T, bool Indexed>
   void walk_triangles(uint32_t draw_index);
   void walk_fast(uint32_t draw_index);
+  // The exact draws (band_worker_exact.cpp): walk_exact to raster_exact_in_band.
   bool walk_exact(uint32_t draw_index);  // false: a primitive threw (FastFrame::failure)
   DrawWalk begin_draw_transformed(uint32_t draw_index) const;
   LeanSetup setup_line_lean_flushed(bool flushed, const std::array<WindowVertex, 2>& window, uint32_t owner,
