@@ -413,6 +413,9 @@ int run_scaling(const BenchArgs& args) {
   return kExitOk;
 }
 
+// The worker counts the model projects (--tasks takes one of them).
+const std::vector<uint32_t> kModelWorkers = {1, 2, 4, 8, 16, 32, 64};
+
 // --scaling --model: a model of the fast path on N cores, measured on the cores there are. Each
 // render runs with N workers (as render_cpu_fast does: a small scene takes one worker), their jobs
 // run by at most the host's hardware threads one after another (FastConfig::profile_threads), and
@@ -422,9 +425,6 @@ int run_scaling(const BenchArgs& args) {
 // time plus that per phase, and the projected speed-up at N is projected(1) / projected(N). What it
 // leaves out: waking the workers, memory bandwidth and caches shared by N cores. Checked against the
 // measured wall time where N <= hardware threads. Median over --reps per N.
-// The worker counts the model projects (--tasks takes one of them).
-const std::vector<uint32_t> kModelWorkers = {1, 2, 4, 8, 16, 32, 64};
-
 struct ModelPoint {
   double projected = 0, wall = 0;  // seconds per render of the case, medians over the reps
   std::vector<std::pair<std::string, double>> phases;  // per phase: the busiest worker, summed over scenes
