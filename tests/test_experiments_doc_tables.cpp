@@ -9,18 +9,14 @@
 #include "experiments/doc_table_renderers.hpp"
 #include "experiments/doc_tables.hpp"
 #include "model/errors.hpp"
+#include "tests/test_temp_dir.hpp"
 
 namespace rastercmp::experiments {
 namespace {
 
 namespace fs = std::filesystem;
 
-fs::path temp_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("rastercmp_test_experiments_doc_tables_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path temp_dir(const std::string& name) { return test_support::fresh_temp_dir("experiments_doc_tables_" + name); }
 
 // A document with two tables between their markers (CRLF, an indented table, no final newline).
 const char* const kDoc =

@@ -25,18 +25,14 @@
 #include "experiments/speed_accuracy.hpp"
 #include "experiments/sweep_common.hpp"
 #include "model/errors.hpp"
+#include "tests/test_temp_dir.hpp"
 
 namespace rastercmp::experiments {
 namespace {
 
 namespace fs = std::filesystem;
 
-fs::path temp_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("rastercmp_test_experiments_units_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path temp_dir(const std::string& name) { return test_support::fresh_temp_dir("experiments_units_" + name); }
 
 TEST(ExperimentsCsv, ResumeKeepsCompleteRowsAndDropsACutOffRow) {
   const fs::path path = temp_dir("csv") / "points.csv";
