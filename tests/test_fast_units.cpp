@@ -1,15 +1,19 @@
 // Unit tests of the fast path's stages against the exact path's own functions: the per-vertex
-// pass (AVX2 and scalar), the clears' fill, the worker pool's FTZ/DAZ, the block-row phase, the
+// pass (AVX2 and scalar), the clears' fill, the worker pool (its runs, FTZ/DAZ), the block-row phase, the
 // row balance, the tile depth-bounds verdicts, the row columns of the exact rasterizer's planes,
 // the benchmark statistics. The rasterizing stages (set-ups, edges, kernels) are in
 // test_fast_kernels.cpp.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <stdexcept>
+#include <thread>
 #include <vector>
 
 #include "bench/bench_scenes.hpp"
@@ -174,6 +178,39 @@ TEST(FastWorkerPool, EveryJobFlushesDenormals) {
   cpu::fast::worker_pool(7).run([&](uint32_t w) { flushed[w] = cpu::denormals_flushed() ? 1 : 0; });
   for (uint32_t w = 0; w < flushed.size(); ++w) EXPECT_EQ(flushed[w], 1) << "job " << w;
   EXPECT_FALSE(cpu::denormals_flushed());
+}
+
+// Runs back to back, some started after the threads went to sleep (past kSpinMicros) and some
+// whose job 0 ends long before the others (the caller past kCallerSpinMicros): every job index
+// runs exactly once per run, and the run returns only after all of them.
+TEST(FastWorkerPool, EveryRunRunsEachJobOnceAndWaitsForAll) {
+  constexpr uint32_t kWorkers = 5;
+  cpu::fast::WorkerPool& pool = cpu::fast::worker_pool(kWorkers);
+  std::vector<std::atomic<uint32_t>> runs(kWorkers);
+  for (uint32_t run = 0; run < 300; ++run) {
+    const bool sleepy = run % 50 == 0;
+    if (sleepy) std::this_thread::sleep_for(std::chrono::microseconds(3 * cpu::fast::WorkerPool::kSpinMicros));
+    pool.run([&](uint32_t w) {
+      if (sleepy && w == kWorkers - 1)
+        std::this_thread::sleep_for(std::chrono::microseconds(2 * cpu::fast::WorkerPool::kCallerSpinMicros));
+      runs[w].fetch_add(1, std::memory_order_relaxed);
+    });
+    for (uint32_t w = 0; w < kWorkers; ++w) ASSERT_EQ(runs[w].load(), run + 1) << "job " << w << ", run " << run;
+  }
+}
+
+// A job's exception reaches the caller once every job has returned, and the next run starts clean.
+TEST(FastWorkerPool, AJobsExceptionReachesTheCaller) {
+  cpu::fast::WorkerPool& pool = cpu::fast::worker_pool(4);
+  std::atomic<uint32_t> finished{0};
+  EXPECT_THROW(pool.run([&](uint32_t w) {
+    if (w == 2) throw std::runtime_error("job 2");
+    finished.fetch_add(1);
+  }),
+               std::runtime_error);
+  EXPECT_EQ(finished.load(), 3u);
+  EXPECT_NO_THROW(pool.run([&](uint32_t) { finished.fetch_add(1); }));
+  EXPECT_EQ(finished.load(), 7u);
 }
 
 TEST(FastVertices, ScalarPassIsTheExactPathsPerVertexWork) {

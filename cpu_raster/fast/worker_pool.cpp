@@ -47,11 +47,9 @@ WorkerPool::WorkerPool(uint32_t workers) {
 WorkerPool::~WorkerPool() { stop_workers(); }
 
 void WorkerPool::stop_workers() {
-  {
-    const std::lock_guard<std::mutex> lock(mutex_);
-    stop_ = true;
-  }
-  start_.notify_all();
+  stop_.store(true, std::memory_order_relaxed);
+  generation_.fetch_add(1, std::memory_order_release);
+  generation_.notify_all();
   for (std::thread& t : threads_) t.join();
 }
 
@@ -60,7 +58,7 @@ void WorkerPool::call(const std::function<void(uint32_t)>& job, uint32_t index) 
   try {
     job(index);
   } catch (...) {
-    const std::lock_guard<std::mutex> lock(mutex_);
+    const std::lock_guard<std::mutex> lock(error_mutex_);
     if (!error_) error_ = std::current_exception();
   }
 }
@@ -83,39 +81,34 @@ void WorkerPool::run(const std::function<void(uint32_t)>& job) {
   const std::lock_guard<std::mutex> serial(run_mutex_);
   keep_off_caller_cpu();
   {
-    const std::lock_guard<std::mutex> lock(mutex_);
-    job_ = &job;
-    pending_ = uint32_t(threads_.size());
+    const std::lock_guard<std::mutex> lock(error_mutex_);
     error_ = nullptr;
-    ++generation_;
   }
-  start_.notify_all();
+  job_.store(&job, std::memory_order_relaxed);
+  pending_.store(uint32_t(threads_.size()), std::memory_order_relaxed);
+  generation_.fetch_add(1, std::memory_order_release);
+  generation_.notify_all();
   call(job, 0);
-  spin_until([this] { return pending_.load(std::memory_order_acquire) == 0; }, kCallerSpinMicros);
-  std::unique_lock<std::mutex> lock(mutex_);
-  done_.wait(lock, [this] { return pending_ == 0; });
-  job_ = nullptr;
+  const auto all_done = [this] { return pending_.load(std::memory_order_acquire) == 0; };
+  if (!spin_until(all_done, kCallerSpinMicros))
+    for (uint32_t left; (left = pending_.load(std::memory_order_acquire)) != 0;)
+      pending_.wait(left, std::memory_order_acquire);
+  job_.store(nullptr, std::memory_order_relaxed);
+  const std::lock_guard<std::mutex> lock(error_mutex_);
   if (error_) std::rethrow_exception(error_);
 }
 
 void WorkerPool::thread_loop(uint32_t index) {
-  uint64_t seen = 0;
+  uint32_t seen = 0;
   for (;;) {
-    const std::function<void(uint32_t)>* job = nullptr;
-    if (seen != 0) spin_until([&] { return generation_.load(std::memory_order_acquire) != seen; }, kSpinMicros);
-    {
-      std::unique_lock<std::mutex> lock(mutex_);
-      start_.wait(lock, [&] { return stop_ || generation_ != seen; });
-      if (stop_) return;
-      seen = generation_;
-      job = job_;
-    }
-    call(*job, index);
-    {
-      const std::lock_guard<std::mutex> lock(mutex_);
-      --pending_;
-    }
-    done_.notify_one();
+    spin_until([&] { return generation_.load(std::memory_order_acquire) != seen; }, seen != 0 ? kSpinMicros : 0);
+    uint32_t now;
+    while ((now = generation_.load(std::memory_order_acquire)) == seen)
+      generation_.wait(seen, std::memory_order_acquire);
+    if (stop_.load(std::memory_order_relaxed)) return;
+    seen = now;
+    call(*job_.load(std::memory_order_relaxed), index);
+    if (pending_.fetch_sub(1, std::memory_order_acq_rel) == 1) pending_.notify_one();
   }
 }
 

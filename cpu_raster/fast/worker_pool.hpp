@@ -7,13 +7,15 @@
 // caller moves): woken right after other threads of the process were busy, a pool thread was
 // otherwise placed on the caller's CPU and the two workers shared one core for the whole render
 // (measured: 13.8 ms instead of 7.0 ms for two 7 ms jobs).
-// A render runs the pool three times in a row (render_fast.cpp's phases). Waking a thread that
-// sleeps on the condition variable cost 0.2-0.5 ms per run in this VM (measured, docs/
-// performance.md), so a pool thread that has finished a job first spins for up to kSpinMicros on
-// the atomic counters before it sleeps, and the caller waiting for the others for up to
-// kCallerSpinMicros: it has nothing else to do, and once asleep it woke 0.1-0.2 ms after the last
-// worker finished (perspective after a lavapipe render, a worker 120 us behind the caller: 0.86-0.93
-// ms a render with 100 us, 0.73 with 1 ms; docs/performance-log.md, 134c834).
+// A render runs the pool once per phase (render_fast.cpp's phases). Waking a thread that sleeps
+// cost 0.2-0.5 ms per run in this VM (measured, docs/performance.md), so a pool thread that has
+// finished a job first spins for up to kSpinMicros on the atomic counters before it sleeps, and
+// the caller waiting for the others for up to kCallerSpinMicros: it has nothing else to do, and
+// once asleep it woke 0.1-0.2 ms after the last worker finished (perspective after a lavapipe
+// render, a worker 120 us behind the caller: 0.86-0.93 ms a render with 100 us, 0.73 with 1 ms;
+// docs/performance-log.md, 134c834). Handing a job out and counting the finished ones takes no
+// lock: the threads sleep and wake on the atomics themselves (C++20 wait/notify, a futex), so
+// that on 16 cores the 15 threads of a phase do not queue for one mutex at its start and end.
 // The pool also keeps each worker's pace in the band phase of the renders before (record_pace,
 // relative_speeds): a worker whose core another process shares finishes the same work later, and
 // the next render's static rows are shared out by it (row_balance.hpp). Which worker draws a row
@@ -21,7 +23,6 @@
 #pragma once
 
 #include <atomic>
-#include <condition_variable>
 #include <cstdint>
 #include <exception>
 #include <functional>
@@ -68,14 +69,16 @@ class WorkerPool {
   void stop_workers();  // stops and joins every thread started
 
   std::mutex run_mutex_;  // one run at a time
-  std::mutex mutex_;
-  std::condition_variable start_, done_;
-  const std::function<void(uint32_t)>* job_ = nullptr;
-  // Changed under mutex_ (the condition variables' predicates); read without it while spinning.
-  std::atomic<uint64_t> generation_{0};
+  std::mutex error_mutex_;
+  // A run publishes job_ and pending_, then increments generation_ (release); a thread that sees
+  // the new generation (acquire) runs the job and decrements pending_ (acq_rel), and the caller
+  // returns once pending_ is 0. A thread cannot miss a generation: the next run starts only after
+  // every thread has counted itself off this one.
+  std::atomic<const std::function<void(uint32_t)>*> job_{nullptr};
+  std::atomic<uint32_t> generation_{0};
   std::atomic<uint32_t> pending_{0};
-  bool stop_ = false;
-  std::exception_ptr error_;
+  std::atomic<bool> stop_{false};
+  std::exception_ptr error_;  // the first job's exception of a run, under error_mutex_
   std::vector<std::thread> threads_;
   int placed_for_cpu_ = -1;  // the caller's CPU the threads' affinity was last set for
   mutable std::mutex pace_mutex_;
