@@ -1,9 +1,11 @@
 // The Vulkan reference on lavapipe, against answers worked out by hand from the top-left rule
 // and the depth conversions of docs/lavapipe-rules.md. Every render runs with the validation layer
 // and must produce no message. Skips only when no Vulkan device exists.
+#include <bit>
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -12,12 +14,16 @@
 #include <gtest/gtest.h>
 #include <glm/vec2.hpp>
 
+#include "model/depth_format.hpp"
 #include "model/errors.hpp"
 #include "model/host.hpp"
 #include "model/render_result.hpp"
 #include "model/scene.hpp"
 #include "tests/test_vulkan_support.hpp"
+#include "vk_reference/vk_context.hpp"
+#include "vk_reference/vk_gather.hpp"
 #include "vk_reference/vk_reference.hpp"
+#include "vk_reference/vk_translate.hpp"
 
 namespace rastercmp {
 namespace {
@@ -294,6 +300,56 @@ TEST_F(VkReferenceTest, Msaa4xDepthReadsBackTheRawBitsOfEachSample) {
     }
     EXPECT_NE(one.depth_raw[one.index(0, 0)], one.depth_raw[one.index(1, 0)]);
   }
+}
+
+// Each conversion a device may sample UNORM depth by is inverted exactly, every raw value of D16
+// and X8_D24: the raw value comes back, except ReciprocalProduct's one collision (0xFFFFFE and
+// 0xFFFFFF both sample as 1.0). The two conversions differ: Quotient's float read back as
+// ReciprocalProduct's is one step low or no value's conversion for about a quarter of X8_D24 each
+// (every 61st value tried), so
+// the reference must know which one the device does.
+TEST(VkUnormSampling, EachConversionInvertsExactly) {
+  for (const DepthFormat format : {DepthFormat::D16Unorm, DepthFormat::X8D24Unorm}) {
+    SCOPED_TRACE(to_string(format));
+    const uint32_t max = depth_format_info(format).raw_mask;
+    for (const vk::UnormSampling sampling : vk::kUnormSamplings) {
+      SCOPED_TRACE(vk::to_string(sampling));
+      uint32_t wrong = 0, first_wrong = 0;
+      for (uint32_t raw = 0; raw <= max; ++raw) {
+        const uint32_t bits = std::bit_cast<uint32_t>(vk::sampled_unorm(sampling, raw, max));
+        if (vk::depth_raw_from_sampled(format, sampling, bits) != raw && wrong++ == 0) first_wrong = raw;
+      }
+      const bool collides = sampling == vk::UnormSampling::ReciprocalProduct && format == DepthFormat::X8D24Unorm;
+      EXPECT_EQ(wrong, collides ? 1u : 0u);
+      if (collides) {
+        EXPECT_EQ(first_wrong, 0xFFFFFEu);
+      }
+    }
+  }
+  uint32_t low = 0, unmatched = 0, tried = 0;
+  for (uint32_t raw = 0; raw <= 0xFFFFFFu; raw += 61, ++tried) {
+    const uint32_t bits = std::bit_cast<uint32_t>(vk::sampled_unorm(vk::UnormSampling::Quotient, raw, 0xFFFFFF));
+    try {
+      if (vk::depth_raw_from_sampled(DepthFormat::X8D24Unorm, vk::UnormSampling::ReciprocalProduct, bits) != raw) ++low;
+    } catch (const std::runtime_error&) {
+      ++unmatched;
+    }
+  }
+  EXPECT_GT(low, tried / 5);
+  EXPECT_GT(unmatched, tried / 5);
+  EXPECT_THROW(
+      vk::depth_raw_from_sampled(DepthFormat::D16Unorm, vk::UnormSampling::Quotient, std::bit_cast<uint32_t>(1.5f)),
+      std::runtime_error);
+}
+
+// lavapipe samples both UNORM depth formats as llvmpipe's one float multiply (measured on the
+// device, shaders/sample_depth.comp); D32 needs no conversion.
+TEST_F(VkReferenceTest, LavapipeSamplesUnormDepthAsOneFloatMultiply) {
+  const vk::Context context(VkOptions{"", /*validate=*/true});
+  EXPECT_EQ(vk::measure_unorm_sampling(context, DepthFormat::D16Unorm), vk::UnormSampling::ReciprocalProduct);
+  EXPECT_EQ(vk::measure_unorm_sampling(context, DepthFormat::X8D24Unorm), vk::UnormSampling::ReciprocalProduct);
+  EXPECT_EQ(vk::measure_unorm_sampling(context, DepthFormat::D32Sfloat), std::nullopt);
+  for (const std::string& m : context.validation_messages()) ADD_FAILURE() << "validation: " << m;
 }
 
 // A width-1 line along y = 3.5 from x = 0 to 8 is the rectangle 3 <= y <= 4 (rectangular lines,

@@ -77,28 +77,6 @@ ReadBack create_read_back(const Context& context, const Gathers& gathers, const 
   return read_back;
 }
 
-Owned<VkCommandBuffer> allocate_commands(const Context& context) {
-  VkCommandBufferAllocateInfo info{};
-  info.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO;
-  info.commandPool = context.command_pool();
-  info.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-  info.commandBufferCount = 1;
-  VkCommandBuffer commands = VK_NULL_HANDLE;
-  check(api().vkAllocateCommandBuffers(context.device(), &info, &commands), "vkAllocateCommandBuffers");
-  const VkDevice device = context.device();
-  const VkCommandPool pool = context.command_pool();
-  return Owned<VkCommandBuffer>(commands,
-                                [device, pool](VkCommandBuffer h) { api().vkFreeCommandBuffers(device, pool, 1, &h); });
-}
-
-Owned<VkFence> create_fence(const Context& context) {
-  VkFenceCreateInfo info{};
-  info.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO;
-  VkFence fence = VK_NULL_HANDLE;
-  check(api().vkCreateFence(context.device(), &info, nullptr, &fence), "vkCreateFence");
-  return own(context.device(), api().vkDestroyFence, fence);
-}
-
 // The viewport must be one Vulkan accepts (VkViewport valid usage): lavapipe does not reject an
 // invalid one, it crashes or draws garbage, so it is refused here as bad input.
 void check_viewport(const Scene& scene, const VkPhysicalDeviceLimits& limits) {
@@ -152,14 +130,18 @@ Frame::Frame(const Context& context, PipelineCache& pipelines, const Gathers& ga
       width_(scene.width),
       height_(scene.height),
       samples_(scene.samples),
-      depth_format_(scene.depth_format) {
+      depth_format_(scene.depth_format),
+      depth_sampling_(gathers.depth_sampling) {
   check_scene(scene);
   check_viewport(scene, context.enabled().limits);
   const AttachmentConfig config{depth_format_, samples_};
   require_attachment_support(context, config, width_, height_);
   const VkRenderPass render_pass = pipelines.render_pass(config);
   geometry_ = upload_geometry(context, pipelines, config, scene);  // NotSupportedError before big allocations
-  const bool sampled_depth = multisampled_depth_readable(context, config, width_, height_);
+  // Multisampled UNORM depth is read back only where the device's conversion to float is known.
+  const bool unorm = depth_format_info(depth_format_).encoding == DepthEncoding::Unorm;
+  const bool sampled_depth =
+      multisampled_depth_readable(context, config, width_, height_) && (!unorm || depth_sampling_.has_value());
   attachments_ = create_attachments(context, render_pass, config, width_, height_, sampled_depth);
   read_back_ = create_read_back(context, gathers, attachments_, config, width_, height_);
   commands_ = allocate_commands(context);
@@ -210,7 +192,9 @@ RenderResult Frame::read_back() const {
   if (read_back_.depth_gather) {  // multisampled: the sampled floats' bits, one per sample
     const auto* sampled = static_cast<const uint32_t*>(read_back_.depth->mapped);
     result.depth_raw.resize(count);
-    for (size_t i = 0; i < count; ++i) result.depth_raw[i] = depth_raw_from_sampled(depth_format_, sampled[i]);
+    const UnormSampling sampling = depth_sampling_.value_or(UnormSampling::Quotient);  // D32: unused
+    for (size_t i = 0; i < count; ++i)
+      result.depth_raw[i] = depth_raw_from_sampled(depth_format_, sampling, sampled[i]);
   } else if (read_back_.depth) {  // single sample: the depth-aspect copy
     const auto* texels = static_cast<const unsigned char*>(read_back_.depth->mapped);
     const uint32_t texel_bytes = depth_copy_texel_bytes(depth_format_);

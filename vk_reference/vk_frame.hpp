@@ -26,7 +26,7 @@ struct DrawCall {
   VkDeviceSize index_offset = 0;   // bytes into Geometry::indices
   uint32_t vertex_count = 0;       // Draw::vertex_count()
   bool indexed = false;
-  DepthBias depth_bias;            // the draw's factors (dynamic state); zero when bias is off
+  DepthBias depth_bias;  // the draw's factors (dynamic state); zero when bias is off
 };
 
 struct Geometry {
@@ -39,6 +39,9 @@ struct Geometry {
 struct Gathers {
   const SampleGather* owner = nullptr;  // every multisampled scene
   const SampleGather* depth = nullptr;  // multisampled scenes with depth
+  // Multisampled scenes with UNORM depth: how the device samples that format
+  // (measure_unorm_sampling); none: that depth is not read back.
+  std::optional<UnormSampling> depth_sampling;
 };
 
 // Where the recorded copies put the results.
@@ -68,6 +71,7 @@ class Frame final : public VulkanRenderer::Prepared {
   PipelineCache::Pin pin_;  // the pipelines recorded below outlive this frame
   uint32_t width_, height_, samples_;
   DepthFormat depth_format_;
+  std::optional<UnormSampling> depth_sampling_;  // Gathers::depth_sampling
   Attachments attachments_;
   Geometry geometry_;
   ReadBack read_back_;

@@ -1,15 +1,19 @@
 #include "vk_reference/vk_gather.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cstdint>
+#include <cstring>
 #include <numeric>
 #include <string>
+#include <vector>
 
 #include <fmt/core.h>
 
 #include "model/errors.hpp"
 #include "shaders/gather_depth_ms_comp.h"
 #include "shaders/gather_owner_ms_comp.h"
+#include "shaders/sample_depth_comp.h"
 #include "vk_reference/vk_check.hpp"
 #include "vk_reference/vk_loader.hpp"
 #include "vk_reference/vk_pipeline.hpp"
@@ -176,6 +180,125 @@ void SampleGather::record(VkCommandBuffer commands, const Binding& binding) cons
     api().vkCmdDispatch(commands, (binding.width + kLocalSize - 1) / kLocalSize,
                         (band.rows + kLocalSize - 1) / kLocalSize, 1);
   }
+}
+
+namespace {
+
+constexpr uint32_t kProbeSide = 256;  // measure_unorm_sampling's image: 65,536 texels
+
+// The raw values measure_unorm_sampling stores, one a texel: every value of a format of at most
+// 65,536 values; else the lowest and highest 16 and between them i * 256 plus varied low bits.
+std::vector<uint32_t> probe_values(uint32_t max) {
+  std::vector<uint32_t> values(kProbeSide * kProbeSide);
+  const uint32_t count = uint32_t(values.size());
+  for (uint32_t i = 0; i < count; ++i) {
+    if (max < count)
+      values[i] = std::min(i, max);
+    else if (i < 16)
+      values[i] = i;
+    else if (i >= count - 16)
+      values[i] = max - (count - 1 - i);
+    else
+      values[i] = i * 256 + (i * 97) % 256;
+  }
+  return values;
+}
+
+}  // namespace
+
+std::optional<UnormSampling> measure_unorm_sampling(const Context& context, DepthFormat format) {
+  const DepthFormatInfo info = depth_format_info(format);
+  if (info.encoding != DepthEncoding::Unorm) return std::nullopt;
+  const VkDevice device = context.device();
+  VkFormatProperties features{};
+  api().vkGetPhysicalDeviceFormatProperties(context.physical_device(), to_vk_format(format), &features);
+  const VkFormatFeatureFlags needed = VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT | VK_FORMAT_FEATURE_TRANSFER_DST_BIT;
+  if ((features.optimalTilingFeatures & needed) != needed) return std::nullopt;
+  const ImageSpec spec{to_vk_format(format),
+                       kProbeSide,
+                       kProbeSide,
+                       VK_SAMPLE_COUNT_1_BIT,
+                       VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
+                       VK_IMAGE_ASPECT_DEPTH_BIT};
+  try {
+    require_image_support(context, spec, "a depth image to measure sampling");
+  } catch (const NotSupportedError&) {
+    return std::nullopt;
+  }
+  const std::vector<uint32_t> raw = probe_values(info.raw_mask);
+  const uint32_t texel_bytes = depth_copy_texel_bytes(format);  // 2 for D16; 4 for X8_D24, the low 24 bits
+  const Image image = create_image(context, spec);
+  const Buffer upload =
+      create_host_buffer(context, VkDeviceSize(raw.size()) * texel_bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+  for (size_t i = 0; i < raw.size(); ++i)
+    std::memcpy(static_cast<unsigned char*>(upload.mapped) + i * texel_bytes, &raw[i], texel_bytes);  // little-endian
+  const Buffer sampled =
+      create_host_buffer(context, VkDeviceSize(raw.size()) * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+
+  const Owned<VkSampler> sampler = create_sampler(device);
+  const Owned<VkDescriptorSetLayout> set_layout = create_set_layout(device);
+  const Owned<VkPipelineLayout> layout = create_layout(device, set_layout.get());
+  const Owned<VkShaderModule> shader = create_shader_module(device, sample_depth_comp, sizeof(sample_depth_comp));
+  const Owned<VkPipeline> pipeline = create_pipeline(device, layout.get(), shader.get());
+  const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1},
+                                        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1}};
+  VkDescriptorPoolCreateInfo pool_info{};
+  pool_info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
+  pool_info.maxSets = 1;
+  pool_info.poolSizeCount = 2;
+  pool_info.pPoolSizes = sizes;
+  VkDescriptorPool pool_handle = VK_NULL_HANDLE;
+  check(api().vkCreateDescriptorPool(device, &pool_info, nullptr, &pool_handle), "vkCreateDescriptorPool");
+  const Owned<VkDescriptorPool> pool = own(device, api().vkDestroyDescriptorPool, pool_handle);
+  const VkDescriptorSet set = allocate_set(device, pool.get(), set_layout.get());
+  write_set(device, set, {sampler.get(), image.view.get(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
+            {sampled.buffer.get(), 0, sampled.size});
+
+  const Owned<VkCommandBuffer> commands = allocate_commands(context);
+  const Owned<VkFence> fence = create_fence(context);
+  const VkCommandBuffer cb = commands.get();
+  VkCommandBufferBeginInfo begin{};
+  begin.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
+  begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  check(api().vkBeginCommandBuffer(cb, &begin), "vkBeginCommandBuffer");
+  const VkImageMemoryBarrier to_transfer =
+      layout_barrier(image.image.get(), VK_IMAGE_ASPECT_DEPTH_BIT, 0, VK_IMAGE_LAYOUT_UNDEFINED,
+                     VK_ACCESS_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+  api().vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0,
+                             nullptr, 1, &to_transfer);
+  VkBufferImageCopy copy{};
+  copy.imageSubresource = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 0, 1};
+  copy.imageExtent = {kProbeSide, kProbeSide, 1};
+  api().vkCmdCopyBufferToImage(cb, upload.buffer.get(), image.image.get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
+                               &copy);
+  const VkImageMemoryBarrier to_sampled = layout_barrier(
+      image.image.get(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+      VK_ACCESS_SHADER_READ_BIT, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+  api().vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, nullptr, 0,
+                             nullptr, 1, &to_sampled);
+  api().vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.get());
+  api().vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_COMPUTE, layout.get(), 0, 1, &set, 0, nullptr);
+  const GatherConstants constants{kProbeSide, 1, 0, kProbeSide};
+  api().vkCmdPushConstants(cb, layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof constants, &constants);
+  api().vkCmdDispatch(cb, kProbeSide / kLocalSize, kProbeSide / kLocalSize, 1);
+  host_read_barrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT);
+  check(api().vkEndCommandBuffer(cb), "vkEndCommandBuffer");
+  VkSubmitInfo submit{};
+  submit.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
+  submit.commandBufferCount = 1;
+  submit.pCommandBuffers = &cb;
+  const VkFence fence_handle = fence.get();
+  check(api().vkQueueSubmit(context.queue(), 1, &submit, fence_handle), "vkQueueSubmit");
+  check(api().vkWaitForFences(device, 1, &fence_handle, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+
+  const auto* floats = static_cast<const uint32_t*>(sampled.mapped);
+  for (const UnormSampling sampling : kUnormSamplings) {
+    bool every = true;
+    for (size_t i = 0; i < raw.size() && every; ++i)
+      every = std::bit_cast<uint32_t>(sampled_unorm(sampling, raw[i], info.raw_mask)) == floats[i];
+    if (every) return sampling;
+  }
+  return std::nullopt;
 }
 
 }  // namespace rastercmp::vk

@@ -6,6 +6,7 @@
 // bands of whole rows, each within maxStorageBufferRange and offset-aligned.
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include <vulkan/vulkan.h>
@@ -13,6 +14,7 @@
 #include "vk_reference/vk_context.hpp"
 #include "vk_reference/vk_handle.hpp"
 #include "vk_reference/vk_resources.hpp"
+#include "vk_reference/vk_translate.hpp"
 
 namespace rastercmp::vk {
 
@@ -49,5 +51,14 @@ class SampleGather {
   Owned<VkShaderModule> shader_;
   Owned<VkPipeline> pipeline_;
 };
+
+// How the device converts the UNORM depth `format` to the float its shaders sample, measured:
+// 256x256 known raw values (D16: every value; X8_D24: values over the whole range with varied low
+// bits, and the lowest and highest 16) copied into a single-sample image and sampled by
+// shaders/sample_depth.comp, each float compared with every kUnormSamplings conversion. The first
+// conversion that gives every float; none if no conversion does or the device cannot sample or
+// fill such an image (the multisampled depth of that format is then not read back). Submits and
+// waits.
+std::optional<UnormSampling> measure_unorm_sampling(const Context& context, DepthFormat format);
 
 }  // namespace rastercmp::vk

@@ -38,6 +38,7 @@ inline constexpr const char* kLoaderEnv = "RASTERCMP_VULKAN_LOADER";
   X(vkCmdBindPipeline)                        \
   X(vkCmdBindVertexBuffers)                   \
   X(vkCmdCopyImageToBuffer)                   \
+  X(vkCmdCopyBufferToImage)                   \
   X(vkCmdDispatch)                            \
   X(vkCmdDraw)                                \
   X(vkCmdDrawIndexed)                         \

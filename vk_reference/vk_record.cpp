@@ -54,29 +54,6 @@ void record_draws(VkCommandBuffer commands, VkPipelineLayout layout, const Geome
   }
 }
 
-VkImageMemoryBarrier layout_barrier(VkImage image, VkImageAspectFlags aspect, VkAccessFlags src_access,
-                                    VkImageLayout old_layout, VkAccessFlags dst_access, VkImageLayout new_layout) {
-  VkImageMemoryBarrier barrier{};
-  barrier.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER;
-  barrier.srcAccessMask = src_access;
-  barrier.dstAccessMask = dst_access;
-  barrier.oldLayout = old_layout;
-  barrier.newLayout = new_layout;
-  barrier.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-  barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-  barrier.image = image;
-  barrier.subresourceRange = {aspect, 0, 1, 0, 1};
-  return barrier;
-}
-
-void host_read_barrier(VkCommandBuffer commands, VkPipelineStageFlags src_stage, VkAccessFlags src_access) {
-  VkMemoryBarrier barrier{};
-  barrier.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
-  barrier.srcAccessMask = src_access;
-  barrier.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-  api().vkCmdPipelineBarrier(commands, src_stage, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &barrier, 0, nullptr, 0, nullptr);
-}
-
 VkBufferImageCopy whole_image(const Scene& scene, VkImageAspectFlags aspect) {
   VkBufferImageCopy region{};
   region.bufferOffset = 0;

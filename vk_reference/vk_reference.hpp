@@ -53,8 +53,10 @@ class VulkanRenderer {
   // index past the positions, a viewport outside the device's limits, more than kMaxDraws draws).
   // Single-sample scenes return owner and raw depth (copied out). Multisampled scenes return the
   // owner and raw depth of every sample, read by compute shaders (texelFetch of each sample; the
-  // sampled depth float turned back into raw bits, vk_translate.hpp depth_raw_from_sampled).
-  // Where the device cannot sample the multisampled depth format, depth_raw stays empty.
+  // sampled depth float turned back into raw bits by the device's measured UNORM conversion,
+  // vk_gather.hpp measure_unorm_sampling, vk_translate.hpp depth_raw_from_sampled). Where the
+  // device cannot sample the multisampled depth format, or converts it some other way,
+  // depth_raw stays empty.
   RenderResult render(const Scene& scene);
 
   // For benchmarks: resources and command buffer built once, then submitted many times.

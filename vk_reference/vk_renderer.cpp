@@ -1,6 +1,8 @@
 // VulkanRenderer: the public face of the reference (vk_reference.hpp). One instance and device per
 // renderer; render passes cached for its life, pipelines in a bounded cache (vk_pipeline.hpp); each scene a Frame.
+#include <map>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 
 #include "vk_reference/vk_context.hpp"
@@ -28,6 +30,8 @@ struct VulkanRenderer::Impl {
   vk::PipelineCache pipelines;
   std::unique_ptr<vk::SampleGather> owner_gather;  // made on the first multisampled scene
   std::unique_ptr<vk::SampleGather> depth_gather;  // made on the first multisampled scene with depth
+  // How the device samples each UNORM depth format, measured on its first multisampled scene.
+  std::map<DepthFormat, std::optional<vk::UnormSampling>> unorm_sampling;
 };
 
 namespace {
@@ -60,7 +64,12 @@ std::unique_ptr<VulkanRenderer::Prepared> VulkanRenderer::prepare(const Scene& s
     impl_->depth_gather = std::make_unique<vk::SampleGather>(impl_->context, vk::GatherKind::Depth);
   }
   impl_->pipelines.trim();  // between frames only (vk_pipeline.hpp)
-  const vk::Gathers gathers{impl_->owner_gather.get(), impl_->depth_gather.get()};
+  vk::Gathers gathers{impl_->owner_gather.get(), impl_->depth_gather.get(), std::nullopt};
+  if (scene.samples > 1 && depth_format_info(scene.depth_format).encoding == DepthEncoding::Unorm) {
+    if (!impl_->unorm_sampling.contains(scene.depth_format))
+      impl_->unorm_sampling[scene.depth_format] = vk::measure_unorm_sampling(impl_->context, scene.depth_format);
+    gathers.depth_sampling = impl_->unorm_sampling[scene.depth_format];
+  }
   return std::make_unique<vk::Frame>(impl_->context, impl_->pipelines, gathers, scene);
 }
 

@@ -97,4 +97,49 @@ void require_image_support(const Context& context, const ImageSpec& spec, const 
   }
 }
 
+Owned<VkCommandBuffer> allocate_commands(const Context& context) {
+  VkCommandBufferAllocateInfo info{};
+  info.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO;
+  info.commandPool = context.command_pool();
+  info.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  info.commandBufferCount = 1;
+  VkCommandBuffer commands = VK_NULL_HANDLE;
+  check(api().vkAllocateCommandBuffers(context.device(), &info, &commands), "vkAllocateCommandBuffers");
+  const VkDevice device = context.device();
+  const VkCommandPool pool = context.command_pool();
+  return Owned<VkCommandBuffer>(commands,
+                                [device, pool](VkCommandBuffer h) { api().vkFreeCommandBuffers(device, pool, 1, &h); });
+}
+
+Owned<VkFence> create_fence(const Context& context) {
+  VkFenceCreateInfo info{};
+  info.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO;
+  VkFence fence = VK_NULL_HANDLE;
+  check(api().vkCreateFence(context.device(), &info, nullptr, &fence), "vkCreateFence");
+  return own(context.device(), api().vkDestroyFence, fence);
+}
+
+VkImageMemoryBarrier layout_barrier(VkImage image, VkImageAspectFlags aspect, VkAccessFlags src_access,
+                                    VkImageLayout old_layout, VkAccessFlags dst_access, VkImageLayout new_layout) {
+  VkImageMemoryBarrier barrier{};
+  barrier.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER;
+  barrier.srcAccessMask = src_access;
+  barrier.dstAccessMask = dst_access;
+  barrier.oldLayout = old_layout;
+  barrier.newLayout = new_layout;
+  barrier.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  barrier.image = image;
+  barrier.subresourceRange = {aspect, 0, 1, 0, 1};
+  return barrier;
+}
+
+void host_read_barrier(VkCommandBuffer commands, VkPipelineStageFlags src_stage, VkAccessFlags src_access) {
+  VkMemoryBarrier barrier{};
+  barrier.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
+  barrier.srcAccessMask = src_access;
+  barrier.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+  api().vkCmdPipelineBarrier(commands, src_stage, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &barrier, 0, nullptr, 0, nullptr);
+}
+
 }  // namespace rastercmp::vk

@@ -42,4 +42,14 @@ Image create_image(const Context& context, const ImageSpec& spec);
 // Throws NotSupportedError naming what the device lacks for an image of `spec`.
 void require_image_support(const Context& context, const ImageSpec& spec, const std::string& role);
 
+// A primary command buffer from the context's pool, and an unsignalled fence.
+Owned<VkCommandBuffer> allocate_commands(const Context& context);
+Owned<VkFence> create_fence(const Context& context);
+
+// A layout transition of the image's one level and layer.
+VkImageMemoryBarrier layout_barrier(VkImage image, VkImageAspectFlags aspect, VkAccessFlags src_access,
+                                    VkImageLayout old_layout, VkAccessFlags dst_access, VkImageLayout new_layout);
+// Makes the writes of `src_stage` with `src_access` visible to the host's reads.
+void host_read_barrier(VkCommandBuffer commands, VkPipelineStageFlags src_stage, VkAccessFlags src_access);
+
 }  // namespace rastercmp::vk

@@ -114,24 +114,35 @@ uint32_t depth_raw_from_copy(DepthFormat format, const unsigned char* texel) {
   return bits & info.raw_mask;
 }
 
-uint32_t depth_raw_from_sampled(DepthFormat format, uint32_t float_bits) {
+const char* to_string(UnormSampling sampling) {
+  switch (sampling) {
+    case UnormSampling::Quotient: return "r / (2^n - 1), correctly rounded";
+    case UnormSampling::ReciprocalProduct: return "float(r) * float(1 / (2^n - 1))";
+  }
+  return "?";
+}
+
+float sampled_unorm(UnormSampling sampling, uint32_t raw, uint32_t max) {
+  if (sampling == UnormSampling::Quotient) return static_cast<float>(double(raw) / double(max));  // exact, then rounded
+  return static_cast<float>(raw) * static_cast<float>(1.0 / double(max));
+}
+
+uint32_t depth_raw_from_sampled(DepthFormat format, UnormSampling sampling, uint32_t float_bits) {
   const DepthFormatInfo info = depth_format_info(format);
   if (info.encoding == DepthEncoding::Float) return float_bits;
   if (info.encoding != DepthEncoding::Unorm) throw std::invalid_argument("depth_raw_from_sampled: no depth format");
   const uint32_t max = info.raw_mask;  // UNORM: 2^bits - 1
-  const float scale = static_cast<float>(1.0 / double(max));
   const float sampled = std::bit_cast<float>(float_bits);
   if (sampled >= 0.0f && sampled <= 1.0f) {
-    // float(r) * scale is within one unit (1 / max) of r / max, so every r that converts to
+    // Either conversion is within one unit (1 / max) of r / max, so every r that converts to
     // `sampled` lies in round(sampled * max) - 1 .. + 1; the largest one wins.
     const int64_t nearest = std::llround(double(sampled) * double(max));
     for (int64_t r = std::min<int64_t>(nearest + 1, max); r >= std::max<int64_t>(nearest - 1, 0); --r) {
-      const float converted = static_cast<float>(r) * scale;
-      if (converted == sampled) return static_cast<uint32_t>(r);
+      if (sampled_unorm(sampling, static_cast<uint32_t>(r), max) == sampled) return static_cast<uint32_t>(r);
     }
   }
-  throw std::runtime_error(fmt::format("sampled {} depth {:#010x} ({}) is no stored value's conversion",
-                                       to_string(format), float_bits, double(sampled)));
+  throw std::runtime_error(fmt::format("sampled {} depth {:#010x} ({}) is no stored value's conversion ({})",
+                                       to_string(format), float_bits, double(sampled), to_string(sampling)));
 }
 
 namespace {
