@@ -47,9 +47,12 @@ WorkerPool::WorkerPool(uint32_t workers) {
 WorkerPool::~WorkerPool() { stop_workers(); }
 
 void WorkerPool::stop_workers() {
-  stop_.store(true, std::memory_order_relaxed);
-  generation_.fetch_add(1, std::memory_order_release);
-  generation_.notify_all();
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    stop_.store(true, std::memory_order_relaxed);
+    generation_.fetch_add(1, std::memory_order_release);
+  }
+  start_.notify_all();
   for (std::thread& t : threads_) t.join();
 }
 
@@ -58,7 +61,7 @@ void WorkerPool::call(const std::function<void(uint32_t)>& job, uint32_t index) 
   try {
     job(index);
   } catch (...) {
-    const std::lock_guard<std::mutex> lock(error_mutex_);
+    const std::lock_guard<std::mutex> lock(mutex_);
     if (!error_) error_ = std::current_exception();
   }
 }
@@ -81,34 +84,45 @@ void WorkerPool::run(const std::function<void(uint32_t)>& job) {
   const std::lock_guard<std::mutex> serial(run_mutex_);
   keep_off_caller_cpu();
   {
-    const std::lock_guard<std::mutex> lock(error_mutex_);
+    // Under mutex_: a thread going to sleep tests the generation under it (no lost wake-up).
+    const std::lock_guard<std::mutex> lock(mutex_);
     error_ = nullptr;
+    job_.store(&job, std::memory_order_relaxed);
+    pending_.store(uint32_t(threads_.size()), std::memory_order_relaxed);
+    generation_.fetch_add(1, std::memory_order_release);
   }
-  job_.store(&job, std::memory_order_relaxed);
-  pending_.store(uint32_t(threads_.size()), std::memory_order_relaxed);
-  generation_.fetch_add(1, std::memory_order_release);
-  generation_.notify_all();
+  start_.notify_all();  // no system call while no thread sleeps
   call(job, 0);
   const auto all_done = [this] { return pending_.load(std::memory_order_acquire) == 0; };
-  if (!spin_until(all_done, kCallerSpinMicros))
-    for (uint32_t left; (left = pending_.load(std::memory_order_acquire)) != 0;)
-      pending_.wait(left, std::memory_order_acquire);
+  std::unique_lock<std::mutex> lock(mutex_, std::defer_lock);
+  if (!spin_until(all_done, kCallerSpinMicros)) {
+    lock.lock();
+    done_.wait(lock, all_done);
+  } else {
+    lock.lock();  // error_
+  }
   job_.store(nullptr, std::memory_order_relaxed);
-  const std::lock_guard<std::mutex> lock(error_mutex_);
   if (error_) std::rethrow_exception(error_);
 }
 
 void WorkerPool::thread_loop(uint32_t index) {
   uint32_t seen = 0;
+  const auto started = [&] { return generation_.load(std::memory_order_acquire) != seen; };
   for (;;) {
-    spin_until([&] { return generation_.load(std::memory_order_acquire) != seen; }, seen != 0 ? kSpinMicros : 0);
-    uint32_t now;
-    while ((now = generation_.load(std::memory_order_acquire)) == seen)
-      generation_.wait(seen, std::memory_order_acquire);
+    // A thread that sees the next run while spinning takes no lock; one that sleeps blocks on
+    // start_ (a futex: woken, it preempts a process that shares its core, where a yielding wait
+    // would queue behind it).
+    if (!spin_until(started, seen != 0 ? kSpinMicros : 0)) {
+      std::unique_lock<std::mutex> lock(mutex_);
+      start_.wait(lock, started);
+    }
     if (stop_.load(std::memory_order_relaxed)) return;
-    seen = now;
+    seen = generation_.load(std::memory_order_relaxed);
     call(*job_.load(std::memory_order_relaxed), index);
-    if (pending_.fetch_sub(1, std::memory_order_acq_rel) == 1) pending_.notify_one();
+    if (pending_.fetch_sub(1, std::memory_order_acq_rel) == 1) {
+      const std::lock_guard<std::mutex> lock(mutex_);  // the caller tests pending_ under it
+      done_.notify_one();
+    }
   }
 }
 

@@ -13,9 +13,9 @@
 // the caller waiting for the others for up to kCallerSpinMicros: it has nothing else to do, and
 // once asleep it woke 0.1-0.2 ms after the last worker finished (perspective after a lavapipe
 // render, a worker 120 us behind the caller: 0.86-0.93 ms a render with 100 us, 0.73 with 1 ms;
-// docs/performance-log.md, 134c834). Handing a job out and counting the finished ones takes no
-// lock: the threads sleep and wake on the atomics themselves (C++20 wait/notify, a futex), so
-// that on 16 cores the 15 threads of a phase do not queue for one mutex at its start and end.
+// docs/performance-log.md, 134c834). A thread that finds the next job while spinning, and one that
+// counts itself off a run, takes no lock, so that on 16 cores the 15 threads of a phase do not
+// queue for one mutex at its start and end; a thread that sleeps blocks on a condition variable.
 // The pool also keeps each worker's pace in the band phase of the renders before (record_pace,
 // relative_speeds): a worker whose core another process shares finishes the same work later, and
 // the next render's static rows are shared out by it (row_balance.hpp). Which worker draws a row
@@ -23,6 +23,7 @@
 #pragma once
 
 #include <atomic>
+#include <condition_variable>
 #include <cstdint>
 #include <exception>
 #include <functional>
@@ -69,16 +70,18 @@ class WorkerPool {
   void stop_workers();  // stops and joins every thread started
 
   std::mutex run_mutex_;  // one run at a time
-  std::mutex error_mutex_;
-  // A run publishes job_ and pending_, then increments generation_ (release); a thread that sees
-  // the new generation (acquire) runs the job and decrements pending_ (acq_rel), and the caller
-  // returns once pending_ is 0. A thread cannot miss a generation: the next run starts only after
-  // every thread has counted itself off this one.
+  // A run publishes job_ and pending_ and increments generation_ (release), under mutex_; a thread
+  // that sees the new generation (acquire; spinning without the lock, or woken on start_) runs the
+  // job and decrements pending_ (acq_rel); the last one wakes the caller on done_ under mutex_. A
+  // thread cannot miss a generation: the next run starts only after every thread has counted
+  // itself off this one.
+  std::mutex mutex_;
+  std::condition_variable start_, done_;
   std::atomic<const std::function<void(uint32_t)>*> job_{nullptr};
   std::atomic<uint32_t> generation_{0};
   std::atomic<uint32_t> pending_{0};
   std::atomic<bool> stop_{false};
-  std::exception_ptr error_;  // the first job's exception of a run, under error_mutex_
+  std::exception_ptr error_;  // the first job's exception of a run, under mutex_
   std::vector<std::thread> threads_;
   int placed_for_cpu_ = -1;  // the caller's CPU the threads' affinity was last set for
   mutable std::mutex pace_mutex_;
