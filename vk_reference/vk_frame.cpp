@@ -160,13 +160,8 @@ double Frame::submit_and_wait() {
   const VkFence fence = fence_.get();
   const VkCommandBuffer commands = commands_.get();
   check(api().vkResetFences(device, 1, &fence), "vkResetFences");
-  VkSubmitInfo submit{};
-  submit.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
-  submit.commandBufferCount = 1;
-  submit.pCommandBuffers = &commands;
   const auto start = std::chrono::steady_clock::now();
-  check(api().vkQueueSubmit(context_.queue(), 1, &submit, fence), "vkQueueSubmit");
-  check(api().vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+  vk::submit_and_wait(context_, commands, fence);
   const auto stop = std::chrono::steady_clock::now();
   submitted_ = true;
   return std::chrono::duration<double>(stop - start).count();

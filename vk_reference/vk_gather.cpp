@@ -97,6 +97,20 @@ Owned<VkPipeline> create_pipeline(VkDevice device, VkPipelineLayout layout, VkSh
   return own(device, api().vkDestroyPipeline, pipeline);
 }
 
+// A pool for `sets` descriptor sets of the gather layout (an image and a buffer each).
+Owned<VkDescriptorPool> create_pool(VkDevice device, uint32_t sets) {
+  const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, sets},
+                                        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, sets}};
+  VkDescriptorPoolCreateInfo info{};
+  info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
+  info.maxSets = sets;
+  info.poolSizeCount = 2;
+  info.pPoolSizes = sizes;
+  VkDescriptorPool pool = VK_NULL_HANDLE;
+  check(api().vkCreateDescriptorPool(device, &info, nullptr, &pool), "vkCreateDescriptorPool");
+  return own(device, api().vkDestroyDescriptorPool, pool);
+}
+
 VkDescriptorSet allocate_set(VkDevice device, VkDescriptorPool pool, VkDescriptorSetLayout layout) {
   VkDescriptorSetAllocateInfo alloc{};
   alloc.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO;
@@ -148,17 +162,9 @@ SampleGather::Binding SampleGather::bind(VkImageView image_ms, const Buffer& sam
   const uint32_t band_rows = rows_per_band(context_.enabled().limits, row_bytes, context_.info().name,
                                            kind_ == GatherKind::Owner ? "owner" : "depth");
   const uint32_t band_count = (height + band_rows - 1) / band_rows;
-  const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, band_count},
-                                        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, band_count}};
-  VkDescriptorPoolCreateInfo pool_info{};
-  pool_info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
-  pool_info.maxSets = band_count;
-  pool_info.poolSizeCount = 2;
-  pool_info.pPoolSizes = sizes;
-  VkDescriptorPool pool = VK_NULL_HANDLE;
-  check(api().vkCreateDescriptorPool(device, &pool_info, nullptr, &pool), "vkCreateDescriptorPool");
   Binding binding;
-  binding.pool = own(device, api().vkDestroyDescriptorPool, pool);
+  binding.pool = create_pool(device, band_count);
+  const VkDescriptorPool pool = binding.pool.get();
   binding.width = width;
   binding.samples = samples;
   for (uint32_t first_row = 0; first_row < height; first_row += band_rows) {
@@ -240,16 +246,7 @@ std::optional<UnormSampling> measure_unorm_sampling(const Context& context, Dept
   const Owned<VkPipelineLayout> layout = create_layout(device, set_layout.get());
   const Owned<VkShaderModule> shader = create_shader_module(device, sample_depth_comp, sizeof(sample_depth_comp));
   const Owned<VkPipeline> pipeline = create_pipeline(device, layout.get(), shader.get());
-  const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1},
-                                        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1}};
-  VkDescriptorPoolCreateInfo pool_info{};
-  pool_info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
-  pool_info.maxSets = 1;
-  pool_info.poolSizeCount = 2;
-  pool_info.pPoolSizes = sizes;
-  VkDescriptorPool pool_handle = VK_NULL_HANDLE;
-  check(api().vkCreateDescriptorPool(device, &pool_info, nullptr, &pool_handle), "vkCreateDescriptorPool");
-  const Owned<VkDescriptorPool> pool = own(device, api().vkDestroyDescriptorPool, pool_handle);
+  const Owned<VkDescriptorPool> pool = create_pool(device, 1);
   const VkDescriptorSet set = allocate_set(device, pool.get(), set_layout.get());
   write_set(device, set, {sampler.get(), image.view.get(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
             {sampled.buffer.get(), 0, sampled.size});
@@ -283,13 +280,7 @@ std::optional<UnormSampling> measure_unorm_sampling(const Context& context, Dept
   api().vkCmdDispatch(cb, kProbeSide / kLocalSize, kProbeSide / kLocalSize, 1);
   host_read_barrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT);
   check(api().vkEndCommandBuffer(cb), "vkEndCommandBuffer");
-  VkSubmitInfo submit{};
-  submit.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
-  submit.commandBufferCount = 1;
-  submit.pCommandBuffers = &cb;
-  const VkFence fence_handle = fence.get();
-  check(api().vkQueueSubmit(context.queue(), 1, &submit, fence_handle), "vkQueueSubmit");
-  check(api().vkWaitForFences(device, 1, &fence_handle, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+  submit_and_wait(context, cb, fence.get());
 
   const auto* floats = static_cast<const uint32_t*>(sampled.mapped);
   for (const UnormSampling sampling : kUnormSamplings) {

@@ -119,6 +119,15 @@ Owned<VkFence> create_fence(const Context& context) {
   return own(context.device(), api().vkDestroyFence, fence);
 }
 
+void submit_and_wait(const Context& context, VkCommandBuffer commands, VkFence fence) {
+  VkSubmitInfo submit{};
+  submit.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
+  submit.commandBufferCount = 1;
+  submit.pCommandBuffers = &commands;
+  check(api().vkQueueSubmit(context.queue(), 1, &submit, fence), "vkQueueSubmit");
+  check(api().vkWaitForFences(context.device(), 1, &fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+}
+
 VkImageMemoryBarrier layout_barrier(VkImage image, VkImageAspectFlags aspect, VkAccessFlags src_access,
                                     VkImageLayout old_layout, VkAccessFlags dst_access, VkImageLayout new_layout) {
   VkImageMemoryBarrier barrier{};

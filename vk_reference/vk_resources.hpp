@@ -45,6 +45,8 @@ void require_image_support(const Context& context, const ImageSpec& spec, const 
 // A primary command buffer from the context's pool, and an unsignalled fence.
 Owned<VkCommandBuffer> allocate_commands(const Context& context);
 Owned<VkFence> create_fence(const Context& context);
+// Submits `commands` to the context's queue with the unsignalled `fence` and waits for it.
+void submit_and_wait(const Context& context, VkCommandBuffer commands, VkFence fence);
 
 // A layout transition of the image's one level and layer.
 VkImageMemoryBarrier layout_barrier(VkImage image, VkImageAspectFlags aspect, VkAccessFlags src_access,
