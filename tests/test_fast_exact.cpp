@@ -656,6 +656,30 @@ TEST(FastLines, TrailingRunSetUpsThatMeetDenormals) {
   }
 }
 
+// Wide lines that cross the view volume's sides, their ends a few pixels either side of the
+// 64-row tile borders between workers: a clipped line is left out by a worker only when its
+// clipped ends, widened by the line's margin, miss the worker's rows (walk_exact). A worker that
+// left out a line whose quad reaches one of its rows would lose that row's pixels.
+TEST(FastLines, ClippedLinesBesideAWorkersRows) {
+  Scene scene;
+  scene.name = "clipped wide lines at tile borders";
+  scene.width = 200;
+  scene.height = 256;
+  Draw draw;
+  draw.topology = Topology::LineList;
+  draw.state.line_width = 7.0f;
+  for (int border = 1; border < 4; ++border) {
+    for (int d = -6; d <= 6; ++d) {
+      const float y = float(border * 64 + d) / 128.0f - 1.0f, z = 0.2f + 0.05f * float(d + 6);
+      const float side = d % 2 == 0 ? -1.0f : 1.0f;  // alternately cut by the left and right planes
+      draw.positions_clip.emplace_back(1.4f * side, y, z, 1.0f);
+      draw.positions_clip.emplace_back(-0.6f * side, y + 0.01f * float(d), z + 0.1f, 1.0f);
+    }
+  }
+  scene.draws.push_back(std::move(draw));
+  expect_fast_matches(scene, true, {1u, 2u, 3u, 4u});
+}
+
 TEST(FastBuiltinScenes, NotSupportedStaysNotSupported) {
   const Scene scene = load_scene_file(std::string(RASTERCMP_SOURCE_DIR) + "/scenes/not_supported/point_list.json");
   EXPECT_THROW(render_fast(scene, true, 2, fast_test::best_isa()), NotSupportedError);

@@ -105,6 +105,10 @@ bool BandWorker::walk_exact(uint32_t d) {
         const ClippedLine clipped = clip_line({v[0], v[1]}, frame.viewport, inside_planes, line_xy);
         if (clipped.fate == ClipFate::Outside || clipped.fate == ClipFate::Discarded) continue;
         const std::array<WindowVertex, 2> window{clipped.line[0].window, clipped.line[1].window};
+        // a line the clipper cut was not settled by its vertices above: its cut ends are set-up's input
+        if (frame_.workers > 1 && clipped.fate == ClipFate::Clipped &&
+            clipped_line_misses_own_rows(window, margin, !flushed))
+          continue;
         const bool lean_line = frame_.raster.avx2 && (flushed || !bias_denormal);
         const LeanSetup lean =
             lean_line ? setup_line_lean_flushed(flushed, window, owner, walk.ctx) : LeanSetup::Full;
@@ -193,6 +197,14 @@ DrawWalk BandWorker::begin_draw_transformed(uint32_t d) const {
 bool BandWorker::misses_own_rows(const ClipVertex* v, uint32_t count, float margin, bool may_throw) const {
   const RowReach reach =
       reach_of(count, margin, [v](uint32_t k) { return std::pair{v[k].window, v[k].clip_mask}; });
+  return reach == RowReach::OtherRows || (reach == RowReach::NoFrameRow && !may_throw);
+}
+
+// misses_own_rows for a line the clipper cut, from its clipped ends' window positions (which
+// set-up takes as they are, whatever their clip bits).
+bool BandWorker::clipped_line_misses_own_rows(const std::array<WindowVertex, 2>& window, float margin,
+                                              bool may_throw) const {
+  const RowReach reach = reach_of(2, margin, [&window](uint32_t k) { return std::pair{window[k], 0u}; });
   return reach == RowReach::OtherRows || (reach == RowReach::NoFrameRow && !may_throw);
 }
 
