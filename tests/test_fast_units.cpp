@@ -18,8 +18,10 @@
 
 #include "bench/bench_scenes.hpp"
 #include "bench/bench_stats.hpp"
+#include "cpu_raster/exact/clip_test.hpp"
 #include "cpu_raster/exact/clip_vertex.hpp"
 #include "cpu_raster/exact/depth_sample.hpp"
+#include "cpu_raster/exact/draw_chunks.hpp"
 #include "cpu_raster/exact/edge_plane.hpp"
 #include "cpu_raster/exact/fixed_point.hpp"
 #include "cpu_raster/exact/float_ops.hpp"
@@ -32,6 +34,7 @@
 #include "cpu_raster/fast/row_balance.hpp"
 #include "cpu_raster/fast/tile_depth_bounds.hpp"
 #include "cpu_raster/fast/tile_raster.hpp"
+#include "cpu_raster/fast/trailing_check.hpp"
 #include "cpu_raster/fast/worker_pool.hpp"
 #include "tests/test_fast_support.hpp"
 
@@ -275,6 +278,58 @@ TEST(FastVertices, Avx2PassEqualsScalarPass) {
 TEST(FastVertices, Avx512PassEqualsScalarPass) {
   if (!host_has_avx512()) GTEST_SKIP() << "host without AVX-512: the AVX-512 pass never runs here";
   expect_pass_equals_scalar(transform_vertices_avx512);
+}
+
+// The chunk flags from the vertex phase's compact rows (transformed_pipelined_chunks) are the
+// exact path's (pipelined_chunks_by with clip_test.hpp's mask) for every topology, with and
+// without indices: chunks of several sizes, a few clipped vertices at random places (a chunk's
+// flag then hangs on one vertex), indices past the positions (counted as unclipped), positions
+// with w = 0 at the origin (no clip bit, a failed snap).
+TEST(FastChunkFlags, CompactRowsGiveTheExactPathsChunkFlags) {
+  fast_test::Random r(7);
+  const ViewportTransform viewport = make_viewport_transform(Viewport{0, 0, 640, 480, 0, 1});
+  for (const Topology topology : {Topology::PointList, Topology::LineList, Topology::LineStrip, Topology::TriangleList,
+                                  Topology::TriangleStrip, Topology::TriangleFan}) {
+    for (const bool indexed : {false, true}) {
+      for (const uint32_t vertices : {1u, 5u, 4000u, 9000u}) {
+        Scene scene;
+        Draw draw;
+        draw.topology = topology;
+        for (uint32_t k = 0; k < vertices; ++k) {
+          // about one vertex in 500 clipped, and position 3, where an index past the positions
+          // would land if it wrapped; now and then (0, 0, 0, 0): no clip bit, and its snap fails
+          if (k % 1000 == 7) {
+            draw.positions_clip.emplace_back(0.0f, 0.0f, 0.0f, 0.0f);
+            continue;
+          }
+          const bool outside = k == 3 || r.unit() < 0.002;  // then past the right plane
+          draw.positions_clip.emplace_back(outside ? 2.0f : float(r.range(-0.9, 0.9)), float(r.range(-0.9, 0.9)),
+                                           float(r.range(0.1, 0.9)), 1.0f);
+        }
+        if (indexed)
+          for (uint32_t k = 0; k < vertices; ++k)
+            draw.indices.push_back(r.unit() < 0.001 ? vertices + 3 : r.below(vertices));
+        scene.draws.push_back(draw);
+        std::vector<FastVertex> out(vertices);
+        std::vector<int16_t> rows(vertices + 8);
+        transform_vertices_scalar(VertexJob{draw.positions_clip.data(), viewport, true, true}, 0, vertices, out.data(),
+                                  rows.data());
+        FastFrame frame;
+        frame.scene = &scene;
+        frame.draws.resize(1);
+        frame.draws[0].vertices = out.data();
+        frame.draws[0].tile_rows = rows.data();
+        const std::vector<bool> exact = pipelined_chunks_by(draw, [&draw](uint32_t position) {
+          return position < draw.positions_clip.size() && clip_mask(draw.positions_clip[position], true) != 0;
+        });
+        SCOPED_TRACE(std::string(to_string(topology)) + (indexed ? " indexed " : " ") + std::to_string(vertices));
+        EXPECT_EQ(transformed_pipelined_chunks(frame, 0), exact);
+        if (vertices == 9000) {
+          EXPECT_NE(std::count(exact.begin(), exact.end(), true), 0);
+        }
+      }
+    }
+  }
 }
 
 // The block-row phase's shortcut: whenever span_tile_rows_avx2 answers for a run of blocks, each

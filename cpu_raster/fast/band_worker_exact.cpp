@@ -15,6 +15,7 @@
 #include "cpu_raster/fast/band_worker.hpp"
 #include "cpu_raster/fast/exact_rows.hpp"
 #include "cpu_raster/fast/lean_setup.hpp"
+#include "cpu_raster/fast/trailing_check.hpp"
 #include "model/render_result.hpp"
 
 namespace rastercmp::cpu::fast {
@@ -179,7 +180,7 @@ DrawWalk BandWorker::begin_draw_transformed(uint32_t d) const {
   const auto clipped = [vertices, positions](uint32_t position) {
     return position < positions && (vertices[position].flags & kVertexClipBits) != 0;
   };
-  std::vector<bool> pipelined = pipelined_chunks_by(draw, clipped);
+  std::vector<bool> pipelined = transformed_pipelined_chunks(frame_, d);
   const TrailingPipelineRun run = trailing_pipeline_run_of(draw, pipelined, clipped);
   return begin_draw(frame_.exact, d, std::move(pipelined), run);
 }

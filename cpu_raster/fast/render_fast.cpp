@@ -221,8 +221,7 @@ std::vector<TrailingCheck> transform_all_vertices(FastFrame& frame, bool check_p
     }
     // the §1.5 chunk flags, from the vertices' clip bits; read only for the pipeline path's cull
     if ((draw_flags[d] & kVertexClipBits) && draw.state.cull_mode != CullMode::None)
-      fd.pipelined_chunks = pipelined_chunks_by(
-          draw, [&fd](uint32_t position) { return (fd.vertices[position].flags & kVertexClipBits) != 0; });
+      fd.pipelined_chunks = transformed_pipelined_chunks(frame, d);
     // The eight-wide set-up leaves out what it does not model: depth bias, the pipeline float cull.
     fd.small_blocks = fd.raster.small_fn && fd.raster.vector_ok && !draw.state.depth_bias.enable &&
                       !(fd.any_pipelined() && draw.state.cull_mode != CullMode::None);

@@ -1,6 +1,7 @@
 #include "cpu_raster/fast/trailing_check.hpp"
 
 #include <array>
+#include <vector>
 
 #include "cpu_raster/exact/depth_plane.hpp"
 #include "cpu_raster/exact/draw_chunks.hpp"
@@ -13,8 +14,21 @@
 
 namespace rastercmp::cpu::fast {
 
-// A position past the draw's counts as unclipped here: such an index makes the render throw (the
-// profile check) before anything is drawn.
+std::vector<bool> transformed_pipelined_chunks(const FastFrame& frame, uint32_t d) {
+  const Draw& draw = frame.scene->draws[d];
+  const int16_t* rows = frame.draws[d].tile_rows;
+  const size_t positions = draw.positions_clip.size();
+  // Each chunk's scan mostly stops within its first few vertices, each chunk's first index line
+  // read cold: those lines asked for at once, before the scan waits on them one by one.
+  const uint32_t count = primitive_count(draw), per_chunk = primitives_per_chunk(draw);
+  if (!draw.indices.empty())
+    for (uint32_t first = 0; first < count; first += per_chunk)
+      __builtin_prefetch(draw.indices.data() + chunk_vertices(draw.topology, first, first).begin);
+  return pipelined_chunks_by(draw, [rows, positions](uint32_t position) {
+    return position < positions && row_clip_bits(rows[position]) != 0;
+  });
+}
+
 uint32_t trailing_run_first(const FastFrame& frame, uint32_t d) {
   const FastDraw& fd = frame.draws[d];
   const Draw& draw = frame.scene->draws[d];
@@ -22,7 +36,7 @@ uint32_t trailing_run_first(const FastFrame& frame, uint32_t d) {
   const auto clipped = [&fd, positions](uint32_t position) {
     return position < positions && (fd.vertices[position].flags & kVertexClipBits) != 0;
   };
-  return trailing_pipeline_run_of(draw, pipelined_chunks_by(draw, clipped), clipped).first;
+  return trailing_pipeline_run_of(draw, transformed_pipelined_chunks(frame, d), clipped).first;
 }
 
 namespace {

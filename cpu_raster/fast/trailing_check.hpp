@@ -6,10 +6,17 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "cpu_raster/fast/fast_frame.hpp"
 
 namespace rastercmp::cpu::fast {
+
+// pipelined_chunks_by(draw, clipped) (draw_chunks.hpp) with `clipped` the vertex phase's clip bits,
+// read from its compact rows (FastDraw::tile_rows: 2 bytes a position, where the FastVertex takes
+// 16), each chunk's first index line asked for before the scan. A position past the draw's counts
+// as unclipped: such an index makes the render throw (the profile check) before anything is drawn.
+std::vector<bool> transformed_pipelined_chunks(const FastFrame& frame, uint32_t d);
 
 // The first primitive of the draw's trailing pipelined run (front_end.hpp), primitive_count(draw)
 // when there is none, from the vertex phase's clip bits.
