@@ -347,7 +347,20 @@ void measure_all_block_rows(FastFrame& frame, const std::vector<TrailingCheck>& 
     if (row_met[t]) drop_fast_draw(frame.draws[tasks[t].draw]);
   for (size_t i = 0; i < clip_tasks.size(); ++i)
     if (clip_met[i]) drop_fast_draw(frame.draws[tasks[clip_tasks[i].row_task].draw]);
-  // the clipped triangles in primitive order: each row task's own, then its clip tasks'
+  // the clipped triangles in primitive order: each row task's own, then its clip tasks' (each
+  // draw's table sized first: one copy of each part, no regrowth)
+  std::vector<std::pair<size_t, size_t>> sizes(frame.draws.size(), {0, 0});
+  const auto count_part = [&sizes](uint32_t d, const ClippedTable& part) {
+    sizes[d].first += part.primitives.size();
+    sizes[d].second += part.pieces.size();
+  };
+  for (size_t t = 0; t < tasks.size(); ++t) count_part(tasks[t].draw, clipped[t]);
+  for (size_t i = 0; i < clip_tasks.size(); ++i) count_part(tasks[clip_tasks[i].row_task].draw, clip_tables[i]);
+  for (uint32_t d = 0; d < frame.draws.size(); ++d) {
+    if (!frame.draws[d].small_blocks || sizes[d].first == 0) continue;
+    frame.draws[d].clipped.primitives.reserve(frame.draws[d].clipped.primitives.size() + sizes[d].first);
+    frame.draws[d].clipped.pieces.reserve(frame.draws[d].clipped.pieces.size() + sizes[d].second);
+  }
   for (size_t t = 0, i = 0; t < tasks.size(); ++t) {
     FastDraw& fd = frame.draws[tasks[t].draw];
     if (!fd.small_blocks)  // dropped: its blocks count nowhere
