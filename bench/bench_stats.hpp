@@ -1,4 +1,4 @@
-// Measurement helpers of the benchmarks (docs/performance.md "Method"): robust summaries of
+// Measurement helpers of the benchmarks (docs/performance.md, "How to measure"): robust summaries of
 // repeated timings, per-run peak memory and the machine's load during a run.
 #pragma once
 

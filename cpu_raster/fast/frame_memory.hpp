@@ -1,4 +1,4 @@
-// Memory of a fast render (docs/performance.md "Allocation"): the result buffers are sized
+// Memory of a fast render (docs/performance.md, "How the fast path works"): the result buffers are sized
 // without a separate clear pass (tiles are cleared by their workers), large fresh buffers ask for
 // transparent huge pages (one fault per 2 MiB instead of 512), and the per-vertex arrays live in a
 // per-thread scratch buffer that is kept between renders (its size: 24 bytes per position of the
