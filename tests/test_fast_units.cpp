@@ -27,6 +27,7 @@
 #include "cpu_raster/exact/float_ops.hpp"
 #include "cpu_raster/fast/block_rows.hpp"
 #include "cpu_raster/fast/cpu_features.hpp"
+#include "cpu_raster/fast/exact_reach.hpp"
 #include "cpu_raster/fast/exact_rows.hpp"
 #include "cpu_raster/fast/fast_frame.hpp"
 #include "cpu_raster/fast/fast_vertices.hpp"
@@ -328,6 +329,33 @@ TEST(FastChunkFlags, CompactRowsGiveTheExactPathsChunkFlags) {
           EXPECT_NE(std::count(exact.begin(), exact.end(), true), 0);
         }
       }
+    }
+  }
+}
+
+// The reach phase's packed tile rows (exact_reach.hpp) answer as the pixel rows they came from:
+// for spans in, across, above and below the frame (far beyond it too), every run of tile rows a
+// worker may own meets the packed rows exactly when it meets the span's, and both say "no row of
+// the frame" alike; an unsettled span stays unsettled.
+TEST(FastListReach, PackedTileRowsGiveTheSameAnswers) {
+  fast_test::Random r(11);
+  EXPECT_EQ(pack_tile_rows(RowSpan{}, 16), kReachUnsettled);
+  for (const int32_t tiles_y : {1, 5, 16, 256}) {
+    for (int n = 0; n < 4000; ++n) {
+      const int32_t reach = int32_t(r.below(4)) == 0 ? 20000000 : 64 * (tiles_y + 3);
+      const int32_t lo = int32_t(r.range(-reach, reach)), hi = lo + int32_t(r.below(n % 2 ? 200 : 100000));
+      const RowSpan span{true, lo, hi};
+      const uint32_t packed = pack_tile_rows(span, tiles_y);
+      ASSERT_NE(packed, kReachUnsettled);
+      const auto [tile_lo, tile_hi] = unpack_tile_rows(packed);
+      const int32_t exact_lo = lo >> kTileOrder, exact_hi = hi >> kTileOrder;
+      for (int32_t first = 0; first < tiles_y; ++first) {
+        for (int32_t last = first; last < std::min(tiles_y, first + 3); ++last) {
+          const bool meets = std::max(exact_lo, first) <= std::min(exact_hi, last);
+          EXPECT_EQ(std::max(tile_lo, first) <= std::min(tile_hi, last), meets) << lo << ".." << hi;
+        }
+      }
+      EXPECT_EQ(tile_hi < 0 || tile_lo >= tiles_y, exact_hi < 0 || exact_lo >= tiles_y) << lo << ".." << hi;
     }
   }
 }

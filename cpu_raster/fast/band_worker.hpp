@@ -15,6 +15,7 @@
 #include "cpu_raster/exact/clip_vertex.hpp"
 #include "cpu_raster/exact/front_end.hpp"
 #include "cpu_raster/fast/block_rows.hpp"
+#include "cpu_raster/fast/exact_reach.hpp"
 #include "cpu_raster/fast/fast_frame.hpp"
 #include "cpu_raster/fast/lean_setup.hpp"
 #include "cpu_raster/fast/small_triangles.hpp"
@@ -96,10 +97,8 @@ class BandWorker {
   // Where a primitive's visit may reach (misses_own_rows): not settled by its vertices, some of this
   // worker's rows, only other workers' rows, or no row of the frame.
   enum class RowReach { Unsettled, OwnRows, OtherRows, NoFrameRow };
-  template <class Vertex>
-  RowReach reach_of(uint32_t count, float margin, Vertex&& vertex) const;
-  RowReach listed_reach(const Draw& draw, const FastVertex* transformed, size_t positions, uint32_t corners,
-                        uint32_t i, float margin) const;
+  RowReach reach_of(const RowSpan& span) const;
+  RowReach reach_of_tile_rows(uint32_t packed) const;
   // The exact rasterizer for one primitive, on this worker's tile rows.
   void raster_exact_in_band(const RasterPrimitive& primitive, const DepthTestState& depth);
 

@@ -13,6 +13,7 @@
 #include "cpu_raster/exact/float_ops.hpp"
 #include "cpu_raster/exact/front_end.hpp"
 #include "cpu_raster/fast/band_worker.hpp"
+#include "cpu_raster/fast/exact_reach.hpp"
 #include "cpu_raster/fast/exact_rows.hpp"
 #include "cpu_raster/fast/lean_setup.hpp"
 #include "cpu_raster/fast/trailing_check.hpp"
@@ -50,10 +51,7 @@ bool BandWorker::walk_exact(uint32_t d) {
     if (outcome.rasterized()) raster_exact_in_band(outcome.raster, depth);
   };
   const bool lines = walk.base.is_line, depth_clip = walk.draw->state.depth_clip_enabled();
-  // How far a primitive's visit rectangle reaches past its vertices' window y: a line's quad its
-  // half width, a Bresenham end's shift (at most one pixel) and the rounded-up box; a triangle's
-  // box and the multisample scissor quirk one row each.
-  const float margin = lines ? std::max(walk.draw->state.line_width, 1.0f) + 3.0f : 2.0f;
+  const float margin = reach_margin(*walk.draw, lines);  // how far a visit reaches past its vertices
   const uint32_t corners = lines ? 2 : 3;
   // Lines: run_line's calls (clip, set-up in the primitive's mode) without the outcome's
   // bookkeeping. A triangle run_triangle would pass unclipped to set-up, without the pipeline's
@@ -67,16 +65,19 @@ bool BandWorker::walk_exact(uint32_t d) {
   const LineXyClip line_xy = frame.rules.has(LavapipeRule::LineGuardBand) ? LineXyClip::GuardBand : LineXyClip::Clip;
   // A line or triangle list: primitive i's corners are positions (indices[]) corners * i + k, so a
   // primitive in other workers' rows is left out from the vertex phase's values before it is
-  // assembled.
+  // assembled: from the tile rows the reach phase stored (exact_reach.hpp), or worked out here.
   const bool listed = transformed && frame_.workers > 1 &&
                       walk.draw->topology == (lines ? Topology::LineList : Topology::TriangleList);
+  const uint32_t* list_reach = frame_.draws[d].list_reach;
   // A primitive that throws (set-up in a mode where the two modes disagree, a refused wrapping
   // set-up) stops this walk; the render throws the first such primitive's error (FastFrame::failure).
   uint32_t i = 0;
   try {
     for (; i < walk.count; ++i) {
       if (listed) {
-        const RowReach reach = listed_reach(*walk.draw, transformed, positions, corners, i, margin);
+        const RowReach reach = list_reach
+                                   ? reach_of_tile_rows(list_reach[i])
+                                   : reach_of(listed_row_span(*walk.draw, transformed, positions, corners, i, margin));
         if (reach == RowReach::OtherRows) continue;
         if (reach == RowReach::NoFrameRow && primitive_setup_denormals(walk, i) == SetupDenormals::Flushed) continue;
       }
@@ -196,8 +197,9 @@ DrawWalk BandWorker::begin_draw_transformed(uint32_t d) const {
 // sets it up, in order, and records its error (walk_exact, FastFrame::failure), which is then
 // the first failing primitive's, as on the exact path.
 bool BandWorker::misses_own_rows(const ClipVertex* v, uint32_t count, float margin, bool may_throw) const {
-  const RowReach reach =
-      reach_of(count, margin, [v](uint32_t k) { return std::pair{v[k].window, v[k].clip_mask}; });
+  const RowReach reach = reach_of(row_span_of(count, margin, [v](uint32_t k) {
+    return std::pair{v[k].window, v[k].clip_mask};
+  }));
   return reach == RowReach::OtherRows || (reach == RowReach::NoFrameRow && !may_throw);
 }
 
@@ -205,50 +207,24 @@ bool BandWorker::misses_own_rows(const ClipVertex* v, uint32_t count, float marg
 // set-up takes as they are, whatever their clip bits).
 bool BandWorker::clipped_line_misses_own_rows(const std::array<WindowVertex, 2>& window, float margin,
                                               bool may_throw) const {
-  const RowReach reach = reach_of(2, margin, [&window](uint32_t k) { return std::pair{window[k], 0u}; });
+  const RowReach reach = reach_of(row_span_of(2, margin, [&window](uint32_t k) { return std::pair{window[k], 0u}; }));
   return reach == RowReach::OtherRows || (reach == RowReach::NoFrameRow && !may_throw);
 }
 
-// Primitive i of a line or triangle list (`corners` a primitive), from the vertex phase's values
-// at its positions: Unsettled when one lies past the draw's positions (the walk's own path then
-// takes it) or the list ends before its last corner.
-BandWorker::RowReach BandWorker::listed_reach(const Draw& draw, const FastVertex* transformed, size_t positions,
-                                              uint32_t corners, uint32_t i, float margin) const {
-  std::array<uint32_t, 3> at{};
-  const size_t first = size_t(corners) * i, listed = draw.indices.empty() ? positions : draw.indices.size();
-  if (first + corners > listed) return RowReach::Unsettled;
-  for (uint32_t k = 0; k < corners; ++k) {
-    at[k] = draw.indices.empty() ? uint32_t(first + k) : draw.indices[first + k];
-    if (at[k] >= positions) return RowReach::Unsettled;
-  }
-  return reach_of(corners, margin, [&](uint32_t k) {
-    const FastVertex& v = transformed[at[k]];
-    return std::pair{WindowVertex{v.x, v.y, v.z}, v.flags & kVertexClipBits};
-  });
+BandWorker::RowReach BandWorker::reach_of(const RowSpan& span) const {
+  if (!span.settled) return RowReach::Unsettled;
+  const int32_t lo = span.lo >> kTileOrder, hi = span.hi >> kTileOrder;
+  if (owns_tile_rows(lo, hi)) return RowReach::OwnRows;
+  return hi < 0 || lo >= frame_.raster.tiles_y ? RowReach::NoFrameRow : RowReach::OtherRows;
 }
 
-template <class Vertex>
-BandWorker::RowReach BandWorker::reach_of(uint32_t count, float margin, Vertex&& vertex) const {
-  const WindowVertex first = vertex(0).first;
-  float x_lo = first.x, x_hi = x_lo, y_lo = first.y, y_hi = y_lo;
-  for (uint32_t k = 0; k < count; ++k) {
-    const auto [window, clip_mask] = vertex(k);
-    if (clip_mask != 0 || !std::isfinite(window.x) || !std::isfinite(window.y)) return RowReach::Unsettled;
-    x_lo = std::min(x_lo, window.x);
-    x_hi = std::max(x_hi, window.x);
-    y_lo = std::min(y_lo, window.y);
-    y_hi = std::max(y_hi, window.y);
-  }
-  if ((x_hi - x_lo) + (y_hi - y_lo) + 4.0f * margin >= 32000.0f || y_lo < -1e7f || y_hi > 1e7f)
-    return RowReach::Unsettled;
-  // floor of a float within +-2e7: its truncation, one less when that lies above it
-  const auto floor_of = [](float value) {
-    const int32_t t = int32_t(value);
-    return float(t) > value ? t - 1 : t;
-  };
-  const int32_t row_lo = floor_of(y_lo - margin), row_hi = floor_of(y_hi + margin);
-  if (owns_tile_rows(row_lo >> kTileOrder, row_hi >> kTileOrder)) return RowReach::OwnRows;
-  return row_hi < 0 || (row_lo >> kTileOrder) >= frame_.raster.tiles_y ? RowReach::NoFrameRow : RowReach::OtherRows;
+// reach_of for the tile rows the reach phase stored: the same answer (their clamp to [-1,
+// tiles_y] changes none, exact_reach.hpp).
+BandWorker::RowReach BandWorker::reach_of_tile_rows(uint32_t packed) const {
+  if (packed == kReachUnsettled) return RowReach::Unsettled;
+  const auto [lo, hi] = unpack_tile_rows(packed);
+  if (owns_tile_rows(lo, hi)) return RowReach::OwnRows;
+  return hi < 0 || lo >= frame_.raster.tiles_y ? RowReach::NoFrameRow : RowReach::OtherRows;
 }
 
 void BandWorker::raster_exact_in_band(const RasterPrimitive& primitive, const DepthTestState& depth) {

@@ -61,6 +61,9 @@ struct FastDraw {
   // A walk skips a group that reaches none of its worker's rows.
   uint32_t* group_rows = nullptr;
   ClippedTable clipped;            // several workers: its clipped triangles, set up once
+  // Several workers, a line or triangle list the exact front end walks: per primitive, the tile
+  // rows it may reach (exact_reach.hpp's packed form), from the reach phase; null elsewhere.
+  uint32_t* list_reach = nullptr;
 };
 
 // block_rows value of a block that must be set up by every worker.

@@ -48,6 +48,12 @@ uint32_t* thread_word_scratch(size_t count) {
   return words.data();
 }
 
+uint32_t* thread_reach_scratch(size_t count) {
+  thread_local std::vector<uint32_t> words;
+  if (words.size() < count) words.resize(count);
+  return words.data();
+}
+
 VertexScratch& thread_vertex_scratch() {
   thread_local VertexScratch scratch;
   return scratch;

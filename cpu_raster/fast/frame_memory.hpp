@@ -40,5 +40,7 @@ int16_t* thread_row_scratch(size_t count);
 
 // The calling thread's scratch of `count` words (contents unspecified), valid until the next call.
 uint32_t* thread_word_scratch(size_t count);
+// The same, a second one (the list reach phase's, FastDraw::list_reach).
+uint32_t* thread_reach_scratch(size_t count);
 
 }  // namespace rastercmp::cpu::fast

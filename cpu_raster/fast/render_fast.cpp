@@ -8,6 +8,8 @@
 //     tasks a worker, the clip phase), and from the rows which worker draws each tile
 //     (row_balance.hpp: whole rows, or runs of a heavy row's tiles in queued units); then, where
 //     a row is shared between units, the tile columns of the blocks that reach it (block columns);
+//     and the tile rows each primitive of the exact draws' lists may reach (list reach,
+//     exact_reach.hpp);
 //  4. bands: one BandWorker per worker (or per queued unit) walks all draws and rasterizes its
 //     own tiles.
 #include "cpu_raster/fast/render_fast.hpp"
@@ -29,6 +31,7 @@
 #include "cpu_raster/fast/band_worker.hpp"
 #include "cpu_raster/fast/block_phases.hpp"
 #include "cpu_raster/fast/cpu_features.hpp"
+#include "cpu_raster/fast/exact_reach.hpp"
 #include "cpu_raster/fast/frame_memory.hpp"
 #include "cpu_raster/fast/phase_run.hpp"
 #include "cpu_raster/fast/trailing_check.hpp"
@@ -282,6 +285,7 @@ void render_fast_into(const Scene& scene, const CpuOptions& options, const FastC
     check_index_ranges(frame);
     measure_all_block_rows(frame, checks);
     measure_shared_columns(frame);
+    measure_list_reach(frame);
   }
   run_workers(frame);
   if (frame.failure.error) std::rethrow_exception(frame.failure.error);
