@@ -99,6 +99,7 @@ class BandWorker {
   enum class RowReach { Unsettled, OwnRows, OtherRows, NoFrameRow };
   RowReach reach_of(const RowSpan& span) const;
   RowReach reach_of_tile_rows(uint32_t packed) const;
+  RowReach reach_of_tiles(int32_t lo, int32_t hi) const;
   // The exact rasterizer for one primitive, on this worker's tile rows.
   void raster_exact_in_band(const RasterPrimitive& primitive, const DepthTestState& depth);
 

@@ -212,10 +212,7 @@ bool BandWorker::clipped_line_misses_own_rows(const std::array<WindowVertex, 2>&
 }
 
 BandWorker::RowReach BandWorker::reach_of(const RowSpan& span) const {
-  if (!span.settled) return RowReach::Unsettled;
-  const int32_t lo = span.lo >> kTileOrder, hi = span.hi >> kTileOrder;
-  if (owns_tile_rows(lo, hi)) return RowReach::OwnRows;
-  return hi < 0 || lo >= frame_.raster.tiles_y ? RowReach::NoFrameRow : RowReach::OtherRows;
+  return span.settled ? reach_of_tiles(span.lo >> kTileOrder, span.hi >> kTileOrder) : RowReach::Unsettled;
 }
 
 // reach_of for the tile rows the reach phase stored: the same answer (their clamp to [-1,
@@ -223,6 +220,11 @@ BandWorker::RowReach BandWorker::reach_of(const RowSpan& span) const {
 BandWorker::RowReach BandWorker::reach_of_tile_rows(uint32_t packed) const {
   if (packed == kReachUnsettled) return RowReach::Unsettled;
   const auto [lo, hi] = unpack_tile_rows(packed);
+  return reach_of_tiles(lo, hi);
+}
+
+// Tile rows [lo, hi] (any integers): some of this worker's, none of them, or none of the frame's.
+BandWorker::RowReach BandWorker::reach_of_tiles(int32_t lo, int32_t hi) const {
   if (owns_tile_rows(lo, hi)) return RowReach::OwnRows;
   return hi < 0 || lo >= frame_.raster.tiles_y ? RowReach::NoFrameRow : RowReach::OtherRows;
 }
