@@ -203,7 +203,7 @@ void measure_all_block_rows(FastFrame& frame, const std::vector<TrailingCheck>& 
   if (blocks == 0) contiguous_rows(frame);
   if (blocks == 0 && check_tasks.empty()) return;
   // the blocks' rows, then their columns, then their groups' rows
-  uint32_t* rows = blocks > 0 ? thread_word_scratch(2 * blocks + groups) : nullptr;
+  uint32_t* rows = blocks > 0 ? thread_word_scratch(2 * blocks + groups, WordScratch::BlockRows) : nullptr;
   uint32_t* group_rows = blocks > 0 ? rows + 2 * blocks : nullptr;
   std::vector<RowTask> tasks;
   const uint32_t task_blocks = row_task_blocks(blocks, frame.workers);

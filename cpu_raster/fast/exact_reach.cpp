@@ -50,7 +50,7 @@ void measure_list_reach(FastFrame& frame) {
     for (FastDraw& fd : frame.draws) fd.list_reach = nullptr;
     return;
   }
-  uint32_t* reach = thread_reach_scratch(total);
+  uint32_t* reach = thread_word_scratch(total, WordScratch::ListReach);
   for (uint32_t d = 0; d < frame.draws.size(); ++d) {
     frame.draws[d].list_reach = listed(d) ? reach : nullptr;
     if (listed(d)) reach += primitive_count(frame.scene->draws[d]);

@@ -2,6 +2,8 @@
 
 #include <sys/mman.h>
 
+#include <array>
+
 namespace rastercmp::cpu::fast {
 
 void advise_huge_pages(void* data, size_t bytes) {
@@ -42,14 +44,9 @@ int16_t* thread_row_scratch(size_t count) {
   return rows.data();
 }
 
-uint32_t* thread_word_scratch(size_t count) {
-  thread_local std::vector<uint32_t> words;
-  if (words.size() < count) words.resize(count);
-  return words.data();
-}
-
-uint32_t* thread_reach_scratch(size_t count) {
-  thread_local std::vector<uint32_t> words;
+uint32_t* thread_word_scratch(size_t count, WordScratch use) {
+  thread_local std::array<std::vector<uint32_t>, 2> scratch;
+  std::vector<uint32_t>& words = scratch[size_t(use)];
   if (words.size() < count) words.resize(count);
   return words.data();
 }

@@ -1,8 +1,8 @@
-// Memory of a fast render (docs/performance.md, "How the fast path works"): the result buffers are sized
-// without a separate clear pass (tiles are cleared by their workers), large fresh buffers ask for
-// transparent huge pages (one fault per 2 MiB instead of 512), and the per-vertex arrays live in a
-// per-thread scratch buffer that is kept between renders (its size: 24 bytes per position of the
-// largest scene drawn so far on that thread).
+// Memory of a fast render (docs/performance.md, "How the fast path works"): the result buffers
+// are sized without a separate clear pass (tiles are cleared by their workers), large fresh buffers
+// ask for transparent huge pages (one fault per 2 MiB instead of 512), and the per-vertex arrays
+// live in a per-thread scratch buffer that is kept between renders (its size: 24 bytes per
+// position of the largest scene drawn so far on that thread).
 #pragma once
 
 #include <cstddef>
@@ -38,9 +38,9 @@ VertexScratch& thread_vertex_scratch();
 // The calling thread's scratch of `count` 16-bit tile rows (contents unspecified), valid until the next call.
 int16_t* thread_row_scratch(size_t count);
 
-// The calling thread's scratch of `count` words (contents unspecified), valid until the next call.
-uint32_t* thread_word_scratch(size_t count);
-// The same, a second one (the list reach phase's, FastDraw::list_reach).
-uint32_t* thread_reach_scratch(size_t count);
+// The calling thread's scratch of `count` words (contents unspecified), one per use, each valid
+// until that use's next call.
+enum class WordScratch { BlockRows, ListReach };
+uint32_t* thread_word_scratch(size_t count, WordScratch use);
 
 }  // namespace rastercmp::cpu::fast

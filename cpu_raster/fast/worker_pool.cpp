@@ -94,13 +94,9 @@ void WorkerPool::run(const std::function<void(uint32_t)>& job) {
   start_.notify_all();  // no system call while no thread sleeps
   call(job, 0);
   const auto all_done = [this] { return pending_.load(std::memory_order_acquire) == 0; };
-  std::unique_lock<std::mutex> lock(mutex_, std::defer_lock);
-  if (!spin_until(all_done, kCallerSpinMicros)) {
-    lock.lock();
-    done_.wait(lock, all_done);
-  } else {
-    lock.lock();  // error_
-  }
+  const bool done = spin_until(all_done, kCallerSpinMicros);
+  std::unique_lock<std::mutex> lock(mutex_);  // done_'s wait, and error_
+  if (!done) done_.wait(lock, all_done);
   job_.store(nullptr, std::memory_order_relaxed);
   if (error_) std::rethrow_exception(error_);
 }
