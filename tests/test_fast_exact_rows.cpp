@@ -106,7 +106,7 @@ TEST(FastExactRows, VectorRowsWriteWhatTheExactRasterizerWrites) {
   }
 }
 
-// The box kernels' small per-sample primitives (sample_box_rows, exact_rows_avx2.cpp, through
+// The box kernels' small per-sample primitives (sample_box_rows, exact_rows_4x_avx2.cpp, through
 // rasterize_rows_avx2; and on AVX-512 hosts box16, exact_rows_avx512.cpp, through
 // rasterize_box_avx512) against the exact rasterizer: triangles of 0.3-40 px (and some far larger)
 // in 4x frames of odd and even widths (a row's first step starts up to three columns before the

@@ -32,7 +32,7 @@ bool rasterize_rows_avx2(const RasterPrimitive& p, int32_t y0, int32_t y1, const
                          RenderTargets& targets, bool avx512_writes = false);
 
 // The visits of small per-sample primitives in 4x frames that the box kernels take (at most
-// kBoxColumns columns and kBoxPixels pixels; exact_rows_avx2.cpp, exact_rows_avx512.cpp).
+// kBoxColumns columns and kBoxPixels pixels; exact_rows_4x_avx2.cpp, exact_rows_avx512.cpp).
 inline constexpr int32_t kBoxColumns = 24, kBoxPixels = 256;
 
 // One plane of a box kernel: n = E - 1 at the corner of pixel (start, y0), its step per pixel (gx =

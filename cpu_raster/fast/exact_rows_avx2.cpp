@@ -1,64 +1,24 @@
-// The exact rows (exact_rows.hpp) with AVX2: the covered columns of four sample rows per vector
-// step, worked out from every plane at once, then the covered samples' raw depths, depth tests
-// and stored values eight at a time: in a frame of one sample per pixel (lines) fragments queued
-// from any row and column, their stored depths gathered (depth_rows); for a per-sample primitive
-// in a 4x frame the four samples of two pixels, contiguous in the attachments (sample_span_rows).
-//
-// Coverage. For a sample row (sample point y Y, x offset sx in fixed units), plane i's value at
-// column px is E(px) = k - d * px with k = E at column 0 and d = dcdx * 256: an integer, covered
-// iff n(px) = E(px) - 1 >= 0. In the form of row_columns_avx2.hpp (n + gx * u >= 0, gx = -d) the
-// covered columns of a plane with d < 0 are bounded below by L = ceil(-n / gx), those of one with
-// d > 0 above by U = floor(-n / gx); a plane with d = 0 covers the whole row or none (n >= 0).
-// Four consecutive rows sit in the lanes of a double vector.
-//
-// Exactness. A primitive is taken only when, for every plane, |n| <= 2^51 in the first row and in
-// the last row a batch computes (n is linear in the row, so in every row between) and
-// |d| * (max(|x0|, |x1|) + 2) <= 2^51 for its visit columns [x0, x1]: then every n, every
-// n + gx * u for u in [x0 - 2, x1 + 2] and every row step is an integer below 2^53, exact in
-// double (the FMA rounds once, an exact value not at all), so each test n + gx * u < 0 is the exact
-// path's E <= 0. The candidate c = ceil(q) or floor(q), q = n * (-1 / gx) rounded twice, is within
-// 2^43 * 3 * 2^-53 < 1 of -n / gx (|n / gx| <= 2^51 / 256), so within one of the bound; clamped to
-// [x0 - 1, x1 + 1] and corrected by the plane's own test at c -/+ 1 and c (row_columns_avx2.hpp's
-// argument), max(x0, L) and min(x1, U) are the exact interval. The sample grid: sample_point's
-// fixed offsets and floats (px as float, plus the sample's x offset: the same conversion and add).
-//
-// Depth. A covered (column, sample) gets z = fl(FMA?(dzdy, y, FMA?(dzdx, x, a0)) + o), clamped and
-// converted (avx2_depth.hpp: sample_depth's operations, one intrinsic each, at sample_point's x and
-// y), is tested against the stored value (depth_passes: depth_test_passes' predicates), and a
-// passing one is written as write_covered_sample writes it. A batch or step holds samples of one
-// primitive only, all distinct, so reading its stored values before writing any reads what the
-// exact path's sample by sample order reads.
+// The exact rows (exact_rows.hpp) with AVX2, their covered columns from exact_rows_avx2.hpp: in a
+// frame of one sample per pixel (lines) each four rows' one or two columns a gathered step, or a
+// row's run eight contiguous columns a step (thin_rows); fragments queued from any row and column
+// and their stored depths gathered (depth_rows: Bresenham lines in 4x frames); without an active
+// depth test the owner alone (coverage_rows). Per-sample primitives in 4x frames:
+// exact_rows_4x_avx2.cpp.
 #include <immintrin.h>
 
 #include <algorithm>
-#include <array>
 #include <bit>
 #include <cstdint>
 #include <cstdlib>
 
 #include "cpu_raster/fast/avx2_depth.hpp"
 #include "cpu_raster/fast/cpu_features.hpp"
-#include "cpu_raster/fast/exact_rows.hpp"
+#include "cpu_raster/fast/exact_rows_avx2.hpp"
 #include "cpu_raster/fast/format_dispatch.hpp"
 
 namespace rastercmp::cpu::fast {
-namespace {
 
-constexpr int64_t kExactBound = int64_t(1) << 51;
-
-// A primitive's planes for the rows of its samples, four rows per step, grouped by the bound they
-// give: [0, lower) bound the columns below, [lower, upper) above, [upper, count) are flat. n[s]
-// holds sample s's values in the next step's four rows (from start_sample on).
-struct PlaneRows {
-  __m256d n[4][8], step[8], gx[8], inv[8];
-  double dy[8];
-  double first[4][8];
-  uint32_t lower = 0, upper = 0, count = 0;
-};
-
-// The planes of p for rows y0, y0 + 1, ... of each tested sample; false when a value leaves the
-// bounds above (rows up to y1 + 3 are checked: the last step may compute them; |dcdx|, |dcdy| <=
-// 2^30 and |x| <= 2^20 keep the checks themselves inside int64).
+// exact_rows_avx2.hpp; the checks themselves stay inside int64 (|dcdx|, |dcdy| <= 2^30, |x| <= 2^20).
 RASTERCMP_AVX2 bool init_plane_rows(PlaneRows& rows, const RasterPrimitive& p, uint32_t samples, int32_t y0,
                                     int32_t y1) {
   constexpr int64_t kDeltaBound = int64_t(1) << 30;
@@ -103,48 +63,7 @@ RASTERCMP_AVX2 bool init_plane_rows(PlaneRows& rows, const RasterPrimitive& p, u
   return true;
 }
 
-// The values of sample s in rows y0 to y0 + 3.
-RASTERCMP_AVX2 inline void start_sample(PlaneRows& rows, uint32_t s) {
-  const __m256d lanes = _mm256_setr_pd(0, 1, 2, 3);
-  for (uint32_t e = 0; e < rows.count; ++e)
-    rows.n[s][e] = _mm256_fmadd_pd(_mm256_set1_pd(rows.dy[e]), lanes, _mm256_set1_pd(rows.first[s][e]));
-}
-
-// The covered columns [u0[k], u1[k]] (u0 > u1: none) of sample s in the step's four rows, then the
-// sample's next step.
-RASTERCMP_AVX2 inline void next_plane_rows(PlaneRows& rows, uint32_t s, __m256d first, __m256d last, int32_t* u0,
-                                           int32_t* u1) {
-  __m256d* n = rows.n[s];
-  const __m256d zero = _mm256_setzero_pd(), one = _mm256_set1_pd(1.0);
-  const __m256d clamp_lo = _mm256_sub_pd(first, one), clamp_hi = _mm256_add_pd(last, one);
-  __m256d lo = first, hi = last;
-  for (uint32_t e = 0; e < rows.lower; ++e) {  // L = c - 1 + [G(c-1) < 0] + [G(c) < 0]
-    const __m256d c =
-        _mm256_min_pd(_mm256_max_pd(_mm256_ceil_pd(_mm256_mul_pd(n[e], rows.inv[e])), clamp_lo), clamp_hi);
-    const __m256d outer = _mm256_sub_pd(c, one);
-    const __m256d out_fails = _mm256_cmp_pd(_mm256_fmadd_pd(rows.gx[e], outer, n[e]), zero, _CMP_LT_OQ);
-    const __m256d c_fails = _mm256_cmp_pd(_mm256_fmadd_pd(rows.gx[e], c, n[e]), zero, _CMP_LT_OQ);
-    lo = _mm256_max_pd(lo,
-                       _mm256_add_pd(outer, _mm256_add_pd(_mm256_and_pd(out_fails, one), _mm256_and_pd(c_fails, one))));
-    n[e] = _mm256_add_pd(n[e], rows.step[e]);
-  }
-  for (uint32_t e = rows.lower; e < rows.upper; ++e) {  // U = c + 1 - [G(c+1) < 0] - [G(c) < 0]
-    const __m256d c =
-        _mm256_min_pd(_mm256_max_pd(_mm256_floor_pd(_mm256_mul_pd(n[e], rows.inv[e])), clamp_lo), clamp_hi);
-    const __m256d outer = _mm256_add_pd(c, one);
-    const __m256d out_fails = _mm256_cmp_pd(_mm256_fmadd_pd(rows.gx[e], outer, n[e]), zero, _CMP_LT_OQ);
-    const __m256d c_fails = _mm256_cmp_pd(_mm256_fmadd_pd(rows.gx[e], c, n[e]), zero, _CMP_LT_OQ);
-    hi = _mm256_min_pd(hi,
-                       _mm256_sub_pd(outer, _mm256_add_pd(_mm256_and_pd(out_fails, one), _mm256_and_pd(c_fails, one))));
-    n[e] = _mm256_add_pd(n[e], rows.step[e]);
-  }
-  for (uint32_t e = rows.upper; e < rows.count; ++e) {  // flat: the whole row (n >= 0) or none
-    lo = _mm256_blendv_pd(lo, clamp_hi, _mm256_cmp_pd(n[e], zero, _CMP_LT_OQ));
-    n[e] = _mm256_add_pd(n[e], rows.step[e]);
-  }
-  _mm_storeu_si128(reinterpret_cast<__m128i*>(u0), _mm256_cvttpd_epi32(lo));
-  _mm_storeu_si128(reinterpret_cast<__m128i*>(u1), _mm256_cvttpd_epi32(hi));
-}
+namespace {
 
 // Calls run(py, s, x0, x1) for each sample row of rows [y0, y1] with a covered column (its covered
 // columns [x0, x1]); false, having called nothing, when the planes leave the exact bounds.
@@ -372,218 +291,6 @@ RASTERCMP_AVX2 bool depth_rows(const RasterPrimitive& p, int32_t y0, int32_t y1,
   return true;
 }
 
-// What a step of a per-sample primitive in a 4x frame reads and writes the same way whatever chose
-// its lanes: lane l is sample l % 4 of pixel px + l / 4 (`pixel`), the step's eight values
-// contiguous at dp / op (32 bytes). Its depth (sample_point's floats: float(px) + the sample's x
-// offset, `y` the row's float plus the sample's y offset), the test against the stored values and
-// the writes of the passing covered lanes. A step with a lane outside the row (`row_end`: those
-// lanes hold another row's values) is loaded and stored masked to `covered`, which holds only
-// lanes of the row; otherwise the other lanes are written back as loaded (this worker's row).
-struct SampleStep {
-  __m256 sx, a0, dzdx, dzdy, offset;
-  __m256i id;
-};
-
-RASTERCMP_AVX2 inline SampleStep sample_step_of(const RasterPrimitive& p) {
-  return SampleStep{_mm256_setr_ps(kStandardSamples4x[0].x, kStandardSamples4x[1].x, kStandardSamples4x[2].x,
-                                   kStandardSamples4x[3].x, kStandardSamples4x[0].x, kStandardSamples4x[1].x,
-                                   kStandardSamples4x[2].x, kStandardSamples4x[3].x),
-                    _mm256_set1_ps(p.depth.a0),
-                    _mm256_set1_ps(p.depth.dzdx),
-                    _mm256_set1_ps(p.depth.dzdy),
-                    _mm256_set1_ps(p.offset.offset),
-                    _mm256_set1_epi32(int32_t(p.owner))};
-}
-
-// sample_point's y floats of a row's eight lanes: float(py) plus each lane's sample y offset.
-RASTERCMP_AVX2 inline __m256 sample_step_y(int32_t py) {
-  const __m256 sy = _mm256_setr_ps(kStandardSamples4x[0].y, kStandardSamples4x[1].y, kStandardSamples4x[2].y,
-                                   kStandardSamples4x[3].y, kStandardSamples4x[0].y, kStandardSamples4x[1].y,
-                                   kStandardSamples4x[2].y, kStandardSamples4x[3].y);
-  return _mm256_add_ps(_mm256_set1_ps(float(py)), sy);
-}
-
-template <DepthFormat F, CompareOp Op>
-RASTERCMP_AVX2 inline void draw_sample_step(const SampleStep& c, const KernelDepth& d, __m256i pixel, __m256 y,
-                                            __m256i covered, bool row_end, uint32_t* dp, uint32_t* op) {
-  const __m256 x = _mm256_add_ps(_mm256_cvtepi32_ps(pixel), c.sx);
-  const __m256 z = finish_depth8(mul_add8(c.dzdy, y, mul_add8(c.dzdx, x, c.a0, d.fma), d.fma), c.offset, d);
-  const __m256i raw = to_raw<F>(z);
-  const __m256i stored = row_end ? _mm256_maskload_epi32(reinterpret_cast<const int*>(dp), covered)
-                                 : _mm256_loadu_si256(reinterpret_cast<const __m256i*>(dp));
-  __m256i pass = covered;
-  if constexpr (Op != CompareOp::Always) pass = _mm256_and_si256(covered, depth_passes<F, Op>(z, raw, stored));
-  if (_mm256_testz_si256(pass, pass)) return;
-  if (row_end) {
-    if (d.write) _mm256_maskstore_epi32(reinterpret_cast<int*>(dp), pass, raw);
-    _mm256_maskstore_epi32(reinterpret_cast<int*>(op), pass, c.id);
-    return;
-  }
-  if (d.write) _mm256_storeu_si256(reinterpret_cast<__m256i*>(dp), _mm256_blendv_epi8(stored, raw, pass));
-  const __m256i old = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(op));
-  _mm256_storeu_si256(reinterpret_cast<__m256i*>(op), _mm256_blendv_epi8(old, c.id, pass));
-}
-
-// With an active depth test, a per-sample primitive in a 4x frame: one pixel row of the four
-// samples is a contiguous run of the attachments, eight values (two pixels) per step, lane l holding
-// column px + l / 4 and sample l % 4; a lane is covered when its column lies in its sample's covered
-// columns. Each step loads the stored values (masked at the row's ends), tests, and writes the
-// passing lanes back blended with the values it loaded (masked at the row's ends): the other lanes
-// of the step are this worker's row, rewritten unchanged. (In a frame of one sample per pixel the
-// same steps, eight columns wide, were slower on lines_20k than the gathered batches of depth_rows:
-// a line's row touches one or two columns, and a step's 32 bytes its cache lines again.)
-template <DepthFormat F, CompareOp Op>
-RASTERCMP_AVX2 bool sample_span_rows(const RasterPrimitive& p, int32_t y0, int32_t y1, const KernelDepth& d,
-                                     RenderTargets& targets) {
-  constexpr int Samples = 4;
-  constexpr int32_t kPixels = 8 / Samples;
-  PlaneRows planes;
-  if (!init_plane_rows(planes, p, Samples, y0, y1)) return false;
-  for (uint32_t s = 0; s < uint32_t(Samples); ++s) start_sample(planes, s);
-  const int32_t width = int32_t(targets.width);
-  uint32_t* depth = targets.depth_raw.data();
-  uint32_t* owner = targets.owner.data();
-  const __m256i lane_pixel = _mm256_setr_epi32(0, 0, 0, 0, 1, 1, 1, 1);
-  const __m256i lane_sample = _mm256_setr_epi32(0, 1, 2, 3, 0, 1, 2, 3);
-  const SampleStep step = sample_step_of(p);
-  const __m256i one = _mm256_set1_epi32(1);
-  const __m256d first = _mm256_set1_pd(double(p.visit.x0)), last = _mm256_set1_pd(double(p.visit.x1));
-  // The columns of up to kChunkRows rows at a time, every row's lines asked for before the first
-  // is drawn.
-  constexpr int32_t kChunkRows = 64;
-  alignas(16) int32_t u[kChunkRows / 4][2][Samples][4];  // [step][lo, hi][sample][row of the step]
-  for (int32_t chunk = y0; chunk <= y1; chunk += kChunkRows) {
-    const int32_t chunk_end = std::min(y1, chunk + kChunkRows - 1);
-    for (int32_t y = chunk, b = 0; y <= chunk_end; y += 4, ++b) {
-      for (uint32_t s = 0; s < uint32_t(Samples); ++s) next_plane_rows(planes, s, first, last, u[b][0][s], u[b][1][s]);
-      for (int32_t k = 0; k < 4 && y + k <= chunk_end; ++k) {
-        if (u[b][0][0][k] > u[b][1][0][k]) continue;
-        const size_t at = (size_t(y + k) * size_t(width) + size_t(u[b][0][0][k])) * Samples;
-        _mm_prefetch(reinterpret_cast<const char*>(depth + at), _MM_HINT_T0);
-        _mm_prefetch(reinterpret_cast<const char*>(owner + at), _MM_HINT_T0);
-      }
-    }
-    for (int32_t y = chunk, cur = 0; y <= chunk_end; y += 4, ++cur) {
-      const int32_t rows = std::min(4, chunk_end - y + 1);
-      for (int32_t k = 0; k < rows; ++k) {
-        int32_t lo = INT32_MAX, hi = INT32_MIN;
-        alignas(16) int32_t x0[4] = {0, 0, 0, 0}, x1[4] = {-1, -1, -1, -1};
-        for (int s = 0; s < Samples; ++s) {
-          x0[s] = u[cur][0][s][k];
-          x1[s] = u[cur][1][s][k];
-          if (x0[s] > x1[s]) continue;
-          lo = std::min(lo, x0[s]);
-          hi = std::max(hi, x1[s]);
-        }
-        if (lo > hi) continue;
-        // per lane: its sample's first column - 1 and last column + 1
-        const __m256i x0_v = _mm256_permutevar8x32_epi32(
-            _mm256_castsi128_si256(_mm_load_si128(reinterpret_cast<const __m128i*>(x0))), lane_sample);
-        const __m256i x1_v = _mm256_permutevar8x32_epi32(
-            _mm256_castsi128_si256(_mm_load_si128(reinterpret_cast<const __m128i*>(x1))), lane_sample);
-        const __m256i before = _mm256_sub_epi32(x0_v, one), after = _mm256_add_epi32(x1_v, one);
-        const int32_t py = y + k;
-        const __m256 y_v = sample_step_y(py);
-        uint32_t* depth_row = depth + size_t(py) * size_t(width) * Samples;
-        uint32_t* owner_row = owner + size_t(py) * size_t(width) * Samples;
-        // steps on 32-byte boundaries of the attachments (both start on one), so a step's values lie
-        // in one cache line: the first may start up to kPixels - 1 columns before the row
-        const int32_t start = lo - int32_t((size_t(py) * size_t(width) + size_t(lo)) & size_t(kPixels - 1));
-        for (int32_t px = start; px <= hi; px += kPixels) {
-          const __m256i pixel = _mm256_add_epi32(_mm256_set1_epi32(px), lane_pixel);
-          const __m256i covered = _mm256_and_si256(_mm256_cmpgt_epi32(pixel, before), _mm256_cmpgt_epi32(after, pixel));
-          const bool row_end = px < 0 || px + kPixels > width;  // lanes outside the row: other rows' values
-          draw_sample_step<F, Op>(step, d, pixel, y_v, covered, row_end, depth_row + ptrdiff_t(px) * Samples,
-                                  owner_row + ptrdiff_t(px) * Samples);
-        }
-      }
-    }
-  }
-  return true;
-}
-
-// A small per-sample primitive in a 4x frame: every sample of its visit rectangle's pixels tested
-// directly, in the steps and lanes of sample_span_rows (two pixels' four samples, on 32-byte
-// boundaries), plane values in int32. n = E - 1 of plane i at lane (column px, sample s) of row py
-// is c + (dcdy * sy[s] - dcdx * sx[s]) + (px - start) * gx + (py - y0) * gy, with c its value at
-// the corner of pixel (start, y0), gx = -dcdx * 256, gy = dcdy * 256 and the sample offsets sx, sy
-// in (0, 256): an integer, covered iff n >= 0 for every plane, so iff the OR of the planes' n has
-// its sign bit clear. Exact when every value the steps form fits int32: over the columns
-// [start, x1 + 1] and rows [y0, y1] (start = x0 - 1), |n| < |c| + |gx| * (x1 + 2 - start) +
-// |gy| * (y1 - y0 + 1), checked below 2^31 in int64 per plane (the row step past y1 may wrap; it
-// is never read). Lanes outside [x0, x1] are masked: the exact path visits only those columns. A
-// step with no covered lane computes no depth. False, having written nothing, when a bound fails.
-
-// Planes: p.planes.count, or 0 for any count up to 8 (a triangle without scissor planes has 3,
-// kept in registers).
-template <DepthFormat F, CompareOp Op, uint32_t Planes>
-RASTERCMP_AVX2 bool sample_box_rows(const RasterPrimitive& p, int32_t y0, int32_t y1, const KernelDepth& d,
-                                    RenderTargets& targets) {
-  constexpr int Samples = 4;
-  const int32_t x0 = p.visit.x0, x1 = p.visit.x1, width = int32_t(targets.width);
-  const uint32_t planes = Planes != 0 ? Planes : p.planes.count;
-  // a row's first step starts on an even pixel of the attachments (a 32-byte boundary): at x0 - 1
-  // or x0, after the parity of the row's first pixel
-  const int32_t start = x0 - 1;
-  const int64_t reach_x = int64_t(x1) + 2 - start, reach_y = int64_t(y1) - y0 + 1;
-  const __m256i lane_pixel = _mm256_setr_epi32(0, 0, 0, 0, 1, 1, 1, 1);
-  const __m256i lane_x =
-      _mm256_setr_epi32(kStandardSamples4x[0].x_fixed, kStandardSamples4x[1].x_fixed, kStandardSamples4x[2].x_fixed,
-                        kStandardSamples4x[3].x_fixed, kStandardSamples4x[0].x_fixed, kStandardSamples4x[1].x_fixed,
-                        kStandardSamples4x[2].x_fixed, kStandardSamples4x[3].x_fixed);
-  const __m256i lane_y =
-      _mm256_setr_epi32(kStandardSamples4x[0].y_fixed, kStandardSamples4x[1].y_fixed, kStandardSamples4x[2].y_fixed,
-                        kStandardSamples4x[3].y_fixed, kStandardSamples4x[0].y_fixed, kStandardSamples4x[1].y_fixed,
-                        kStandardSamples4x[2].y_fixed, kStandardSamples4x[3].y_fixed);
-  __m256i row_n[8], gx1[8], gx2[8], gy[8];
-  for (uint32_t i = 0; i < planes; ++i) {
-    // lane (pixel k, sample s) of the first step: n at the pixel's corner, plus the sample's offset
-    // (below 256 fixed units each way) and k pixels; every term and sum within the bound
-    const EdgePlane& plane = p.planes.plane[i];
-    BoxPlane b;
-    if (!box_plane(plane, start, y0, reach_x, reach_y, b)) return false;
-    const __m256i offsets = _mm256_sub_epi32(_mm256_mullo_epi32(_mm256_set1_epi32(int32_t(plane.dcdy)), lane_y),
-                                             _mm256_mullo_epi32(_mm256_set1_epi32(int32_t(plane.dcdx)), lane_x));
-    gx1[i] = _mm256_set1_epi32(int32_t(b.gx));
-    row_n[i] = _mm256_add_epi32(_mm256_add_epi32(_mm256_set1_epi32(int32_t(b.corner)), offsets),
-                                _mm256_mullo_epi32(gx1[i], lane_pixel));
-    gx2[i] = _mm256_set1_epi32(int32_t(2 * b.gx));
-    gy[i] = _mm256_set1_epi32(int32_t(b.gy));
-  }
-  uint32_t* depth = targets.depth_raw.data();
-  uint32_t* owner = targets.owner.data();
-  const SampleStep step = sample_step_of(p);
-  const __m256i before = _mm256_set1_epi32(x0 - 1), after = _mm256_set1_epi32(x1 + 1);
-  for (int32_t py = y0; py <= y1; ++py) {
-    const int32_t first = x0 - int32_t((size_t(py) * size_t(width) + size_t(x0)) & 1u);  // start or start + 1
-    __m256i n[8];
-    for (uint32_t i = 0; i < planes; ++i) {
-      n[i] = first == start ? row_n[i] : _mm256_add_epi32(row_n[i], gx1[i]);
-      row_n[i] = _mm256_add_epi32(row_n[i], gy[i]);
-    }
-    const __m256 y_v = sample_step_y(py);
-    uint32_t* depth_row = depth + size_t(py) * size_t(width) * Samples;
-    uint32_t* owner_row = owner + size_t(py) * size_t(width) * Samples;
-    for (int32_t px = first; px <= x1; px += 2) {
-      __m256i any_out = n[0];
-      n[0] = _mm256_add_epi32(n[0], gx2[0]);
-      for (uint32_t i = 1; i < planes; ++i) {
-        any_out = _mm256_or_si256(any_out, n[i]);
-        n[i] = _mm256_add_epi32(n[i], gx2[i]);
-      }
-      if (_mm256_movemask_ps(_mm256_castsi256_ps(any_out)) == 0xFF) continue;  // every lane outside a plane
-      const __m256i pixel = _mm256_add_epi32(_mm256_set1_epi32(px), lane_pixel);
-      const __m256i inside = _mm256_and_si256(_mm256_cmpgt_epi32(pixel, before), _mm256_cmpgt_epi32(after, pixel));
-      const __m256i covered = _mm256_andnot_si256(_mm256_srai_epi32(any_out, 31), inside);
-      if (_mm256_testz_si256(covered, covered)) continue;
-      const bool row_end = px < 0 || px + 2 > width;  // lanes outside the row: other rows' values
-      draw_sample_step<F, Op>(step, d, pixel, y_v, covered, row_end, depth_row + ptrdiff_t(px) * Samples,
-                              owner_row + ptrdiff_t(px) * Samples);
-    }
-  }
-  return true;
-}
-
 // With an active depth test, a primitive in a frame of one sample per pixel (lines, mostly): the
 // columns of up to kChunkRows rows worked out and each row's depth and owner lines asked for, then
 // per step of four rows either one gathered eight-lane step, when every row's run is at most two
@@ -676,14 +383,6 @@ RASTERCMP_AVX2 bool thin_rows(const RasterPrimitive& p, int32_t y0, int32_t y1, 
 template <DepthFormat F, CompareOp Op>
 RASTERCMP_AVX2 bool depth_kernel(const RasterPrimitive& p, int32_t y0, int32_t y1, const KernelDepth& d,
                                  RenderTargets& targets, bool avx512_writes) {
-  if (p.per_sample && targets.samples == 4) {
-    const int32_t columns = p.visit.x1 - p.visit.x0 + 1;
-    if (columns <= kBoxColumns && columns * (y1 - y0 + 1) <= kBoxPixels &&
-        (p.planes.count == 3 ? sample_box_rows<F, Op, 3>(p, y0, y1, d, targets)
-                             : sample_box_rows<F, Op, 0>(p, y0, y1, d, targets)))
-      return true;
-    return sample_span_rows<F, Op>(p, y0, y1, d, targets);
-  }
   if (targets.samples == 1) return thin_rows<F, Op>(p, y0, y1, d, targets, avx512_writes);
   return depth_rows<F, Op>(p, y0, y1, d, targets);
 }
@@ -729,6 +428,8 @@ bool rasterize_rows_avx2(const RasterPrimitive& p, int32_t y0, int32_t y1, const
   if (depth.op == CompareOp::Never) return true;  // no covered sample passes: nothing is written
   const KernelDepth d{depth.format,     depth.op,         depth.write, depth.range.clamp,
                       depth.range.zmin, depth.range.zmax, depth.fma};
+  if (p.per_sample && targets.samples == 4)
+    return select_sample_rows_avx2(depth.format, depth.op)(p, y0, y1, d, targets);
   return select_kernel(kDepthRows, depth.format, depth.op)(p, y0, y1, d, targets, avx512_writes);
 }
 

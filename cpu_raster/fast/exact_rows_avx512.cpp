@@ -1,4 +1,4 @@
-// The 4x box kernel of exact_rows_avx2.cpp (sample_box_rows) sixteen lanes wide, for AVX-512
+// The 4x box kernel of exact_rows_4x_avx2.cpp (sample_box_rows) sixteen lanes wide, for AVX-512
 // hosts: four pixels' four samples per step, one 64-byte line of each attachment (a step starts
 // on a pixel whose index is a multiple of four, and both attachments start on a page boundary or
 // half a page after one). Lane l is sample l % 4 of pixel px + l / 4.

@@ -1,0 +1,109 @@
+// The covered columns of the AVX2 exact rows (exact_rows.hpp; exact_rows_avx2.cpp for frames of
+// one sample per pixel and the queue, exact_rows_4x_avx2.cpp for per-sample primitives in 4x
+// frames): every plane's columns of four sample rows per vector step, then the covered samples'
+// raw depths, depth tests and stored values eight at a time.
+//
+// Coverage. For a sample row (sample point y Y, x offset sx in fixed units), plane i's value at
+// column px is E(px) = k - d * px with k = E at column 0 and d = dcdx * 256: an integer, covered
+// iff n(px) = E(px) - 1 >= 0. In the form of row_columns_avx2.hpp (n + gx * u >= 0, gx = -d) the
+// covered columns of a plane with d < 0 are bounded below by L = ceil(-n / gx), those of one with
+// d > 0 above by U = floor(-n / gx); a plane with d = 0 covers the whole row or none (n >= 0).
+// Four consecutive rows sit in the lanes of a double vector.
+//
+// Exactness. A primitive is taken only when, for every plane, |n| <= 2^51 in the first row and in
+// the last row a batch computes (n is linear in the row, so in every row between) and
+// |d| * (max(|x0|, |x1|) + 2) <= 2^51 for its visit columns [x0, x1]: then every n, every
+// n + gx * u for u in [x0 - 2, x1 + 2] and every row step is an integer below 2^53, exact in
+// double (the FMA rounds once, an exact value not at all), so each test n + gx * u < 0 is the exact
+// path's E <= 0. The candidate c = ceil(q) or floor(q), q = n * (-1 / gx) rounded twice, is within
+// 2^43 * 3 * 2^-53 < 1 of -n / gx (|n / gx| <= 2^51 / 256), so within one of the bound; clamped to
+// [x0 - 1, x1 + 1] and corrected by the plane's own test at c -/+ 1 and c (row_columns_avx2.hpp's
+// argument), max(x0, L) and min(x1, U) are the exact interval. The sample grid: sample_point's
+// fixed offsets and floats (px as float, plus the sample's x offset: the same conversion and add).
+//
+// Depth. A covered (column, sample) gets z = fl(FMA?(dzdy, y, FMA?(dzdx, x, a0)) + o), clamped and
+// converted (avx2_depth.hpp: sample_depth's operations, one intrinsic each, at sample_point's x and
+// y), is tested against the stored value (depth_passes: depth_test_passes' predicates), and a
+// passing one is written as write_covered_sample writes it. A batch or step holds samples of one
+// primitive only, all distinct, so reading its stored values before writing any reads what the
+// exact path's sample by sample order reads.
+#pragma once
+
+#include <immintrin.h>
+
+#include <cstdint>
+
+#include "cpu_raster/fast/cpu_features.hpp"
+#include "cpu_raster/fast/exact_rows.hpp"
+#include "cpu_raster/fast/tile_kernel.hpp"
+
+namespace rastercmp::cpu::fast {
+
+inline constexpr int64_t kExactBound = int64_t(1) << 51;
+
+// A primitive's planes for the rows of its samples, four rows per step, grouped by the bound they
+// give: [0, lower) bound the columns below, [lower, upper) above, [upper, count) are flat. n[s]
+// holds sample s's values in the next step's four rows (from start_sample on).
+struct PlaneRows {
+  __m256d n[4][8], step[8], gx[8], inv[8];
+  double dy[8];
+  double first[4][8];
+  uint32_t lower = 0, upper = 0, count = 0;
+};
+
+// The planes of p for rows y0, y0 + 1, ... of each tested sample; false when a value leaves the
+// bounds above (rows up to y1 + 3 are checked: the last step may compute them; |dcdx|, |dcdy| <=
+// 2^30 and |x| <= 2^20 keep the checks themselves inside int64).
+RASTERCMP_AVX2 bool init_plane_rows(PlaneRows& rows, const RasterPrimitive& p, uint32_t samples, int32_t y0,
+                                    int32_t y1);
+
+// The values of sample s in rows y0 to y0 + 3.
+RASTERCMP_AVX2 inline void start_sample(PlaneRows& rows, uint32_t s) {
+  const __m256d lanes = _mm256_setr_pd(0, 1, 2, 3);
+  for (uint32_t e = 0; e < rows.count; ++e)
+    rows.n[s][e] = _mm256_fmadd_pd(_mm256_set1_pd(rows.dy[e]), lanes, _mm256_set1_pd(rows.first[s][e]));
+}
+
+// The covered columns [u0[k], u1[k]] (u0 > u1: none) of sample s in the step's four rows, then the
+// sample's next step.
+RASTERCMP_AVX2 inline void next_plane_rows(PlaneRows& rows, uint32_t s, __m256d first, __m256d last, int32_t* u0,
+                                           int32_t* u1) {
+  __m256d* n = rows.n[s];
+  const __m256d zero = _mm256_setzero_pd(), one = _mm256_set1_pd(1.0);
+  const __m256d clamp_lo = _mm256_sub_pd(first, one), clamp_hi = _mm256_add_pd(last, one);
+  __m256d lo = first, hi = last;
+  for (uint32_t e = 0; e < rows.lower; ++e) {  // L = c - 1 + [G(c-1) < 0] + [G(c) < 0]
+    const __m256d c =
+        _mm256_min_pd(_mm256_max_pd(_mm256_ceil_pd(_mm256_mul_pd(n[e], rows.inv[e])), clamp_lo), clamp_hi);
+    const __m256d outer = _mm256_sub_pd(c, one);
+    const __m256d out_fails = _mm256_cmp_pd(_mm256_fmadd_pd(rows.gx[e], outer, n[e]), zero, _CMP_LT_OQ);
+    const __m256d c_fails = _mm256_cmp_pd(_mm256_fmadd_pd(rows.gx[e], c, n[e]), zero, _CMP_LT_OQ);
+    lo = _mm256_max_pd(lo,
+                       _mm256_add_pd(outer, _mm256_add_pd(_mm256_and_pd(out_fails, one), _mm256_and_pd(c_fails, one))));
+    n[e] = _mm256_add_pd(n[e], rows.step[e]);
+  }
+  for (uint32_t e = rows.lower; e < rows.upper; ++e) {  // U = c + 1 - [G(c+1) < 0] - [G(c) < 0]
+    const __m256d c =
+        _mm256_min_pd(_mm256_max_pd(_mm256_floor_pd(_mm256_mul_pd(n[e], rows.inv[e])), clamp_lo), clamp_hi);
+    const __m256d outer = _mm256_add_pd(c, one);
+    const __m256d out_fails = _mm256_cmp_pd(_mm256_fmadd_pd(rows.gx[e], outer, n[e]), zero, _CMP_LT_OQ);
+    const __m256d c_fails = _mm256_cmp_pd(_mm256_fmadd_pd(rows.gx[e], c, n[e]), zero, _CMP_LT_OQ);
+    hi = _mm256_min_pd(hi,
+                       _mm256_sub_pd(outer, _mm256_add_pd(_mm256_and_pd(out_fails, one), _mm256_and_pd(c_fails, one))));
+    n[e] = _mm256_add_pd(n[e], rows.step[e]);
+  }
+  for (uint32_t e = rows.upper; e < rows.count; ++e) {  // flat: the whole row (n >= 0) or none
+    lo = _mm256_blendv_pd(lo, clamp_hi, _mm256_cmp_pd(n[e], zero, _CMP_LT_OQ));
+    n[e] = _mm256_add_pd(n[e], rows.step[e]);
+  }
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(u0), _mm256_cvttpd_epi32(lo));
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(u1), _mm256_cvttpd_epi32(hi));
+}
+
+// A per-sample primitive in a 4x frame with an active depth test (exact_rows_4x_avx2.cpp): the
+// same writes as rasterize_primitive's for its rows [y0, y1]; false, having written nothing, when
+// its planes leave the bounds above.
+using SampleRowsFn = bool (*)(const RasterPrimitive&, int32_t, int32_t, const KernelDepth&, RenderTargets&);
+SampleRowsFn select_sample_rows_avx2(DepthFormat format, CompareOp op);  // null without depth
+
+}  // namespace rastercmp::cpu::fast
