@@ -155,9 +155,11 @@ TEST(FastWorkerPool, EveryJobFlushesDenormals) {
   EXPECT_FALSE(cpu::denormals_flushed());
 }
 
-// Runs back to back, some started after the threads went to sleep (past kSpinMicros) and some
-// whose job 0 ends long before the others (the caller past kCallerSpinMicros): every job index
-// runs exactly once per run, and the run returns only after all of them.
+// Runs back to back, some started after the threads went to sleep (past kSpinMicros: the caller,
+// its job 0 done at once, then runs the jobs no thread has taken yet) and some whose last job ends
+// long after the others (the caller past kCallerSpinMicros): every job index runs exactly once per
+// run, whichever thread takes it, and the run returns only after all of them (a job run both by
+// its thread and by the caller fails the count or hangs the run).
 TEST(FastWorkerPool, EveryRunRunsEachJobOnceAndWaitsForAll) {
   constexpr uint32_t kWorkers = 5;
   cpu::fast::WorkerPool& pool = cpu::fast::worker_pool(kWorkers);

@@ -28,9 +28,19 @@ bool spin_until(Done done, int micros) {
   }
 }
 
+// Moves `slot` to generation g unless it is there or past it already (wrapping compare): true
+// when this call claimed job g.
+bool claim(std::atomic<uint32_t>& slot, uint32_t g) {
+  uint32_t seen = slot.load(std::memory_order_relaxed);
+  while (int32_t(seen - g) < 0)
+    if (slot.compare_exchange_weak(seen, g, std::memory_order_acq_rel, std::memory_order_relaxed)) return true;
+  return false;
+}
+
 }  // namespace
 
-WorkerPool::WorkerPool(uint32_t workers) {
+WorkerPool::WorkerPool(uint32_t workers)
+    : claimed_(std::make_unique<std::atomic<uint32_t>[]>(workers > 0 ? workers - 1 : 0)) {
   try {
     for (uint32_t i = 1; i < workers; ++i) threads_.emplace_back([this, i] { thread_loop(i); });
   } catch (const std::system_error& e) {
@@ -83,16 +93,23 @@ void WorkerPool::keep_off_caller_cpu() {
 void WorkerPool::run(const std::function<void(uint32_t)>& job) {
   const std::lock_guard<std::mutex> serial(run_mutex_);
   keep_off_caller_cpu();
+  uint32_t g = 0;
   {
     // Under mutex_: a thread going to sleep tests the generation under it (no lost wake-up).
     const std::lock_guard<std::mutex> lock(mutex_);
     error_ = nullptr;
     job_.store(&job, std::memory_order_relaxed);
     pending_.store(uint32_t(threads_.size()), std::memory_order_relaxed);
-    generation_.fetch_add(1, std::memory_order_release);
+    g = generation_.fetch_add(1, std::memory_order_release) + 1;
   }
   start_.notify_all();  // no system call while no thread sleeps
   call(job, 0);
+  // the jobs no thread has taken yet: run here rather than waited for
+  for (uint32_t i = 1; i <= threads_.size(); ++i) {
+    if (!claim(claimed_[i - 1], g)) continue;
+    call(job, i);
+    pending_.fetch_sub(1, std::memory_order_acq_rel);
+  }
   const auto all_done = [this] { return pending_.load(std::memory_order_acquire) == 0; };
   const bool done = spin_until(all_done, kCallerSpinMicros);
   std::unique_lock<std::mutex> lock(mutex_);  // done_'s wait, and error_
@@ -113,7 +130,8 @@ void WorkerPool::thread_loop(uint32_t index) {
       start_.wait(lock, started);
     }
     if (stop_.load(std::memory_order_relaxed)) return;
-    seen = generation_.load(std::memory_order_relaxed);
+    seen = generation_.load(std::memory_order_acquire);
+    if (!claim(claimed_[index - 1], seen)) continue;  // the caller ran it
     call(*job_.load(std::memory_order_relaxed), index);
     if (pending_.fetch_sub(1, std::memory_order_acq_rel) == 1) {
       const std::lock_guard<std::mutex> lock(mutex_);  // the caller tests pending_ under it
