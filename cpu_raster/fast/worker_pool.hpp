@@ -1,6 +1,7 @@
 // A persistent pool of worker threads for the fast path: run(job) calls job(0) on the calling
-// thread and job(1..n-1) on the pool's threads, all at the same time, and returns when every call
-// has returned (rethrowing the first exception). Made once per thread count and kept: a TBB
+// thread and job(1..n-1) on the pool's threads, all at the same time (a job its thread has not
+// taken when job(0) returns: on the calling thread after it; no job may wait for another), and
+// returns when every call has returned (rethrowing the first exception). Made once per thread count and kept: a TBB
 // task_arena made per render did not get its worker back after the first render (measured,
 // docs/performance.md), and the workers here are long, equal jobs that need no stealing.
 // The pool's threads are kept off the CPU the caller runs on (Linux affinity, recomputed when the
