@@ -175,14 +175,8 @@ LeanSetup BandWorker::setup_line_lean_flushed(bool flushed, const std::array<Win
 // for the fast draws, render_fast.cpp). A position past the draw's counts as unclipped: such an
 // index makes the render throw (the profile check) before any walk.
 DrawWalk BandWorker::begin_draw_transformed(uint32_t d) const {
-  const Draw& draw = frame_.scene->draws[d];
-  const FastVertex* vertices = frame_.draws[d].vertices;
-  const size_t positions = draw.positions_clip.size();
-  const auto clipped = [vertices, positions](uint32_t position) {
-    return position < positions && (vertices[position].flags & kVertexClipBits) != 0;
-  };
   std::vector<bool> pipelined = transformed_pipelined_chunks(frame_, d);
-  const TrailingPipelineRun run = trailing_pipeline_run_of(draw, pipelined, clipped);
+  const TrailingPipelineRun run = transformed_trailing_run(frame_, d, pipelined);
   return begin_draw(frame_.exact, d, std::move(pipelined), run);
 }
 
@@ -197,17 +191,22 @@ DrawWalk BandWorker::begin_draw_transformed(uint32_t d) const {
 // sets it up, in order, and records its error (walk_exact, FastFrame::failure), which is then
 // the first failing primitive's, as on the exact path.
 bool BandWorker::misses_own_rows(const ClipVertex* v, uint32_t count, float margin, bool may_throw) const {
-  const RowReach reach = reach_of(row_span_of(count, margin, [v](uint32_t k) {
-    return std::pair{v[k].window, v[k].clip_mask};
-  }));
-  return reach == RowReach::OtherRows || (reach == RowReach::NoFrameRow && !may_throw);
+  const auto vertex = [v](uint32_t k) { return std::pair{v[k].window, v[k].clip_mask}; };
+  return span_misses_own_rows(row_span_of(count, margin, vertex), may_throw);
 }
 
 // misses_own_rows for a line the clipper cut, from its clipped ends' window positions (which
 // set-up takes as they are, whatever their clip bits).
 bool BandWorker::clipped_line_misses_own_rows(const std::array<WindowVertex, 2>& window, float margin,
                                               bool may_throw) const {
-  const RowReach reach = reach_of(row_span_of(2, margin, [&window](uint32_t k) { return std::pair{window[k], 0u}; }));
+  const auto vertex = [&window](uint32_t k) { return std::pair{window[k], 0u}; };
+  return span_misses_own_rows(row_span_of(2, margin, vertex), may_throw);
+}
+
+// The verdict of both: a span in other workers' rows only, or in no frame row when its set-up
+// cannot throw.
+bool BandWorker::span_misses_own_rows(const RowSpan& span, bool may_throw) const {
+  const RowReach reach = reach_of(span);
   return reach == RowReach::OtherRows || (reach == RowReach::NoFrameRow && !may_throw);
 }
 

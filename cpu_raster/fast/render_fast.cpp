@@ -207,13 +207,18 @@ std::vector<TrailingCheck> transform_all_vertices(FastFrame& frame, bool check_p
     const Draw& draw = frame.scene->draws[d];
     fd.chunk_size = primitives_per_chunk(draw);
     fd.pipelined_chunks.clear();
+    // the §1.5 chunk flags, from the vertices' clip bits: the trailing run's (below) and the
+    // pipeline path's cull's
+    const bool clipped = (draw_flags[d] & kVertexClipBits) != 0, cull = draw.state.cull_mode != CullMode::None;
+    std::vector<bool> pipelined;
+    if (clipped && (fd.setup.depth_active() || cull)) pipelined = transformed_pipelined_chunks(frame, d);
     // A draw whose last chunks take the draw pipeline has those primitives set up outside lavapipe's
     // denormal mode (SetupDenormals, front_end.hpp). The fast path sets up in the mode; where that
     // can change a set-up, the exact front end draws the draw. With several workers the run's
     // set-ups are checked in the block-row phase (drop_fast_draw then); the draw is taken as fast
     // until then.
-    if ((draw_flags[d] & kVertexClipBits) && fd.setup.depth_active()) {
-      const uint32_t first = trailing_run_first(frame, d), count = primitive_count(draw);
+    if (clipped && fd.setup.depth_active()) {
+      const uint32_t first = transformed_trailing_run(frame, d, pipelined).first, count = primitive_count(draw);
       const bool met = first < count && (depth_bias_is_denormal(draw.state.depth_bias) ||
                                          (!check_pending && run_meets_denormals(frame, d, first, count)));
       if (met) {
@@ -222,12 +227,10 @@ std::vector<TrailingCheck> transform_all_vertices(FastFrame& frame, bool check_p
       }
       if (check_pending && first < count) checks.push_back({d, first});
     }
-    // the §1.5 chunk flags, from the vertices' clip bits; read only for the pipeline path's cull
-    if ((draw_flags[d] & kVertexClipBits) && draw.state.cull_mode != CullMode::None)
-      fd.pipelined_chunks = transformed_pipelined_chunks(frame, d);
+    if (clipped && cull) fd.pipelined_chunks = std::move(pipelined);  // read only for that cull
     // The eight-wide set-up leaves out what it does not model: depth bias, the pipeline float cull.
-    fd.small_blocks = fd.raster.small_fn && fd.raster.vector_ok && !draw.state.depth_bias.enable &&
-                      !(fd.any_pipelined() && draw.state.cull_mode != CullMode::None);
+    fd.small_blocks =
+        fd.raster.small_fn && fd.raster.vector_ok && !draw.state.depth_bias.enable && !(fd.any_pipelined() && cull);
   }
   return checks;
 }

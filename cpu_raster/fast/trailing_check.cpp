@@ -29,14 +29,14 @@ std::vector<bool> transformed_pipelined_chunks(const FastFrame& frame, uint32_t 
   });
 }
 
-uint32_t trailing_run_first(const FastFrame& frame, uint32_t d) {
+TrailingPipelineRun transformed_trailing_run(const FastFrame& frame, uint32_t d, const std::vector<bool>& pipelined) {
   const FastDraw& fd = frame.draws[d];
   const Draw& draw = frame.scene->draws[d];
   const size_t positions = draw.positions_clip.size();
   const auto clipped = [&fd, positions](uint32_t position) {
     return position < positions && (fd.vertices[position].flags & kVertexClipBits) != 0;
   };
-  return trailing_pipeline_run_of(draw, transformed_pipelined_chunks(frame, d), clipped).first;
+  return trailing_pipeline_run_of(draw, pipelined, clipped);
 }
 
 namespace {

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "cpu_raster/exact/front_end.hpp"
 #include "cpu_raster/fast/fast_frame.hpp"
 
 namespace rastercmp::cpu::fast {
@@ -18,9 +19,10 @@ namespace rastercmp::cpu::fast {
 // as unclipped: such an index makes the render throw (the profile check) before anything is drawn.
 std::vector<bool> transformed_pipelined_chunks(const FastFrame& frame, uint32_t d);
 
-// The first primitive of the draw's trailing pipelined run (front_end.hpp), primitive_count(draw)
-// when there is none, from the vertex phase's clip bits.
-uint32_t trailing_run_first(const FastFrame& frame, uint32_t d);
+// The draw's trailing pipelined run (front_end.hpp: trailing_pipeline_run_of) from its chunk flags
+// (transformed_pipelined_chunks) and the vertex phase's clip bits, a position past the draw's
+// counting as unclipped as there.
+TrailingPipelineRun transformed_trailing_run(const FastFrame& frame, uint32_t d, const std::vector<bool>& pipelined);
 
 // Whether the set-up of a primitive in [begin, end) of the draw's trailing pipelined run meets a
 // denormal or a tiny value (trailing_check.cpp says how it is watched). clipped_elsewhere: the
