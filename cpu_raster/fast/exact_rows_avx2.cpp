@@ -316,17 +316,25 @@ RASTERCMP_AVX2 bool thin_rows(const RasterPrimitive& p, int32_t y0, int32_t y1, 
   const __m256i lane_row = _mm256_setr_epi32(0, 0, 1, 1, 2, 2, 3, 3),
                 lane_column = _mm256_setr_epi32(0, 1, 0, 1, 0, 1, 0, 1);
   const __m256d first = _mm256_set1_pd(double(p.visit.x0)), last = _mm256_set1_pd(double(p.visit.x1));
+  const uintptr_t depth_bytes = reinterpret_cast<uintptr_t>(depth), owner_bytes = reinterpret_cast<uintptr_t>(owner);
+  const __m128i row_lanes = _mm_setr_epi32(0, 1, 2, 3), width4 = _mm_set1_epi32(width);
+  const __m128i last_column = _mm_set1_epi32(p.visit.x1);
   constexpr int32_t kChunkRows = 64;
   alignas(16) int32_t u[kChunkRows / 4][2][4];  // [step][lo, hi][row of the step]
   for (int32_t chunk = y0; chunk <= y1; chunk += kChunkRows) {
     const int32_t chunk_end = std::min(y1, chunk + kChunkRows - 1);
     for (int32_t y = chunk, b = 0; y <= chunk_end; y += 4, ++b) {
       next_plane_rows(planes, 0, first, last, u[b][0], u[b][1]);
-      for (int32_t k = 0; k < 4 && y + k <= chunk_end; ++k) {
-        if (u[b][0][k] > u[b][1][k]) continue;
-        const size_t at = size_t(y + k) * size_t(width) + size_t(u[b][0][k]);
-        _mm_prefetch(reinterpret_cast<const char*>(depth + at), _MM_HINT_T0);
-        _mm_prefetch(reinterpret_cast<const char*>(owner + at), _MM_HINT_T0);
+      // each of the four rows' first column, without a branch on empty rows or rows past the
+      // chunk (their lines are asked for all the same; a prefetch never faults, so the address,
+      // formed as an integer, may lie past the attachments)
+      alignas(16) uint32_t at[4];
+      const __m128i row4 = _mm_add_epi32(_mm_set1_epi32(y), row_lanes);
+      const __m128i column4 = _mm_min_epi32(_mm_load_si128(reinterpret_cast<const __m128i*>(u[b][0])), last_column);
+      _mm_store_si128(reinterpret_cast<__m128i*>(at), _mm_add_epi32(_mm_mullo_epi32(row4, width4), column4));
+      for (int32_t k = 0; k < 4; ++k) {
+        _mm_prefetch(reinterpret_cast<const char*>(depth_bytes + size_t(at[k]) * 4), _MM_HINT_T0);
+        _mm_prefetch(reinterpret_cast<const char*>(owner_bytes + size_t(at[k]) * 4), _MM_HINT_T0);
       }
     }
     for (int32_t y = chunk, b = 0; y <= chunk_end; y += 4, ++b) {
