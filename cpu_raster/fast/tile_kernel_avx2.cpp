@@ -174,15 +174,16 @@ RASTERCMP_AVX2 bool row_spans(const KernelJob& j, const KernelDepth& d, const Ti
   return any;
 }
 
-// Jobs of at most kNarrowSpans spans from origin_x: per row each span's edges' G - 1 (32-bit,
-// stepped by gy from row to row, as the loop below: at most 7 columns past the rectangle), covered
-// where all three are >= 0 and the column lies in the rectangle, then the depth test and writes
+// Jobs of at most kNarrowSpans spans (32 columns, narrow16's two steps) from origin_x: per row
+// each span's edges' G - 1 (32-bit, stepped by gy from row to row, as the loop below: at most 7
+// columns past the rectangle), covered where all three are >= 0 and the column lies in the
+// rectangle, then the depth test and writes
 // of the span whatever its coverage: no division per edge and four rows (the covered columns of
 // row_spans) and no branch on the data, as narrow16 on AVX-512 hosts. A span's stores are blends
 // of what it loaded: the columns from origin_x to the end of the tile of the rectangle's last
 // column (and the row) are this worker's (row_spans' limit); a span reaching past them takes
 // masked loads and stores.
-constexpr int kNarrowSpans = 3;
+constexpr int kNarrowSpans = 4;
 
 template <DepthFormat F, CompareOp Op, int Spans>
 RASTERCMP_AVX2 bool narrow_spans(const KernelJob& j, const KernelDepth& d, const TileTarget& t) {
@@ -243,9 +244,10 @@ RASTERCMP_AVX2 bool kernel(const KernelJob& j, const KernelDepth& d, const TileT
     case 0: return narrow_spans<F, Op, 1>(j, d, t);
     case 1: return narrow_spans<F, Op, 2>(j, d, t);
     case 2: return narrow_spans<F, Op, 3>(j, d, t);
+    case 3: return narrow_spans<F, Op, 4>(j, d, t);
     default: break;
   }
-  static_assert(kNarrowSpans == 3, "the cases above");
+  static_assert(kNarrowSpans == 4, "the cases above");
   return row_spans<F, Op>(j, d, t);
 }
 
