@@ -92,7 +92,8 @@ class BandWorker {
                                     const SetupContext& ctx);
   LineSetup setup_line_flushed(SetupDenormals mode, const std::array<WindowVertex, 2>& window, uint32_t owner,
                                const SetupContext& ctx, uint32_t primitive_index, bool bias_denormal);
-  bool misses_own_rows(const ClipVertex* vertices, uint32_t count, float margin, bool may_throw) const;
+  bool misses_own_rows(const WindowVertex* window, const uint32_t* clip_bits, uint32_t count, float margin,
+                       bool may_throw) const;
   bool clipped_line_misses_own_rows(const std::array<WindowVertex, 2>& window, float margin, bool may_throw) const;
   bool span_misses_own_rows(const RowSpan& span, bool may_throw) const;
   // Where a primitive's visit may reach (misses_own_rows): not settled by its vertices, some of this

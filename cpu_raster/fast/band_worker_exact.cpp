@@ -88,29 +88,44 @@ bool BandWorker::walk_exact(uint32_t d) {
         continue;
       }
       const AssembledPrimitive prim = assemble_primitive(*walk.draw, i);
-      std::array<ClipVertex, 3> v;
+      // each corner's make_clip_vertex fields but its pos_clip (the position itself, read only
+      // where a line is clipped): from the vertex phase where it ran
+      std::array<WindowVertex, 3> corner;
+      std::array<uint32_t, 3> clip_bits;
       for (uint32_t k = 0; k < corners; ++k) {
         const uint32_t position = prim.position[k];
-        if (transformed && position < positions) {  // make_clip_vertex's fields
+        if (transformed && position < positions) {
           const FastVertex& t = transformed[position];
-          v[k].pos_clip = walk.draw->positions_clip[position];
-          v[k].window = WindowVertex{t.x, t.y, t.z};
-          v[k].clip_mask = t.flags & kVertexClipBits;
+          corner[k] = WindowVertex{t.x, t.y, t.z};
+          clip_bits[k] = t.flags & kVertexClipBits;
         } else {
-          v[k] = make_clip_vertex(walk.draw->positions_clip[position], frame.viewport, depth_clip, frame.fma);
+          const ClipVertex v =
+              make_clip_vertex(walk.draw->positions_clip[position], frame.viewport, depth_clip, frame.fma);
+          corner[k] = v.window;
+          clip_bits[k] = v.clip_mask;
         }
       }
       // a listed primitive had this test on these values above
-      if (frame_.workers > 1 && !listed && misses_own_rows(v.data(), corners, margin, !flushed)) continue;
+      if (frame_.workers > 1 && !listed && misses_own_rows(corner.data(), clip_bits.data(), corners, margin, !flushed))
+        continue;
       const uint32_t owner = encode_owner(d, prim.primitive_index);
       if (lines) {
-        const ClippedLine clipped = clip_line({v[0], v[1]}, frame.viewport, inside_planes, line_xy);
-        if (clipped.fate == ClipFate::Outside || clipped.fate == ClipFate::Discarded) continue;
-        const std::array<WindowVertex, 2> window{clipped.line[0].window, clipped.line[1].window};
-        // a line the clipper cut was not settled by its vertices above: its cut ends are set-up's input
-        if (frame_.workers > 1 && clipped.fate == ClipFate::Clipped &&
-            clipped_line_misses_own_rows(window, margin, !flushed))
-          continue;
+        std::array<WindowVertex, 2> window{corner[0], corner[1]};
+        // Both ends inside every clip plane and no pass forced (inside_planes 0): clip_line hands
+        // the line back as it is (clip_line.cpp, §1.5), so it is called only otherwise.
+        if ((clip_bits[0] | clip_bits[1]) != 0 || inside_planes != 0) {
+          const auto clip_vertex = [&](uint32_t k) {
+            return ClipVertex{walk.draw->positions_clip[prim.position[k]], corner[k], clip_bits[k], false};
+          };
+          const ClippedLine clipped =
+              clip_line({clip_vertex(0), clip_vertex(1)}, frame.viewport, inside_planes, line_xy);
+          if (clipped.fate == ClipFate::Outside || clipped.fate == ClipFate::Discarded) continue;
+          window = {clipped.line[0].window, clipped.line[1].window};
+          // a line the clipper cut was not settled by its vertices above: its cut ends are set-up's input
+          if (frame_.workers > 1 && clipped.fate == ClipFate::Clipped &&
+              clipped_line_misses_own_rows(window, margin, !flushed))
+            continue;
+        }
         const bool lean_line = frame_.raster.avx2 && (flushed || !bias_denormal);
         const LeanSetup lean =
             lean_line ? setup_line_lean_flushed(flushed, window, owner, walk.ctx) : LeanSetup::Full;
@@ -121,18 +136,17 @@ bool BandWorker::walk_exact(uint32_t d) {
         if (setup.fate == SetupFate::Rasterized) raster_exact_in_band(setup.raster, depth);
         continue;
       }
-      const bool inside = (v[0].clip_mask | v[1].clip_mask | v[2].clip_mask) == 0;
+      const bool inside = (clip_bits[0] | clip_bits[1] | clip_bits[2]) == 0;
       if (!flushed || !lean_triangles || !inside || (float_cull && walk.pipelined[i / walk.per_chunk])) {
         run_primitive(frame, walk, i, sink);
         continue;
       }
-      const std::array<WindowVertex, 3> window{v[0].window, v[1].window, v[2].window};
       // the workers run with denormals flushed (WorkerPool::call, render_fast_into)
-      const LeanSetup lean = frame_.raster.avx2 ? setup_triangle_lean(window, owner, walk.ctx, lean_) : LeanSetup::Full;
+      const LeanSetup lean = frame_.raster.avx2 ? setup_triangle_lean(corner, owner, walk.ctx, lean_) : LeanSetup::Full;
       if (lean == LeanSetup::Drawn) raster_exact_in_band(lean_, depth);
       if (lean != LeanSetup::Full) continue;
       const TriangleSetup setup =
-          setup_triangle_in_mode(SetupDenormals::Flushed, window, owner, walk.ctx, prim.primitive_index);
+          setup_triangle_in_mode(SetupDenormals::Flushed, corner, owner, walk.ctx, prim.primitive_index);
       if (setup.fate == SetupFate::Rasterized) raster_exact_in_band(setup.raster, depth);
     }
   } catch (...) {
@@ -190,8 +204,9 @@ DrawWalk BandWorker::begin_draw_transformed(uint32_t d) const {
 // rows, every one of which some worker owns (row_balance, contiguous_rows): a worker that owns one
 // sets it up, in order, and records its error (walk_exact, FastFrame::failure), which is then
 // the first failing primitive's, as on the exact path.
-bool BandWorker::misses_own_rows(const ClipVertex* v, uint32_t count, float margin, bool may_throw) const {
-  const auto vertex = [v](uint32_t k) { return std::pair{v[k].window, v[k].clip_mask}; };
+bool BandWorker::misses_own_rows(const WindowVertex* window, const uint32_t* clip_bits, uint32_t count, float margin,
+                                 bool may_throw) const {
+  const auto vertex = [window, clip_bits](uint32_t k) { return std::pair{window[k], clip_bits[k]}; };
   return span_misses_own_rows(row_span_of(count, margin, vertex), may_throw);
 }
 
