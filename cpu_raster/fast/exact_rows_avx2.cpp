@@ -25,40 +25,43 @@ RASTERCMP_AVX2 bool init_plane_rows(PlaneRows& rows, const RasterPrimitive& p, u
   const int64_t widest = std::max<int64_t>(std::abs(int64_t(p.visit.x0)), std::abs(int64_t(p.visit.x1))) + 2;
   if (widest > (int64_t(1) << 20)) return false;  // then |d| * widest below stays within int64
   const int64_t span = (int64_t(y1) + 3 - y0) * kFixedOne;
-  uint32_t group[3][8], size[3] = {0, 0, 0};  // bounds below (d < 0), above (d > 0), flat
+  uint32_t below = 0, above = 0;  // planes bounding the columns below (d < 0), above (d > 0): bit i
   for (uint32_t i = 0; i < p.planes.count; ++i) {
     const EdgePlane& plane = p.planes.plane[i];
     if (plane.dcdx > kDeltaBound || plane.dcdx < -kDeltaBound || plane.dcdy > kDeltaBound || plane.dcdy < -kDeltaBound)
       return false;
     const int64_t d = plane.dcdx * kFixedOne;
     if ((d < 0 ? -d : d) * widest > kExactBound) return false;
-    const uint32_t g = d < 0 ? 0 : d > 0 ? 1 : 2;
-    group[g][size[g]++] = i;
+    below |= uint32_t(d < 0) << i;
+    above |= uint32_t(d > 0) << i;
   }
+  const uint32_t flat = ((1u << p.planes.count) - 1) & ~(below | above);
   int64_t sample_x[4], sample_y[4];  // sample_point(0, y0, s, p.per_sample)'s fixed coordinates
   for (uint32_t s = 0; s < samples; ++s) {
     sample_x[s] = p.per_sample ? kStandardSamples4x[s].x_fixed : 0;
     sample_y[s] = int64_t(y0) * kFixedOne + (p.per_sample ? kStandardSamples4x[s].y_fixed : 0);
   }
-  rows.lower = size[0];
-  rows.upper = size[0] + size[1];
-  rows.count = rows.upper + size[2];
-  uint32_t e = 0;
-  for (uint32_t g = 0; g < 3; ++g) {
-    for (uint32_t k = 0; k < size[g]; ++k, ++e) {
-      const EdgePlane& plane = p.planes.plane[group[g][k]];
-      for (uint32_t s = 0; s < samples; ++s) {
-        const int64_t first = edge_value(plane, sample_x[s], sample_y[s]) - 1;
-        const int64_t last = first + plane.dcdy * span;
-        if (first > kExactBound || first < -kExactBound || last > kExactBound || last < -kExactBound) return false;
-        rows.first[s][e] = double(first);  // exact integers, as every value below
-      }
-      rows.dy[e] = double(plane.dcdy * kFixedOne);
-      rows.step[e] = _mm256_set1_pd(4.0 * rows.dy[e]);
-      const double gx = -double(plane.dcdx * kFixedOne);
-      rows.gx[e] = _mm256_set1_pd(gx);
-      rows.inv[e] = _mm256_set1_pd(gx != 0 ? -1.0 / gx : 0.0);
+  rows.lower = uint32_t(std::popcount(below));
+  rows.upper = rows.lower + uint32_t(std::popcount(above));
+  rows.count = p.planes.count;
+  for (uint32_t i = 0; i < p.planes.count; ++i) {
+    // plane i's place: its group's start plus the planes of its group before it
+    const uint32_t before = (1u << i) - 1;
+    const uint32_t e = (below >> i & 1)   ? uint32_t(std::popcount(below & before))
+                       : (above >> i & 1) ? rows.lower + uint32_t(std::popcount(above & before))
+                                          : rows.upper + uint32_t(std::popcount(flat & before));
+    const EdgePlane& plane = p.planes.plane[i];
+    for (uint32_t s = 0; s < samples; ++s) {
+      const int64_t first = edge_value(plane, sample_x[s], sample_y[s]) - 1;
+      const int64_t last = first + plane.dcdy * span;
+      if (first > kExactBound || first < -kExactBound || last > kExactBound || last < -kExactBound) return false;
+      rows.first[s][e] = double(first);  // exact integers, as every value below
     }
+    rows.dy[e] = double(plane.dcdy * kFixedOne);
+    rows.step[e] = _mm256_set1_pd(4.0 * rows.dy[e]);
+    const double gx = -double(plane.dcdx * kFixedOne);
+    rows.gx[e] = _mm256_set1_pd(gx);
+    rows.inv[e] = _mm256_set1_pd(gx != 0 ? -1.0 / gx : 0.0);
   }
   return true;
 }

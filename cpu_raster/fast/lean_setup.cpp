@@ -30,9 +30,12 @@ RASTERCMP_AVX2 inline bool snap_nearest_even(float window, float pixel_offset, i
 // util_iround, then the set-up bound. 22.3.6: trunc(f + 0.5f) for f >= 0, trunc(f - 0.5f)
 // otherwise, each a rounded float add; from 23.1 lrintf, to nearest even (§8.1), whose int32
 // wrapping the bound leaves out. false where the full set-up decides (NaN, beyond the bound).
+// The 22.3.6 add without a branch on the sign: f + copysign(0.5f, f) is f - 0.5f for f < 0 (the
+// same rounded operation), f + 0.5f for f >= +0; for f = -0 it gives -0.5f where util_iround adds
+// 0.5f, both truncated to 0. The MXCSR flags the watch reads (DE, UE) are those of the same add.
 RASTERCMP_AVX2 inline bool snap_line(float pixels, bool lrintf, int64_t& raw) {
   const float scaled = float(kFixedOne) * pixels;
-  __m128 v = _mm_set_ss(lrintf ? scaled : scaled >= 0.0f ? scaled + 0.5f : scaled - 0.5f);
+  __m128 v = _mm_set_ss(lrintf ? scaled : scaled + std::copysign(0.5f, scaled));
   v = lrintf ? _mm_round_ss(v, v, _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC)
              : _mm_round_ss(v, v, _MM_FROUND_TO_ZERO | _MM_FROUND_NO_EXC);
   const float rounded = _mm_cvtss_f32(v);
