@@ -12,6 +12,7 @@
 #include "cpu_raster/fast/cpu_features.hpp"
 #include "cpu_raster/fast/format_dispatch.hpp"
 #include "cpu_raster/fast/small_window.hpp"
+#include "cpu_raster/fast/small_window_lanes.hpp"
 
 namespace rastercmp::cpu::fast {
 namespace {
@@ -59,46 +60,6 @@ RASTERCMP_AVX2 inline void store_row(const uint32_t* row, int units, __m256i las
   _mm256_maskstore_epi32(reinterpret_cast<int*>(image + kUnit * c), last, load_unit(row + kUnit * c));
 }
 
-// What every lane's loop starts from, for the eight lanes at once (as small_window_avx512.cpp's
-// lane_starts): its rows within [row_lo, row_hi], its first and last unit, and E - 1 at its first
-// unit's left pixel in its first row (e_window moved by whole rows and columns: 32-bit adds and
-// multiplies wrap, so the order of the moves does not change the values). `lanes`: the grid lanes
-// with at least one row here.
-struct LaneStarts {
-  alignas(32) int32_t y_first[8], y_last[8], first_unit[8], last_unit[8];
-  alignas(32) int32_t e[3][8];
-  alignas(32) float first_y[8];
-  uint32_t lanes = 0;
-};
-
-RASTERCMP_AVX2 inline __m256i load_lanes(const int32_t* p) {
-  return _mm256_load_si256(reinterpret_cast<const __m256i*>(p));
-}
-RASTERCMP_AVX2 inline void store_lanes(int32_t* p, __m256i v) { _mm256_store_si256(reinterpret_cast<__m256i*>(p), v); }
-
-RASTERCMP_AVX2 inline LaneStarts lane_starts(const SmallBlockOutput& b, int32_t row_lo, int32_t row_hi) {
-  LaneStarts s;
-  const __m256i wx0 = _mm256_set1_epi32(b.grid_x0), y0 = load_lanes(b.y0);
-  const __m256i y_first = _mm256_max_epi32(y0, _mm256_set1_epi32(row_lo));
-  const __m256i y_last = _mm256_min_epi32(load_lanes(b.y1), _mm256_set1_epi32(row_hi));
-  const __m256i first_unit = _mm256_srai_epi32(_mm256_sub_epi32(load_lanes(b.x0), wx0), 3);  // x0 >= grid_x0
-  static_assert(kUnit == 1 << 3);
-  const __m256i rows_down = _mm256_sub_epi32(y_first, y0), columns_right = _mm256_slli_epi32(first_unit, 3);
-  for (int k = 0; k < 3; ++k) {
-    const __m256i down = _mm256_mullo_epi32(rows_down, load_lanes(b.gy[k]));
-    const __m256i right = _mm256_mullo_epi32(columns_right, load_lanes(b.gx[k]));
-    store_lanes(s.e[k], _mm256_add_epi32(_mm256_add_epi32(load_lanes(b.e_window[k]), down), right));
-  }
-  store_lanes(s.y_first, y_first);
-  store_lanes(s.y_last, y_last);
-  store_lanes(s.first_unit, first_unit);
-  store_lanes(s.last_unit, _mm256_srai_epi32(_mm256_sub_epi32(load_lanes(b.x1), wx0), 3));
-  _mm256_store_ps(s.first_y, _mm256_cvtepi32_ps(y_first));  // exact: integers below 2^24
-  const uint32_t empty = uint32_t(_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpgt_epi32(y_first, y_last))));
-  s.lanes = b.grid_mask & ~empty;
-  return s;
-}
-
 // Rows [row_lo, row_hi] lie in the block's union and are the caller's. A lane is evaluated over
 // its rows within them and the units of its columns; a unit's pixels outside the lane's bounding
 // box are never covered by it (the box holds every sample inside the triangle; the edge values
@@ -124,11 +85,12 @@ RASTERCMP_AVX2 void composite(const SmallBlockOutput& b, uint32_t owner_of_lane_
     if constexpr (kDepth) load_row(t.depth + i, units, last, w.depth[r]);
   }
   const __m256 px0 = _mm256_cvtepi32_ps(_mm256_add_epi32(_mm256_set1_epi32(wx0), column_of));  // exact: < 2^24
-  const LaneStarts starts = lane_starts(b, row_lo, row_hi);
+  const LaneStarts starts = lane_starts<0>(b, row_lo, row_hi);                                 // units of one row
+  static_assert(kUnit == 1 << kLaneUnitColumnsLog2);
   for (uint32_t lanes = starts.lanes; lanes != 0; lanes &= lanes - 1) {
     const int l = std::countr_zero(lanes);
-    const int32_t y_first = starts.y_first[l], y_last = starts.y_last[l];
-    const int c_first = starts.first_unit[l], c_last = starts.last_unit[l];
+    const int32_t y_first = row_lo + starts.first_unit_row[l], y_last = row_lo + starts.last_unit_row[l];
+    const int c_first = starts.first_column[l], c_last = starts.last_column[l];
     const __m256i owner = _mm256_set1_epi32(int32_t(owner_of_lane_0 + uint32_t(l)));
     __m256i e0[3], gy[3], gx8[3];
     for (int k = 0; k < 3; ++k) {

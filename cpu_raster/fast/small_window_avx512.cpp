@@ -11,6 +11,7 @@
 #include "cpu_raster/fast/cpu_features.hpp"
 #include "cpu_raster/fast/format_dispatch.hpp"
 #include "cpu_raster/fast/small_window.hpp"
+#include "cpu_raster/fast/small_window_lanes.hpp"
 
 namespace rastercmp::cpu::fast {
 namespace {
@@ -46,47 +47,6 @@ RASTERCMP_AVX512 inline void store_units(const uint32_t* unit, __mmask16 columns
     _mm512_mask_storeu_epi32(image + row_pitch, columns, _mm512_shuffle_i64x2(left, right, _MM_SHUFFLE(3, 2, 3, 2)));
 }
 
-// What every lane's loop starts from, for the eight lanes at once: its first and last unit row
-// and column, E - 1 at the first unit's top-left pixel (e_window moved by whole rows and
-// columns: 32-bit adds and multiplies wrap, so the order of the moves does not change the values,
-// which lie in the window and at most one row above the lane's rows) and that pixel's y.
-// `lanes`: the grid lanes with at least one row here.
-struct LaneStarts {
-  alignas(32) int32_t first_unit_row[8], last_unit_row[8], first_column[8], last_column[8];
-  alignas(32) int32_t e[3][8];
-  alignas(32) float first_y[8];
-  uint32_t lanes = 0;
-};
-
-RASTERCMP_AVX512 inline __m256i load(const int32_t* p) {
-  return _mm256_load_si256(reinterpret_cast<const __m256i*>(p));
-}
-RASTERCMP_AVX512 inline void store(int32_t* p, __m256i v) { _mm256_store_si256(reinterpret_cast<__m256i*>(p), v); }
-
-RASTERCMP_AVX512 inline LaneStarts lane_starts(const SmallBlockOutput& b, int32_t row_lo, int32_t row_hi) {
-  LaneStarts s;
-  const __m256i wx0 = _mm256_set1_epi32(b.grid_x0), wy0 = _mm256_set1_epi32(row_lo), y0 = load(b.y0);
-  const __m256i y_first = _mm256_max_epi32(y0, wy0), y_last = _mm256_min_epi32(load(b.y1), _mm256_set1_epi32(row_hi));
-  const __m256i unit_row_first = _mm256_srai_epi32(_mm256_sub_epi32(y_first, wy0), 1);   // y_first >= row_lo
-  const __m256i column_first = _mm256_srai_epi32(_mm256_sub_epi32(load(b.x0), wx0), 3);  // x0 >= grid_x0
-  static_assert(kUnitColumns == 1 << 3);
-  const __m256i top = _mm256_add_epi32(wy0, _mm256_slli_epi32(unit_row_first, 1));  // y_first or y_first - 1
-  const __m256i rows_down = _mm256_sub_epi32(top, y0), columns_right = _mm256_slli_epi32(column_first, 3);
-  for (int k = 0; k < 3; ++k) {
-    const __m256i down = _mm256_mullo_epi32(rows_down, load(b.gy[k]));
-    const __m256i right = _mm256_mullo_epi32(columns_right, load(b.gx[k]));
-    store(s.e[k], _mm256_add_epi32(_mm256_add_epi32(load(b.e_window[k]), down), right));
-  }
-  store(s.first_unit_row, unit_row_first);
-  store(s.last_unit_row, _mm256_srai_epi32(_mm256_sub_epi32(y_last, wy0), 1));
-  store(s.first_column, column_first);
-  store(s.last_column, _mm256_srai_epi32(_mm256_sub_epi32(load(b.x1), wx0), 3));
-  _mm256_store_ps(s.first_y, _mm256_cvtepi32_ps(top));  // exact: integers below 2^24
-  const uint32_t empty = _mm256_cmpgt_epi32_mask(y_first, y_last);
-  s.lanes = b.grid_mask & ~empty;
-  return s;
-}
-
 // A unit's pixels can lie outside a lane's rows: above its first row (a unit row that starts
 // one row earlier) or below its last. There the lane covers nothing when the row is outside its
 // bounding box too; the one row it may cover is row_hi + 1 (the lane's box reaches into another
@@ -111,7 +71,8 @@ RASTERCMP_AVX512 void composite(const SmallBlockOutput& b, uint32_t owner_of_lan
       if constexpr (kDepth) load_units(t.depth + i, pitch, columns[s], two_rows, &w.depth[u][2 * kUnit * s]);
     }
   }
-  const LaneStarts starts = lane_starts(b, row_lo, row_hi);
+  const LaneStarts starts = lane_starts<1>(b, row_lo, row_hi);  // units of two rows
+  static_assert(kUnitColumns == 1 << kLaneUnitColumnsLog2);
   const __m512i column_of = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 0, 1, 2, 3, 4, 5, 6, 7);
   const __m512i row_of = _mm512_setr_epi32(0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1);
   const __m512 px0 = _mm512_cvtepi32_ps(_mm512_add_epi32(_mm512_set1_epi32(wx0), column_of));  // exact: < 2^24
