@@ -91,7 +91,7 @@ bool BandWorker::walk_exact(uint32_t d) {
       // each corner's make_clip_vertex fields but its pos_clip (the position itself, read only
       // where a line is clipped): from the vertex phase where it ran
       std::array<WindowVertex, 3> corner;
-      std::array<uint32_t, 3> clip_bits;
+      std::array<uint32_t, 3> clip_bits{};  // a line leaves the third 0
       for (uint32_t k = 0; k < corners; ++k) {
         const uint32_t position = prim.position[k];
         if (transformed && position < positions) {
