@@ -680,6 +680,40 @@ TEST(FastLines, ClippedLinesBesideAWorkersRows) {
   expect_fast_matches(scene, true, {1u, 2u, 3u, 4u});
 }
 
+// A frame of lines whose rows would share the L1's sets (a width of 512 or 1,024 pixels) is drawn
+// at a wider row pitch and packed at its width (frame_row_pitch); the thin rows then read and write
+// each gathered step's rows as pairs (draw_pairs), except where a row's one pixel is the visit's
+// last column (the frame's right edge, a worker's last tile). Lines of several widths, clipped at
+// the left and right edges, on one to three workers: the exact path's bytes, with the pitch and
+// without it. Frames of other widths (pairs at their own pitch), with triangles or of four
+// samples keep their width.
+TEST(FastRowPitch, LinesInFramesWhoseRowsShareL1SetsMatchExactPath) {
+  for (uint64_t seed = 1; seed <= 3; ++seed) {
+    Scene scene = bench::lines_scene(1200, 512, seed);
+    scene.name += " seed " + std::to_string(seed);
+    Draw wide = bench::lines_scene(200, 512, seed + 10).draws[0];
+    wide.state.line_width = float(seed) + 0.5f;  // runs of more than two columns: the row path
+    for (glm::vec4& v : wide.positions_clip) v.x *= 1.3f;
+    scene.draws.push_back(std::move(wide));
+    EXPECT_EQ(cpu::fast::frame_row_pitch(scene), 528u);
+    expect_fast_matches(scene, seed != 2, {1u, 2u, 3u});
+    CpuOptions options;
+    options.threads = 2;
+    options.lavapipe = &lavapipe_releases().front();
+    cpu::fast::FastConfig unpitched;
+    unpitched.spread_pitch = false;
+    EXPECT_TRUE(same_bytes(render_exact(scene, true), cpu::fast::render_fast(scene, options, unpitched)));
+  }
+  EXPECT_EQ(cpu::fast::frame_row_pitch(bench::lines_scene(30, 1024)), 1040u);
+  EXPECT_EQ(cpu::fast::frame_row_pitch(bench::lines_scene(30, 500)), 500u);
+  EXPECT_EQ(cpu::fast::frame_row_pitch(bench::msaa_grid_scene(12, 128)), 128u);
+  Scene with_triangles = bench::lines_scene(300, 512);
+  with_triangles.draws.push_back(bench::grid_scene(10, 512).draws[0]);
+  EXPECT_EQ(cpu::fast::frame_row_pitch(with_triangles), 512u);
+  expect_fast_matches(with_triangles, true, {2u});
+  expect_fast_matches(bench::lines_scene(300, 500), true, {2u});
+}
+
 TEST(FastBuiltinScenes, NotSupportedStaysNotSupported) {
   const Scene scene = load_scene_file(std::string(RASTERCMP_SOURCE_DIR) + "/scenes/not_supported/point_list.json");
   EXPECT_THROW(render_fast(scene, true, 2, fast_test::best_isa()), NotSupportedError);

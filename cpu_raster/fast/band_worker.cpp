@@ -72,11 +72,41 @@ void BandWorker::run() {
       return;  // a primitive threw: the render throws it (FastFrame::failure)
     flush(frame_.draws[d].raster);
   }
-  for (int32_t ty = 0; ty < frame_.raster.tiles_y; ++ty)
-    if (owns_tile_row(ty)) clear_tile_row(ty, index_, frame_.raster);
+  for (int32_t ty = 0; ty < frame_.raster.tiles_y; ++ty) {
+    if (!owns_tile_row(ty)) continue;
+    clear_tile_row(ty, index_, frame_.raster);
+    if (frame_.packed_owner) pack_tile_row(ty, index_);
+  }
   // the rows nobody owns: each taken by one worker, the first to get here taking more
-  for (size_t i = frame_.next_unowned++; i < frame_.unowned_rows.size(); i = frame_.next_unowned++)
+  for (size_t i = frame_.next_unowned++; i < frame_.unowned_rows.size(); i = frame_.next_unowned++) {
     clear_tile_row(frame_.unowned_rows[i], kUnownedRow, frame_.raster);
+    if (frame_.packed_owner) pack_tile_row(frame_.unowned_rows[i], kUnownedRow);
+  }
+}
+
+// A frame drawn at a wider row pitch (FastFrame::packed_owner): the tiles of row tile_y that
+// `worker` draws, final once its walk is done, copied into the result's attachments at the
+// frame's width, each run of them a row at a time. Every tile is some worker's or in a row
+// nobody owns, so every pixel is copied once.
+void BandWorker::pack_tile_row(int32_t tile_y, uint32_t worker) {
+  const RenderTargets& t = frame_.targets;
+  const size_t samples = t.samples, pitch = size_t(t.width) * samples;
+  const int32_t width = int32_t(frame_.scene->width);
+  const size_t packed = size_t(width) * samples;
+  const int32_t y0 = tile_y * kTileSize, y1 = std::min(y0 + kTileSize, int32_t(t.height));
+  for (int32_t tx = 0; tx < frame_.raster.tiles_x; ++tx) {
+    if (frame_.raster.tile(tx, tile_y).worker != worker) continue;
+    int32_t last = tx;
+    while (last + 1 < frame_.raster.tiles_x && frame_.raster.tile(last + 1, tile_y).worker == worker) ++last;
+    const size_t x0 = size_t(tx) * kTileSize, x1 = std::min(size_t(last + 1) * kTileSize, size_t(width));
+    const size_t values = (x1 - x0) * samples;
+    for (int32_t y = y0; y < y1; ++y) {
+      const size_t from = size_t(y) * pitch + x0 * samples, to = size_t(y) * packed + x0 * samples;
+      std::copy_n(t.owner.data() + from, values, frame_.packed_owner + to);
+      if (frame_.packed_depth) std::copy_n(t.depth_raw.data() + from, values, frame_.packed_depth + to);
+    }
+    tx = last;
+  }
 }
 
 int32_t BandWorker::owned_tiles(int32_t tile_y, int32_t tile_x0, int32_t tile_x1) const {

@@ -144,6 +144,7 @@ class BandWorker {
   bool may_hide(const PixelRect& tile, const uint8_t* list, size_t count, const DrawRaster& raster) const;
   size_t first_visible(const PixelRect& tile, const uint8_t* list, size_t count, const DrawRaster& raster);
   void prepare_tiles(const PixelRect& r, bool depth_write);
+  void pack_tile_row(int32_t tile_y, uint32_t worker);
 
   FastFrame& frame_;
   uint32_t index_;  // the worker, or the queued unit (FastFrame::queued_units), whose tiles it draws

@@ -1,5 +1,6 @@
 // The exact rows (exact_rows.hpp) with AVX2, their covered columns from exact_rows_avx2.hpp: in a
-// frame of one sample per pixel (lines) each four rows' one or two columns a gathered step, or a
+// frame of one sample per pixel (lines) each four rows' one or two columns a step (gathered, or
+// read and written as pairs where the rows spread over the L1's sets), or a
 // row's run eight contiguous columns a step (thin_rows); fragments queued from any row and column
 // and their stored depths gathered (depth_rows: Bresenham lines in 4x frames); without an active
 // depth test the owner alone (coverage_rows). Per-sample primitives in 4x frames:
@@ -10,11 +11,13 @@
 #include <bit>
 #include <cstdint>
 #include <cstdlib>
+#include <cstring>
 
 #include "cpu_raster/fast/avx2_depth.hpp"
 #include "cpu_raster/fast/cpu_features.hpp"
 #include "cpu_raster/fast/exact_rows_avx2.hpp"
 #include "cpu_raster/fast/format_dispatch.hpp"
+#include "cpu_raster/fast/frame_memory.hpp"
 
 namespace rastercmp::cpu::fast {
 
@@ -195,6 +198,47 @@ RASTERCMP_AVX2 inline void draw_gathered(const GatheredStep& c, const KernelDept
   }
 }
 
+// Four pairs' two words each as one 64-bit lane (memcpy: a pair need not be aligned), lane by lane:
+// one 32-byte load of four 8-byte stores would wait for them to retire.
+RASTERCMP_AVX2 inline __m256i pairs_of(uint32_t* const* pair) {
+  int64_t v[4];
+  for (int k = 0; k < 4; ++k) std::memcpy(&v[k], pair[k], sizeof(int64_t));
+  return _mm256_setr_epi64x(v[0], v[1], v[2], v[3]);
+}
+
+// A gathered step of thin_rows (lane 2k + j: row k, column u0[k] + j) with each row's two pixels
+// read and written as one 64-bit word of each attachment, in a frame whose rows spread over the
+// L1's sets (rows_share_l1_sets false: there plain loads and stores beat the gather and scatters,
+// which suffer less where the rows share a set; rastercmp_bench_access). `at[k]`: row k's first
+// pixel, `live[k]`: its run is not empty. Every pixel of a live row's pair is in this worker's
+// tiles (the caller checks u0[k] + 1 against the visit), so the step writes back, unchanged,
+// what a lane that is not covered or fails held (no other worker writes it), as the blended
+// writes do; an empty row's words go to a scratch pair.
+template <DepthFormat F, CompareOp Op>
+RASTERCMP_AVX2 inline void draw_pairs(const GatheredStep& c, const KernelDepth& d, __m256 x, __m256 y, __m256i valid,
+                                      const int32_t* at, const int32_t* live) {
+  uint32_t scratch[4];
+  uint32_t* depth_pair[4];
+  uint32_t* owner_pair[4];
+  for (int k = 0; k < 4; ++k) {
+    depth_pair[k] = live[k] != 0 ? c.depth + at[k] : scratch;
+    owner_pair[k] = live[k] != 0 ? c.owner + at[k] : scratch + 2;
+  }
+  const __m256i stored = pairs_of(depth_pair), held = pairs_of(owner_pair);
+  const __m256 z = finish_depth8(mul_add8(c.dzdy, y, mul_add8(c.dzdx, x, c.a0, d.fma), d.fma), c.offset, d);
+  const __m256i raw = to_raw<F>(z);
+  __m256i pass = valid;
+  if constexpr (Op != CompareOp::Always) pass = _mm256_and_si256(valid, depth_passes<F, Op>(z, raw, stored));
+  alignas(32) uint64_t depth_out[4], owner_out[4];
+  _mm256_store_si256(reinterpret_cast<__m256i*>(depth_out), _mm256_blendv_epi8(stored, raw, pass));
+  _mm256_store_si256(reinterpret_cast<__m256i*>(owner_out),
+                     _mm256_blendv_epi8(held, _mm256_set1_epi32(int32_t(c.id)), pass));
+  for (int k = 0; k < 4; ++k) {
+    if (d.write) std::memcpy(depth_pair[k], &depth_out[k], sizeof(uint64_t));
+    std::memcpy(owner_pair[k], &owner_out[k], sizeof(uint64_t));
+  }
+}
+
 // Fragments [0, count): raw depth, test against the stored values, writes.
 template <DepthFormat F, CompareOp Op>
 RASTERCMP_AVX2 void flush_fragments(const Fragments& f, int32_t count, const RasterPrimitive& p, const KernelDepth& d,
@@ -300,9 +344,10 @@ RASTERCMP_AVX2 bool depth_rows(const RasterPrimitive& p, int32_t y0, int32_t y1,
 // columns (lane 2k + j: row k, column u0[k] + j, valid when j < the run), or, row by row, steps of
 // eight contiguous columns masked to the run (a row of one sample per pixel is contiguous in the
 // attachments). Each lane's depth, test and write are draw_gathered's (the gathered step's writes
-// scattered on AVX-512 hosts, blended elsewhere: StepWrites); a step holds distinct samples of one
-// primitive, so reading its stored values before writing any reads what the exact path's order
-// reads. Without the queue of depth_rows: a thin line's fragment is drawn where its
+// scattered on AVX-512 hosts, blended elsewhere: StepWrites), or where the frame's rows spread over
+// the L1's sets draw_pairs' (each row's two pixels one 64-bit word); a step holds distinct samples
+// of one primitive, so reading its stored values before writing any reads what the exact path's
+// order reads. Without the queue of depth_rows: a thin line's fragment is drawn where its
 // row's columns are known.
 template <DepthFormat F, CompareOp Op>
 RASTERCMP_AVX2 bool thin_rows(const RasterPrimitive& p, int32_t y0, int32_t y1, const KernelDepth& d,
@@ -321,7 +366,9 @@ RASTERCMP_AVX2 bool thin_rows(const RasterPrimitive& p, int32_t y0, int32_t y1, 
   const __m256d first = _mm256_set1_pd(double(p.visit.x0)), last = _mm256_set1_pd(double(p.visit.x1));
   const uintptr_t depth_bytes = reinterpret_cast<uintptr_t>(depth), owner_bytes = reinterpret_cast<uintptr_t>(owner);
   const __m128i row_lanes = _mm_setr_epi32(0, 1, 2, 3), width4 = _mm_set1_epi32(width);
-  const __m128i last_column = _mm_set1_epi32(p.visit.x1);
+  const __m128i last_column = _mm_set1_epi32(p.visit.x1), one4 = _mm_set1_epi32(1);
+  // the gathered steps as 64-bit pairs where the rows spread over the L1's sets (draw_pairs)
+  const bool pairs = !rows_share_l1_sets(size_t(width) * sizeof(uint32_t));
   constexpr int32_t kChunkRows = 64;
   alignas(16) int32_t u[kChunkRows / 4][2][4];  // [step][lo, hi][row of the step]
   for (int32_t chunk = y0; chunk <= y1; chunk += kChunkRows) {
@@ -359,9 +406,21 @@ RASTERCMP_AVX2 bool thin_rows(const RasterPrimitive& p, int32_t y0, int32_t y1, 
             _mm256_add_epi32(_mm256_permutevar8x32_epi32(_mm256_castsi128_si256(lo), lane_row), lane_column);
         const __m256i valid =
             _mm256_cmpgt_epi32(_mm256_permutevar8x32_epi32(_mm256_castsi128_si256(runs), lane_row), lane_column);
-        const __m256i index = _mm256_add_epi32(_mm256_mullo_epi32(row, _mm256_set1_epi32(width)), column);
         // sample_point's floats for a pixel-centre sample: float(px), float(py)
-        draw_gathered<F, Op>(gathered, d, _mm256_cvtepi32_ps(column), _mm256_cvtepi32_ps(row), index, valid);
+        const __m256 x = _mm256_cvtepi32_ps(column), y_lanes = _mm256_cvtepi32_ps(row);
+        const __m128i live = _mm_cmpgt_epi32(runs, _mm_setzero_si128());
+        // pairs where every live row's second pixel lies in the visit (a run of one at its last column not)
+        const __m128i short_at_end = _mm_and_si128(live, _mm_cmpgt_epi32(lo, _mm_sub_epi32(last_column, one4)));
+        if (pairs && _mm_testz_si128(short_at_end, short_at_end)) {
+          alignas(16) int32_t at[4], live_rows[4];
+          _mm_store_si128(reinterpret_cast<__m128i*>(at),
+                          _mm_add_epi32(_mm_mullo_epi32(_mm_add_epi32(_mm_set1_epi32(y), row_lanes), width4), lo));
+          _mm_store_si128(reinterpret_cast<__m128i*>(live_rows), live);
+          draw_pairs<F, Op>(gathered, d, x, y_lanes, valid, at, live_rows);
+          continue;
+        }
+        const __m256i index = _mm256_add_epi32(_mm256_mullo_epi32(row, _mm256_set1_epi32(width)), column);
+        draw_gathered<F, Op>(gathered, d, x, y_lanes, index, valid);
         continue;
       }
       for (int32_t k = 0; k < rows; ++k) {

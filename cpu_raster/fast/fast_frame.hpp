@@ -81,6 +81,11 @@ struct FastFrame {
   const Scene* scene = nullptr;
   FrameContext exact;     // cpu::make_frame_context: viewport, region, methods
   RenderTargets targets;  // the attachments, written in place (cleared tile by tile)
+  // Where targets.width, their row pitch, is wider than the frame (frame_row_pitch): the result's
+  // attachments at the frame's width, into which each worker copies its tiles when its walk is
+  // done (BandWorker::pack_tile_row); null otherwise.
+  uint32_t* packed_owner = nullptr;
+  uint32_t* packed_depth = nullptr;
   FrameRaster raster;     // pointers into targets, tiles, dispatch
   std::vector<TileState> tiles;
   std::vector<FastDraw> draws;

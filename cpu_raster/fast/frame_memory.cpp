@@ -51,6 +51,11 @@ uint32_t* thread_word_scratch(size_t count, WordScratch use) {
   return words.data();
 }
 
+PitchedAttachments& thread_pitched_attachments() {
+  thread_local PitchedAttachments attachments;
+  return attachments;
+}
+
 VertexScratch& thread_vertex_scratch() {
   thread_local VertexScratch scratch;
   return scratch;

@@ -55,17 +55,50 @@ bool frame_bounds_usable(const Scene& scene, const std::vector<FastDraw>& draws)
                      [](const FastDraw& d) { return !d.raster.depth.write || depth_values_ordered(d.raster.depth); });
 }
 
-// The attachments, in `result`'s buffers, not cleared: the workers clear them tile by tile.
-void init_targets(FastFrame& frame, const Scene& scene, RenderResult& result) {
+}  // namespace
+
+// spread_row_pitch (frame_memory.hpp) for a frame of one sample per pixel with a draw of lines and
+// no draw of triangles (in such a frame, the fast draws: init_frame), its width otherwise. The
+// thin rows' pairs (exact_rows_avx2.cpp, draw_pairs) are what gains from the spread rows; in a 4x
+// frame the copy cost more than the exact rows gained (msaa4_grid, performance-log.md), and the
+// fast draws' kernels take the pitch for the width.
+uint32_t frame_row_pitch(const Scene& scene) {
+  const bool lines = std::any_of(scene.draws.begin(), scene.draws.end(),
+                                 [](const Draw& draw) { return is_line_topology(draw.topology); });
+  const bool fast = std::any_of(scene.draws.begin(), scene.draws.end(),
+                                [](const Draw& draw) { return is_triangle_topology(draw.topology); });
+  return scene.samples == 1 && lines && !fast ? spread_row_pitch(scene.width, scene.samples) : scene.width;
+}
+
+namespace {
+
+// The attachments, not cleared (the workers clear them tile by tile): `result`'s buffers, or at a
+// wider row pitch the thread's pitched ones (then `result`'s are sized for the workers to pack
+// the frame into: BandWorker::pack_tile_row).
+void init_targets(FastFrame& frame, const Scene& scene, uint32_t pitch, RenderResult& result) {
   RenderTargets& t = frame.targets;
-  t.width = scene.width;
+  frame.packed_owner = frame.packed_depth = nullptr;
+  t.width = pitch;
   t.height = scene.height;
   t.samples = scene.samples;
   t.depth_format = scene.depth_format;
-  const size_t count = size_t(scene.width) * scene.height * scene.samples;
-  t.owner = std::move(result.owner);
+  const size_t count = size_t(pitch) * scene.height * scene.samples;
+  if (pitch != scene.width) {
+    PitchedAttachments& pitched = thread_pitched_attachments();
+    t.owner = std::move(pitched.owner);
+    t.depth_raw = std::move(pitched.depth);
+    const size_t packed = size_t(scene.width) * scene.height * scene.samples;
+    size_buffer(result.owner, packed, 0);
+    frame.packed_owner = result.owner.data();
+    if (scene.has_depth()) {
+      size_buffer(result.depth_raw, packed, 1);
+      frame.packed_depth = result.depth_raw.data();
+    }
+  } else {
+    t.owner = std::move(result.owner);
+    t.depth_raw = std::move(result.depth_raw);
+  }
   size_buffer(t.owner, count, 0);
-  t.depth_raw = std::move(result.depth_raw);
   if (scene.has_depth())
     size_buffer(t.depth_raw, count, 1);
   else
@@ -90,7 +123,6 @@ void init_frame(FastFrame& frame, const Scene& scene, const CpuOptions& options,
                 RenderResult& result) {
   frame.scene = &scene;
   frame.exact = make_frame_context(scene, options.fma, SetupMethods{}, WorkSkips{}, options.lavapipe->rules());
-  init_targets(frame, scene, result);
   frame.workers = worker_count(scene, options.threads, config);
   frame.draws.resize(scene.draws.size());
   for (uint32_t d = 0; d < scene.draws.size(); ++d) {
@@ -101,13 +133,15 @@ void init_frame(FastFrame& frame, const Scene& scene, const CpuOptions& options,
     fd.raster =
         make_draw_raster(make_depth_test_state(scene, draw, frame.exact.viewport, options.fma), false, false, false);
   }
+  init_targets(frame, scene, config.spread_pitch ? frame_row_pitch(scene) : scene.width, result);
   const bool bounds = frame_bounds_usable(scene, frame.draws);
   const bool avx2 = config.allow_avx2 && host_has_avx2_fma();
   const bool avx512 = avx2 && config.allow_avx512 && host_has_avx512();
   for (FastDraw& fd : frame.draws) fd.raster = make_draw_raster(fd.raster.depth, bounds, avx2, avx512);
   FrameRaster& raster = frame.raster;
+  // the pitch for the width: only the exact draws' rows and the clears use it where they differ
   raster.target = TileTarget{frame.targets.owner.data(), scene.has_depth() ? frame.targets.depth_raw.data() : nullptr,
-                             int32_t(scene.width), int32_t(scene.height), int32_t(scene.samples)};
+                             int32_t(frame.targets.width), int32_t(scene.height), int32_t(scene.samples)};
   raster.tiles_x = int32_t((scene.width + kTileSize - 1) / kTileSize);
   raster.tiles_y = int32_t((scene.height + kTileSize - 1) / kTileSize);
   raster.avx2 = avx2;
@@ -259,6 +293,20 @@ void run_workers(FastFrame& frame) {
   times.attach(frame);
 }
 
+// A frame drawn at a wider row pitch than its width: the workers have packed its pixels into
+// `result`'s buffers (BandWorker::pack_tile_row); the pitched buffers are kept for the next such
+// frame on this thread.
+void finish_pitched(FastFrame& frame, RenderResult& result) {
+  RenderTargets& t = frame.targets;
+  PitchedAttachments& pitched = thread_pitched_attachments();
+  pitched.owner = std::move(t.owner);
+  pitched.depth = std::move(t.depth_raw);
+  t.width = frame.scene->width;  // the sizes move_into_result records
+  t.owner = std::move(result.owner);
+  t.depth_raw = std::move(result.depth_raw);
+  if (!frame.scene->has_depth()) t.depth_raw.clear();
+}
+
 }  // namespace
 
 void render_fast_into(const Scene& scene, const CpuOptions& options, const FastConfig& config, RenderResult& result) {
@@ -292,6 +340,7 @@ void render_fast_into(const Scene& scene, const CpuOptions& options, const FastC
   }
   run_workers(frame);
   if (frame.failure.error) std::rethrow_exception(frame.failure.error);
+  if (frame.packed_owner) finish_pitched(frame, result);
   move_into_result(std::move(frame.targets), lavapipe_profile_device(options), options.fma, result);
   if (config.profile) config.profile->serial_seconds += thread_cpu_seconds() - frame.serial_mark;
 }

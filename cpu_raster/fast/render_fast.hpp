@@ -52,6 +52,9 @@ struct FastConfig {
   bool allow_avx2 = true;     // false: the scalar kernels even on an AVX2 host
   bool every_thread = false;  // true: options.threads workers even where one would do (tests)
   bool allow_avx512 = true;   // false: the AVX2 kernels even on an AVX-512 host
+  // false: the attachments at the frame's width even where frame_row_pitch would spread their rows
+  // over the L1's sets (tests compare both; the bytes are the same)
+  bool spread_pitch = true;
   RenderProfile* profile = nullptr;  // filled when set (cleared first)
   // With a profile: at most this many threads run a phase's worker jobs, one job after another
   // (0: one thread per worker). bench --scaling --model sets the host's hardware threads, so that
@@ -60,6 +63,11 @@ struct FastConfig {
 };
 
 void render_fast_into(const Scene& scene, const CpuOptions& options, const FastConfig& config, RenderResult& result);
+
+// The row pitch, in pixels, of the attachments render_fast_into draws `scene` into (unless
+// FastConfig::spread_pitch is off): spread_row_pitch (frame_memory.hpp) for a frame of one sample
+// per pixel with a draw of lines and no draw of triangles, its width otherwise.
+uint32_t frame_row_pitch(const Scene& scene);
 
 // Many scenes on options.threads workers side by side, as `conformance --jobs` renders a suite:
 // the scenes that would take several workers (worker_count) first, one after another, each with
