@@ -290,13 +290,15 @@ void BandWorker::raster_exact_in_band(const RasterPrimitive& primitive, const De
   }
 }
 
-// Before the exact rasterizer writes into r: its tiles cleared, their bounds dropped if depth is written.
+// Before the exact rasterizer writes into r: its tiles cleared, their bounds dropped if depth is
+// written (stored only when not dropped yet: a tile state's line may hold a tile of another
+// worker's row, and a store would take it from that worker's cache at every primitive).
 void BandWorker::prepare_tiles(const PixelRect& r, bool depth_write) {
   for (int32_t ty = r.y0 >> kTileOrder; ty <= r.y1 >> kTileOrder; ++ty) {
     for (int32_t tx = r.x0 >> kTileOrder; tx <= r.x1 >> kTileOrder; ++tx) {
       TileState& tile = frame_.raster.tile(tx, ty);
       if (!tile.cleared) clear_tile_row(ty, index_, frame_.raster);
-      if (depth_write) tile.bounds.state = BoundsState::Unknown;
+      if (depth_write && tile.bounds.state != BoundsState::Unknown) tile.bounds.state = BoundsState::Unknown;
     }
   }
 }
