@@ -705,6 +705,7 @@ TEST(FastRowPitch, LinesInFramesWhoseRowsShareL1SetsMatchExactPath) {
     EXPECT_TRUE(same_bytes(render_exact(scene, true), cpu::fast::render_fast(scene, options, unpitched)));
   }
   EXPECT_EQ(cpu::fast::frame_row_pitch(bench::lines_scene(30, 1024)), 1040u);
+  EXPECT_EQ(cpu::fast::frame_row_pitch(bench::lines_scene(30, 4096)), 4096u);  // 130 MiB pitched: kept at its width
   EXPECT_EQ(cpu::fast::frame_row_pitch(bench::lines_scene(30, 500)), 500u);
   EXPECT_EQ(cpu::fast::frame_row_pitch(bench::msaa_grid_scene(12, 128)), 128u);
   Scene with_triangles = bench::lines_scene(300, 512);

@@ -45,7 +45,7 @@ VertexScratch& thread_vertex_scratch();
 // lines 2-8 times slower at a pitch of 1,024 pixels than at 1,040, by kind of access;
 // docs/performance.md, "Lines and multisampled frames"). With the wider pitch consecutive rows
 // lie one set apart. The pitch changes where values live, never a value: the frame's pixels are
-// copied to the result at its width when it is drawn (render_fast.cpp, pack_rows).
+// copied to the result at its width when it is drawn (BandWorker::pack_tile_row).
 inline constexpr size_t kL1WayBytes = 4096;
 inline bool rows_share_l1_sets(size_t row_bytes) { return std::gcd(row_bytes, kL1WayBytes) >= kL1WayBytes / 2; }
 inline uint32_t spread_row_pitch(uint32_t width, uint32_t samples) {
@@ -54,7 +54,9 @@ inline uint32_t spread_row_pitch(uint32_t width, uint32_t samples) {
 }
 
 // The calling thread's attachments of a frame drawn at a wider pitch than its width (kept between
-// renders: render_fast_into moves them into the frame's targets and back).
+// renders: render_fast_into moves them into the frame's targets and back). A frame is drawn so
+// only while both fit in kMaxPitchedBytes, which bounds what a thread keeps.
+inline constexpr size_t kMaxPitchedBytes = size_t(64) << 20;
 struct PitchedAttachments {
   PixelBuffer owner, depth;
 };

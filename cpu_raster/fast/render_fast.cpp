@@ -58,16 +58,19 @@ bool frame_bounds_usable(const Scene& scene, const std::vector<FastDraw>& draws)
 }  // namespace
 
 // spread_row_pitch (frame_memory.hpp) for a frame of one sample per pixel with a draw of lines and
-// no draw of triangles (in such a frame, the fast draws: init_frame), its width otherwise. The
-// thin rows' pairs (exact_rows_avx2.cpp, draw_pairs) are what gains from the spread rows; in a 4x
-// frame the copy cost more than the exact rows gained (msaa4_grid, performance-log.md), and the
-// fast draws' kernels take the pitch for the width.
+// no draw of triangles (in such a frame, the fast draws: init_frame) whose pitched attachments fit
+// kMaxPitchedBytes, its width otherwise. The thin rows' pairs (exact_rows_avx2.cpp, draw_pairs)
+// are what gains from the spread rows; in a 4x frame the copy cost more than the exact rows gained
+// (msaa4_grid, performance-log.md), and the fast draws' kernels take the pitch for the width.
 uint32_t frame_row_pitch(const Scene& scene) {
   const bool lines = std::any_of(scene.draws.begin(), scene.draws.end(),
                                  [](const Draw& draw) { return is_line_topology(draw.topology); });
   const bool fast = std::any_of(scene.draws.begin(), scene.draws.end(),
                                 [](const Draw& draw) { return is_triangle_topology(draw.topology); });
-  return scene.samples == 1 && lines && !fast ? spread_row_pitch(scene.width, scene.samples) : scene.width;
+  if (scene.samples != 1 || !lines || fast) return scene.width;
+  const uint32_t pitch = spread_row_pitch(scene.width, scene.samples);
+  const size_t bytes = size_t(pitch) * scene.height * scene.samples * sizeof(uint32_t) * 2;  // owner and depth
+  return bytes <= kMaxPitchedBytes ? pitch : scene.width;
 }
 
 namespace {
