@@ -195,6 +195,76 @@ TEST(FastListReach, PackedTileRowsGiveTheSameAnswers) {
   }
 }
 
+// The reach phase's eight-wide lines (line_list_reach_avx2) against the scalar row_span_of and
+// pack_tile_rows, line by line: corners anywhere in and far beyond a frame, on tile borders, at
+// +-0, infinite, NaN, past 1e7 and spanning past 32000 px, with clip bits and failed snaps (not
+// clip bits), margins of thin and wide lines, tasks of any start and length (the last lines one by
+// one), and lines at the bounds (a span of exactly 32000 px, y across +-1e7). Six mutations of the
+// code (the span's bound by >, the clamp at 0, the flags' snap bit taken for a clip bit, y_lo's
+// bound on y_hi, x's span left out, the transpose's lanes of the second corner swapped) each fail
+// it.
+TEST(FastListReach, EightLinesAtOnceGiveTheScalarAnswers) {
+  if (!host_has_avx2_fma()) GTEST_SKIP() << "host without AVX2/FMA: the reach phase takes the lines one by one";
+  fast_test::Random r(5);
+  const auto coordinate = [&r](float extent) {
+    switch (r.below(12)) {
+      case 0: return std::numeric_limits<float>::infinity() * (r.chance(0.5) ? 1.0f : -1.0f);
+      case 1: return std::numeric_limits<float>::quiet_NaN();
+      case 2: return r.chance(0.5) ? 0.0f : -0.0f;
+      case 3: return float(r.range(-3e7, 3e7));
+      case 4: return float(64 * int(r.below(20)) - 64) + (r.chance(0.5) ? 0.0f : float(r.range(-3.5, 3.5)));
+      default: return float(r.range(-0.2 * extent, 1.2 * extent));
+    }
+  };
+  for (int trial = 0; trial < 400; ++trial) {
+    const int32_t tiles_y = int32_t(1 + r.below(20));
+    const float extent = float(64 * tiles_y);
+    const uint32_t lines = 1 + r.below(300);
+    std::vector<FastVertex> vertices(2 * size_t(lines));
+    for (FastVertex& v : vertices) {
+      const bool near = r.chance(0.9);
+      v.x = near ? float(r.range(0, extent)) : coordinate(extent);
+      v.y = near ? float(r.range(-0.1 * extent, 1.1 * extent)) : coordinate(extent);
+      v.z = float(r.range(0, 1));
+      v.flags = r.chance(0.05) ? 1u << r.below(7) : 0u;  // bit 6: a failed snap, not a clip bit
+    }
+    Draw draw;
+    draw.topology = Topology::LineList;
+    draw.state.line_width = r.chance(0.5) ? 1.0f : float(r.range(1, 40));
+    for (uint32_t i = 0; i < lines; ++i) {  // lines at the bounds: a span of 32000 px, y across +-1e7
+      if (!r.chance(0.05)) continue;
+      FastVertex& a = vertices[2 * size_t(i)];
+      FastVertex& b = vertices[2 * size_t(i) + 1];
+      a.flags = b.flags = 0;
+      if (r.chance(0.5)) {  // (x_hi - x_lo) + (y_hi - y_lo) + 4 * margin = 32000 exactly, or a step off
+        const float margin4 = 4.0f * (std::max(draw.state.line_width, 1.0f) + 3.0f);
+        a.x = 0.0f;
+        a.y = b.y = 100.0f;
+        b.x = 32000.0f - margin4 + float(int(r.below(3)) - 1) * 0.00390625f;
+      } else {  // a short line across the bound of -1e7 or +1e7
+        const float side = r.chance(0.5) ? 1.0f : -1.0f;
+        a.x = b.x = 10.0f;
+        a.y = side * 1e7f - 3.0f;
+        b.y = side * 1e7f + 3.0f;
+      }
+    }
+    draw.positions_clip.resize(vertices.size());  // only their count is read
+    const float margin = reach_margin(draw, true);
+    const uint32_t begin = r.below(lines), end = begin + r.below(lines - begin + 1);
+    std::vector<uint32_t> reach(lines, 0xDEADBEEFu);
+    line_list_reach_avx2(vertices.data(), begin, end, margin, tiles_y, reach.data());
+    for (uint32_t i = 0; i < lines; ++i) {
+      const uint32_t expected =
+          i >= begin && i < end
+              ? pack_tile_rows(listed_row_span(draw, vertices.data(), vertices.size(), 2, i, margin), tiles_y)
+              : 0xDEADBEEFu;
+      ASSERT_EQ(reach[i], expected) << "trial " << trial << " line " << i << " of [" << begin << ", " << end << "): ("
+                                    << vertices[2 * i].x << ", " << vertices[2 * i].y << ") - ("
+                                    << vertices[2 * i + 1].x << ", " << vertices[2 * i + 1].y << ")";
+    }
+  }
+}
+
 // The block-row phase's shortcut: whenever span_tile_rows_avx2 answers for a run of blocks, each
 // block's answer is the one list_block_tile_rows_avx2 gives it alone; otherwise it writes
 // nothing. Meshes with local indices (the shortcut's case), far and out-of-range indices, unknown

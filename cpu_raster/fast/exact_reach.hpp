@@ -76,6 +76,15 @@ inline std::pair<int32_t, int32_t> unpack_tile_rows(uint32_t packed) {
   return {int32_t(packed >> 16) - 1, int32_t(packed & 0xFFFFu) - 1};
 }
 
+// pack_tile_rows(listed_row_span(...)) of lines [begin, end) of a line list without indices, for
+// `vertices` holding at least 2 * end positions (call only when host_has_avx2_fma()): eight lines a
+// step, each lane row_span_of's operations on its two corners (the clip bits and finiteness, the
+// minimum and maximum, the span's two subtractions and two adds in their order, the bounds, the
+// floors by truncation) and pack_tile_rows' shift and clamp. Unit test
+// FastListReach.EightLinesAtOnceGiveTheScalarAnswers.
+void line_list_reach_avx2(const FastVertex* vertices, uint32_t begin, uint32_t end, float margin, int32_t tiles_y,
+                          uint32_t* reach);
+
 // The reach phase (several workers): FastDraw::list_reach of every line or triangle list the
 // exact front end walks (not a fast draw), one entry per primitive, in tasks of primitives; left
 // null (each worker then works its rows out as it walks) when those lists hold fewer primitives
