@@ -42,7 +42,7 @@ VertexScratch& thread_vertex_scratch();
 // at one sample) on hosts whose L1 has 4 KiB a way (48 KiB of 12 ways, 32 KiB of 8: every x86
 // host measured): then the rows a steep line or a tile covers in one column share a set of 12 ways,
 // and their loads and stores wait on one another (`rastercmp_bench_access`: the steps of 40-row
-// lines 2-8 times slower at a pitch of 1,024 pixels than at 1,040, by kind of access;
+// lines 1.5-8 times slower at a pitch of 1,024 pixels than at 1,040, by kind of access;
 // docs/performance.md, "Lines and multisampled frames"). With the wider pitch consecutive rows
 // lie one set apart. The pitch changes where values live, never a value: the frame's pixels are
 // copied to the result at its width when it is drawn (BandWorker::pack_tile_row).
