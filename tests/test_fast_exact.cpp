@@ -715,6 +715,32 @@ TEST(FastRowPitch, LinesInFramesWhoseRowsShareL1SetsMatchExactPath) {
   expect_fast_matches(bench::lines_scene(300, 500), true, {2u});
 }
 
+// The same with enough lines for the reach phase (at least 4096), which clips the lines a clip
+// plane cuts once for all workers and stores the rows of what is left (clipped_line_reach): lines
+// beside every tile border, cut by the left and right planes and some wholly outside them, among
+// lines clipped by the near and far planes, at 2-4 workers. The cut line's span without the
+// line's margin fails it.
+TEST(FastLines, ClippedLinesBesideAWorkersRowsInTheReachPhase) {
+  Scene scene;
+  scene.name = "many clipped lines at tile borders";
+  scene.width = 200;
+  scene.height = 512;
+  Draw draw;
+  draw.topology = Topology::LineList;
+  draw.state.line_width = 3.0f;
+  fast_test::Random r(3);
+  for (int n = 0; n < 4400; ++n) {
+    const int border = 1 + int(r.below(7));
+    const float y = (float(border * 64) + float(r.range(-8, 8))) / 256.0f - 1.0f;
+    const float side = r.chance(0.5) ? -1.0f : 1.0f, z = float(r.range(-0.2, 1.2));
+    const float reach = r.chance(0.1) ? 1.1f : -0.6f;  // a tenth wholly outside one plane
+    draw.positions_clip.emplace_back(1.4f * side, y, z, 1.0f);
+    draw.positions_clip.emplace_back(reach * side, y + float(r.range(-0.05, 0.05)), z + 0.1f, 1.0f);
+  }
+  scene.draws.push_back(std::move(draw));
+  expect_fast_matches(scene, true, {2u, 3u, 4u});
+}
+
 TEST(FastBuiltinScenes, NotSupportedStaysNotSupported) {
   const Scene scene = load_scene_file(std::string(RASTERCMP_SOURCE_DIR) + "/scenes/not_supported/point_list.json");
   EXPECT_THROW(render_fast(scene, true, 2, fast_test::best_isa()), NotSupportedError);

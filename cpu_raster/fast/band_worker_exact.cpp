@@ -60,9 +60,12 @@ bool BandWorker::walk_exact(uint32_t d) {
   // (clip_triangle); anything else takes run_primitive.
   const bool lean_triangles = !lines && frame.skips.clip_only_when_needed;
   const bool float_cull = walk.draw->state.cull_mode != CullMode::None;
-  const uint32_t inside_planes = frame.skips.clip_only_when_needed ? 0 : tested_clip_planes(depth_clip);
+  // clip_line's arguments, as the reach phase's (clipped_line_reach); inside_planes also the
+  // triangles' test below
+  const LineClipping clipping = line_clipping(frame, *walk.draw);
+  const uint32_t inside_planes = clipping.inside_planes;
   const bool bias_denormal = lines && depth_bias_is_denormal(walk.draw->state.depth_bias);
-  const LineXyClip line_xy = frame.rules.has(LavapipeRule::LineGuardBand) ? LineXyClip::GuardBand : LineXyClip::Clip;
+  const LineXyClip line_xy = clipping.xy;
   // A line or triangle list: primitive i's corners are positions (indices[]) corners * i + k, so a
   // primitive in other workers' rows is left out from the vertex phase's values before it is
   // assembled: from the tile rows the reach phase stored (exact_reach.hpp), or worked out here.

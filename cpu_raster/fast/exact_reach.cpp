@@ -29,6 +29,29 @@ RowSpan listed_row_span(const Draw& draw, const FastVertex* transformed, size_t 
   });
 }
 
+uint32_t clipped_line_reach(const FrameContext& frame, const Draw& draw, const FastVertex* transformed,
+                            size_t positions, uint32_t i, float margin, int32_t tiles_y) {
+  const size_t first = 2 * size_t(i), listed = draw.indices.empty() ? positions : draw.indices.size();
+  if (first + 2 > listed) return kReachUnsettled;
+  std::array<ClipVertex, 2> corner;
+  uint32_t bits = 0;
+  for (uint32_t k = 0; k < 2; ++k) {
+    const size_t at = draw.indices.empty() ? first + k : draw.indices[first + k];
+    if (at >= positions) return kReachUnsettled;
+    const FastVertex& v = transformed[at];
+    corner[k] = ClipVertex{draw.positions_clip[at], WindowVertex{v.x, v.y, v.z}, v.flags & kVertexClipBits, false};
+    bits |= corner[k].clip_mask;
+  }
+  if (bits == 0) return kReachUnsettled;  // not settled for another reason: left to the walk
+  const LineClipping clipping = line_clipping(frame, draw);
+  const ClippedLine clipped = clip_line(corner, frame.viewport, clipping.inside_planes, clipping.xy);
+  if (clipped.fate == ClipFate::Outside || clipped.fate == ClipFate::Discarded)
+    return pack_tile_rows(RowSpan{true, -kTileSize, -1}, tiles_y);  // tile rows [-1, -1]: no frame row
+  if (clipped.fate != ClipFate::Clipped) return kReachUnsettled;
+  const auto end = [&clipped](uint32_t k) { return std::pair{clipped.line[k].window, 0u}; };
+  return pack_tile_rows(row_span_of(2, margin, end), tiles_y);
+}
+
 namespace {
 
 // Per lane: a float whose exponent is all ones (infinite or NaN).
@@ -149,11 +172,16 @@ void measure_list_reach(FastFrame& frame) {
         // a line list without indices whose positions hold the task's lines: eight at a time
         if (lines && draw.indices.empty() && frame.raster.avx2 && 2 * size_t(task.end) <= positions) {
           line_list_reach_avx2(fd.vertices, task.begin, task.end, margin, tiles_y, fd.list_reach);
-          return;
+        } else {
+          for (uint32_t i = task.begin; i < task.end; ++i)
+            fd.list_reach[i] =
+                pack_tile_rows(listed_row_span(draw, fd.vertices, positions, lines ? 2 : 3, i, margin), tiles_y);
         }
+        if (!lines) return;
+        // the lines a clip plane cuts: clipped once here rather than by every worker
         for (uint32_t i = task.begin; i < task.end; ++i)
-          fd.list_reach[i] =
-              pack_tile_rows(listed_row_span(draw, fd.vertices, positions, lines ? 2 : 3, i, margin), tiles_y);
+          if (fd.list_reach[i] == kReachUnsettled)
+            fd.list_reach[i] = clipped_line_reach(frame.exact, draw, fd.vertices, positions, i, margin, tiles_y);
       });
     }
   });

@@ -15,6 +15,8 @@
 #include <cstdint>
 #include <utility>
 
+#include "cpu_raster/exact/clip_line.hpp"
+#include "cpu_raster/exact/clip_test.hpp"
 #include "cpu_raster/fast/fast_frame.hpp"
 #include "cpu_raster/fast/fast_vertices.hpp"
 #include "model/scene.hpp"
@@ -75,6 +77,28 @@ inline uint32_t pack_tile_rows(const RowSpan& span, int32_t tiles_y) {
 inline std::pair<int32_t, int32_t> unpack_tile_rows(uint32_t packed) {
   return {int32_t(packed >> 16) - 1, int32_t(packed & 0xFFFFu) - 1};
 }
+
+// How the walk clips a line of `draw` (band_worker_exact.cpp, clip_line's arguments): the planes it
+// tests on every line (none while the clip skip is on: then only a line with a clip bit is
+// clipped) and the x and y planes' rule of the release.
+struct LineClipping {
+  uint32_t inside_planes = 0;
+  LineXyClip xy = LineXyClip::Clip;
+};
+inline LineClipping line_clipping(const FrameContext& frame, const Draw& draw) {
+  return {frame.skips.clip_only_when_needed ? 0 : tested_clip_planes(draw.state.depth_clip_enabled()),
+          frame.rules.has(LavapipeRule::LineGuardBand) ? LineXyClip::GuardBand : LineXyClip::Clip};
+}
+
+// The reach phase's entry for line i of a line list whose corners do not settle its rows because
+// one lies outside a clip plane (listed_row_span unsettled, both corners among the positions): the
+// walk's clip_line on the same corners, then the tile rows of what it leaves (pack_tile_rows of
+// row_span_of on the cut ends, which set-up takes), or for a line it drops rows below the frame,
+// which no worker owns (the walk then leaves it out when its set-up would be flushed, and
+// otherwise clips it away itself). kReachUnsettled for a line without a clip bit, one the clipper
+// passes whole, or a corner past the positions: the walk works those out as before.
+uint32_t clipped_line_reach(const FrameContext& frame, const Draw& draw, const FastVertex* transformed,
+                            size_t positions, uint32_t i, float margin, int32_t tiles_y);
 
 // pack_tile_rows(listed_row_span(...)) of lines [begin, end) of a line list without indices, for
 // `vertices` holding at least 2 * end positions (call only when host_has_avx2_fma()): eight lines a
