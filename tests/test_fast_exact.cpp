@@ -656,18 +656,26 @@ TEST(FastLines, TrailingRunSetUpsThatMeetDenormals) {
   }
 }
 
+// A frame of width x height with one line list, empty, of lines `line_width` wide.
+Scene line_list_scene(const std::string& name, uint32_t width, uint32_t height, float line_width) {
+  Scene scene;
+  scene.name = name;
+  scene.width = width;
+  scene.height = height;
+  Draw draw;
+  draw.topology = Topology::LineList;
+  draw.state.line_width = line_width;
+  scene.draws.push_back(std::move(draw));
+  return scene;
+}
+
 // Wide lines that cross the view volume's sides, their ends a few pixels either side of the
 // 64-row tile borders between workers: a clipped line is left out by a worker only when its
 // clipped ends, widened by the line's margin, miss the worker's rows (walk_exact). A worker that
 // left out a line whose quad reaches one of its rows would lose that row's pixels.
 TEST(FastLines, ClippedLinesBesideAWorkersRows) {
-  Scene scene;
-  scene.name = "clipped wide lines at tile borders";
-  scene.width = 200;
-  scene.height = 256;
-  Draw draw;
-  draw.topology = Topology::LineList;
-  draw.state.line_width = 7.0f;
+  Scene scene = line_list_scene("clipped wide lines at tile borders", 200, 256, 7.0f);
+  Draw& draw = scene.draws[0];
   for (int border = 1; border < 4; ++border) {
     for (int d = -6; d <= 6; ++d) {
       const float y = float(border * 64 + d) / 128.0f - 1.0f, z = 0.2f + 0.05f * float(d + 6);
@@ -676,8 +684,27 @@ TEST(FastLines, ClippedLinesBesideAWorkersRows) {
       draw.positions_clip.emplace_back(-0.6f * side, y + 0.01f * float(d), z + 0.1f, 1.0f);
     }
   }
-  scene.draws.push_back(std::move(draw));
   expect_fast_matches(scene, true, {1u, 2u, 3u, 4u});
+}
+
+// The same with enough lines for the reach phase (at least 4096), which clips the lines a clip
+// plane cuts once for all workers and stores the rows of what is left (clipped_line_reach): lines
+// beside every tile border, cut by the left and right planes and some wholly outside them, among
+// lines clipped by the near and far planes, at 2-4 workers. The cut line's span without the
+// line's margin fails it.
+TEST(FastLines, ClippedLinesBesideAWorkersRowsInTheReachPhase) {
+  Scene scene = line_list_scene("many clipped lines at tile borders", 200, 512, 3.0f);
+  Draw& draw = scene.draws[0];
+  fast_test::Random r(3);
+  for (int n = 0; n < 4400; ++n) {
+    const int border = 1 + int(r.below(7));
+    const float y = (float(border * 64) + float(r.range(-8, 8))) / 256.0f - 1.0f;
+    const float side = r.chance(0.5) ? -1.0f : 1.0f, z = float(r.range(-0.2, 1.2));
+    const float reach = r.chance(0.1) ? 1.1f : -0.6f;  // a tenth wholly outside one plane
+    draw.positions_clip.emplace_back(1.4f * side, y, z, 1.0f);
+    draw.positions_clip.emplace_back(reach * side, y + float(r.range(-0.05, 0.05)), z + 0.1f, 1.0f);
+  }
+  expect_fast_matches(scene, true, {2u, 3u, 4u});
 }
 
 // A frame of lines whose rows would share the L1's sets (a width of 512 or 1,024 pixels) is drawn
@@ -713,32 +740,6 @@ TEST(FastRowPitch, LinesInFramesWhoseRowsShareL1SetsMatchExactPath) {
   EXPECT_EQ(cpu::fast::frame_row_pitch(with_triangles), 512u);
   expect_fast_matches(with_triangles, true, {2u});
   expect_fast_matches(bench::lines_scene(300, 500), true, {2u});
-}
-
-// The same with enough lines for the reach phase (at least 4096), which clips the lines a clip
-// plane cuts once for all workers and stores the rows of what is left (clipped_line_reach): lines
-// beside every tile border, cut by the left and right planes and some wholly outside them, among
-// lines clipped by the near and far planes, at 2-4 workers. The cut line's span without the
-// line's margin fails it.
-TEST(FastLines, ClippedLinesBesideAWorkersRowsInTheReachPhase) {
-  Scene scene;
-  scene.name = "many clipped lines at tile borders";
-  scene.width = 200;
-  scene.height = 512;
-  Draw draw;
-  draw.topology = Topology::LineList;
-  draw.state.line_width = 3.0f;
-  fast_test::Random r(3);
-  for (int n = 0; n < 4400; ++n) {
-    const int border = 1 + int(r.below(7));
-    const float y = (float(border * 64) + float(r.range(-8, 8))) / 256.0f - 1.0f;
-    const float side = r.chance(0.5) ? -1.0f : 1.0f, z = float(r.range(-0.2, 1.2));
-    const float reach = r.chance(0.1) ? 1.1f : -0.6f;  // a tenth wholly outside one plane
-    draw.positions_clip.emplace_back(1.4f * side, y, z, 1.0f);
-    draw.positions_clip.emplace_back(reach * side, y + float(r.range(-0.05, 0.05)), z + 0.1f, 1.0f);
-  }
-  scene.draws.push_back(std::move(draw));
-  expect_fast_matches(scene, true, {2u, 3u, 4u});
 }
 
 TEST(FastBuiltinScenes, NotSupportedStaysNotSupported) {
