@@ -14,15 +14,26 @@
 
 namespace rastercmp::cpu::fast {
 
+namespace {
+
+// Primitive i's corners of a list (`corners` a primitive): the positions corners * i + k, or the
+// indices there; false when the list ends before its last corner or one lies past the positions.
+bool listed_corners(const Draw& draw, size_t positions, uint32_t corners, uint32_t i, std::array<uint32_t, 3>& at) {
+  const size_t first = size_t(corners) * i, listed = draw.indices.empty() ? positions : draw.indices.size();
+  if (first + corners > listed) return false;
+  for (uint32_t k = 0; k < corners; ++k) {
+    at[k] = draw.indices.empty() ? uint32_t(first + k) : draw.indices[first + k];
+    if (at[k] >= positions) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
 RowSpan listed_row_span(const Draw& draw, const FastVertex* transformed, size_t positions, uint32_t corners, uint32_t i,
                         float margin) {
   std::array<uint32_t, 3> at{};
-  const size_t first = size_t(corners) * i, listed = draw.indices.empty() ? positions : draw.indices.size();
-  if (first + corners > listed) return {};
-  for (uint32_t k = 0; k < corners; ++k) {
-    at[k] = draw.indices.empty() ? uint32_t(first + k) : draw.indices[first + k];
-    if (at[k] >= positions) return {};
-  }
+  if (!listed_corners(draw, positions, corners, i, at)) return {};
   return row_span_of(corners, margin, [&](uint32_t k) {
     const FastVertex& v = transformed[at[k]];
     return std::pair{WindowVertex{v.x, v.y, v.z}, v.flags & kVertexClipBits};
@@ -31,15 +42,13 @@ RowSpan listed_row_span(const Draw& draw, const FastVertex* transformed, size_t 
 
 uint32_t clipped_line_reach(const FrameContext& frame, const Draw& draw, const FastVertex* transformed,
                             size_t positions, uint32_t i, float margin, int32_t tiles_y) {
-  const size_t first = 2 * size_t(i), listed = draw.indices.empty() ? positions : draw.indices.size();
-  if (first + 2 > listed) return kReachUnsettled;
+  std::array<uint32_t, 3> at{};
+  if (!listed_corners(draw, positions, 2, i, at)) return kReachUnsettled;
   std::array<ClipVertex, 2> corner;
   uint32_t bits = 0;
   for (uint32_t k = 0; k < 2; ++k) {
-    const size_t at = draw.indices.empty() ? first + k : draw.indices[first + k];
-    if (at >= positions) return kReachUnsettled;
-    const FastVertex& v = transformed[at];
-    corner[k] = ClipVertex{draw.positions_clip[at], WindowVertex{v.x, v.y, v.z}, v.flags & kVertexClipBits, false};
+    const FastVertex& v = transformed[at[k]];
+    corner[k] = ClipVertex{draw.positions_clip[at[k]], WindowVertex{v.x, v.y, v.z}, v.flags & kVertexClipBits, false};
     bits |= corner[k].clip_mask;
   }
   if (bits == 0) return kReachUnsettled;  // not settled for another reason: left to the walk

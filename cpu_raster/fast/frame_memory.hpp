@@ -36,21 +36,21 @@ class VertexScratch {
 // The calling thread's scratch.
 VertexScratch& thread_vertex_scratch();
 
-// The row pitch, in pixels, of a frame's attachments while the fast path draws them: the frame's
+// The row pitch, in pixels, of a frame of one sample per pixel while the fast path draws it: its
 // width, or one 64-byte line more a row where rows of that width would fall in one or two sets of
-// the L1 data cache. That happens to a row of a multiple of 2 KiB (a width of 512, 1024, ... pixels
-// at one sample) on hosts whose L1 has 4 KiB a way (48 KiB of 12 ways, 32 KiB of 8: every x86
-// host measured): then the rows a steep line or a tile covers in one column share a set of 12 ways,
-// and their loads and stores wait on one another (`rastercmp_bench_access`: the steps of 40-row
-// lines 1.5-8 times slower at a pitch of 1,024 pixels than at 1,040, by kind of access;
+// the L1 data cache. That happens to a row of a multiple of 2 KiB (a width of 512, 1024, ...
+// pixels) on hosts whose L1 has 4 KiB a way (this host's: 48 KiB of 12 ways, 64 sets;
+// /sys/devices/system/cpu/cpu0/cache/index0): then the rows a steep line covers in one column
+// share a set, and their loads and stores wait on one another (`rastercmp_bench_access`: the steps
+// of 40-row lines 1.5-8 times slower at a pitch of 1,024 pixels than at 1,040, by kind of access;
 // docs/performance.md, "Lines and multisampled frames"). With the wider pitch consecutive rows
 // lie one set apart. The pitch changes where values live, never a value: the frame's pixels are
 // copied to the result at its width when it is drawn (BandWorker::pack_tile_row).
 inline constexpr size_t kL1WayBytes = 4096;
 inline bool rows_share_l1_sets(size_t row_bytes) { return std::gcd(row_bytes, kL1WayBytes) >= kL1WayBytes / 2; }
-inline uint32_t spread_row_pitch(uint32_t width, uint32_t samples) {
-  const size_t line_pixels = 64 / (sizeof(uint32_t) * samples);  // samples: 1 or 4
-  return rows_share_l1_sets(size_t(width) * samples * sizeof(uint32_t)) ? width + uint32_t(line_pixels) : width;
+inline uint32_t spread_row_pitch(uint32_t width) {
+  constexpr uint32_t kLinePixels = 64 / sizeof(uint32_t);
+  return rows_share_l1_sets(size_t(width) * sizeof(uint32_t)) ? width + kLinePixels : width;
 }
 
 // The calling thread's attachments of a frame drawn at a wider pitch than its width (kept between

@@ -68,8 +68,8 @@ uint32_t frame_row_pitch(const Scene& scene) {
   const bool fast = std::any_of(scene.draws.begin(), scene.draws.end(),
                                 [](const Draw& draw) { return is_triangle_topology(draw.topology); });
   if (scene.samples != 1 || !lines || fast) return scene.width;
-  const uint32_t pitch = spread_row_pitch(scene.width, scene.samples);
-  const size_t bytes = size_t(pitch) * scene.height * scene.samples * sizeof(uint32_t) * 2;  // owner and depth
+  const uint32_t pitch = spread_row_pitch(scene.width);
+  const size_t bytes = size_t(pitch) * scene.height * sizeof(uint32_t) * 2;  // owner and depth, one sample
   return bytes <= kMaxPitchedBytes ? pitch : scene.width;
 }
 

@@ -66,7 +66,8 @@ void render_fast_into(const Scene& scene, const CpuOptions& options, const FastC
 
 // The row pitch, in pixels, of the attachments render_fast_into draws `scene` into (unless
 // FastConfig::spread_pitch is off): spread_row_pitch (frame_memory.hpp) for a frame of one sample
-// per pixel with a draw of lines and no draw of triangles, its width otherwise.
+// per pixel with a draw of lines, no draw of triangles and pitched attachments within
+// kMaxPitchedBytes, its width otherwise.
 uint32_t frame_row_pitch(const Scene& scene);
 
 // Many scenes on options.threads workers side by side, as `conformance --jobs` renders a suite:

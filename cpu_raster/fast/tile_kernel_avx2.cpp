@@ -177,12 +177,11 @@ RASTERCMP_AVX2 bool row_spans(const KernelJob& j, const KernelDepth& d, const Ti
 // Jobs of at most kNarrowSpans spans (32 columns, narrow16's two steps) from origin_x: per row
 // each span's edges' G - 1 (32-bit, stepped by gy from row to row, as the loop below: at most 7
 // columns past the rectangle), covered where all three are >= 0 and the column lies in the
-// rectangle, then the depth test and writes
-// of the span whatever its coverage: no division per edge and four rows (the covered columns of
-// row_spans) and no branch on the data, as narrow16 on AVX-512 hosts. A span's stores are blends
-// of what it loaded: the columns from origin_x to the end of the tile of the rectangle's last
-// column (and the row) are this worker's (row_spans' limit); a span reaching past them takes
-// masked loads and stores.
+// rectangle, then the depth test and writes of the span whatever its coverage: no division per
+// edge and four rows (the covered columns of row_spans) and no branch on the data, as narrow16 on
+// AVX-512 hosts. A span's stores are blends of what it loaded: the columns from origin_x to the
+// end of the tile of the rectangle's last column (and the row) are this worker's (row_spans'
+// limit); a span reaching past them takes masked loads and stores.
 constexpr int kNarrowSpans = 4;
 
 template <DepthFormat F, CompareOp Op, int Spans>
