@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <initializer_list>
 #include <random>
 #include <string>
 #include <vector>
@@ -333,6 +334,22 @@ inline ::testing::AssertionResult same_bytes(const RenderResult& expected, const
   ::testing::AssertionResult owner = first_difference(expected.owner, actual.owner, "owner");
   if (!owner) return owner;
   return first_difference(expected.depth_raw, actual.depth_raw, "depth");
+}
+
+// Every fast variant against the exact result: the scalar twins and the host's best kernels at
+// every thread count; on an AVX-512 host the AVX2 kernels too, at 2 threads (what an AVX2 host's
+// render_cpu_fast runs; once is enough to keep them honest, and the suite's time counts in CI).
+inline void expect_fast_matches(const Scene& scene, bool fma,
+                                std::initializer_list<uint32_t> thread_counts = {1u, 2u}) {
+  const RenderResult exact = render_exact(scene, fma);
+  for (const uint32_t threads : thread_counts) {
+    for (const FastIsa isa : host_isas()) {
+      if (isa != best_isa() && isa != FastIsa::Scalar && threads != 2) continue;
+      SCOPED_TRACE(scene.name + " threads=" + std::to_string(threads) + " " + isa_name(isa) +
+                   (fma ? " fma" : " no-fma"));
+      EXPECT_TRUE(same_bytes(exact, render_fast(scene, fma, threads, isa)));
+    }
+  }
 }
 
 }  // namespace rastercmp::fast_test
