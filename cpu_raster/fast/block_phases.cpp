@@ -103,31 +103,42 @@ std::vector<double> pace_speeds(const FastFrame& frame) {
 // tiles_y + 1 differences) and the row's width (tile_row_weight): whole rows, or runs of a heavy
 // row's tiles, shared out by balance_tiles. No block reaching any row: row r to r % workers. When every draw
 // is one of small blocks and each block's rows are known (`rows_known`), a row no block reaches is
-// one nothing draws into (the blocks' rows hold their triangles' and pieces' rectangles): it goes
-// to FastFrame::unowned_rows, cleared by whichever worker finishes first. Clearing costs more
-// after other work (its lines come from memory) than the weights say, and these clears are what
-// evens out the workers' ends (perspective after a lavapipe render: the sky's six rows).
+// one nothing draws into (the blocks' rows hold their triangles' and pieces' rectangles). Shared out
+// as whole rows, such rows go to FastFrame::unowned_rows, cleared by whichever worker finishes
+// first: clearing costs more after other work (its lines come from memory) than the weights say,
+// and these clears are what evens out the workers' ends (perspective after a lavapipe render: the
+// sky's six rows). Where the rows are cut into queued units, each such row is a unit of its own
+// (weighing its clear), at the queue's end: one worker finishing early would otherwise clear them
+// all, and the queue hands them out one at a time anyway (perspective at 16 workers: the sky's six
+// rows, 80 us, on one of the horizon row's units, the phase's largest).
 void balance_tile_rows(FastFrame& frame, const std::vector<int32_t>& reach, size_t tasks, bool rows_known) {
   const size_t tiles_y = size_t(std::max(frame.raster.tiles_y, 0));
-  std::vector<uint64_t> weights(tiles_y, 0);  // first the blocks reaching each row
+  std::vector<uint64_t> blocks(tiles_y, 0);  // the blocks reaching each row
   for (size_t t = 0; t < tasks; ++t) {
     int64_t running = 0;
     for (size_t r = 0; r < tiles_y; ++r) {
       running += reach[t * (tiles_y + 1) + r];
-      weights[r] += uint64_t(running);
+      blocks[r] += uint64_t(running);
     }
   }
-  if (std::all_of(weights.begin(), weights.end(), [](uint64_t blocks) { return blocks == 0; })) return;
-  const bool unowned = rows_known && std::all_of(frame.draws.begin(), frame.draws.end(),
-                                                 [](const FastDraw& d) { return d.small_blocks; });
-  std::vector<int32_t> empty_rows;
-  for (size_t r = 0; r < tiles_y; ++r) {
-    if (unowned && weights[r] == 0) empty_rows.push_back(int32_t(r));
-    weights[r] =
-        unowned && weights[r] == 0 ? 0 : tile_row_weight(weights[r], uint32_t(std::max(frame.raster.tiles_x, 0)));
-  }
+  if (std::all_of(blocks.begin(), blocks.end(), [](uint64_t count) { return count == 0; })) return;
+  bool unowned = rows_known && std::all_of(frame.draws.begin(), frame.draws.end(),
+                                           [](const FastDraw& d) { return d.small_blocks; });
   const uint32_t tiles_x = uint32_t(std::max(frame.raster.tiles_x, 0));
-  const TileUnits units = balance_tiles(weights, tiles_x, frame.workers, pace_speeds(frame));
+  std::vector<uint64_t> weights(tiles_y, 0);
+  const auto weigh = [&] {
+    for (size_t r = 0; r < tiles_y; ++r)
+      weights[r] = unowned && blocks[r] == 0 ? 0 : tile_row_weight(blocks[r], tiles_x);
+    return balance_tiles(weights, tiles_x, frame.workers, pace_speeds(frame));
+  };
+  TileUnits units = weigh();
+  if (unowned && units.queued) {
+    unowned = false;
+    units = weigh();
+  }
+  std::vector<int32_t> empty_rows;
+  for (size_t r = 0; r < tiles_y; ++r)
+    if (unowned && blocks[r] == 0) empty_rows.push_back(int32_t(r));
   for (size_t i = 0; i < frame.tiles.size(); ++i) frame.tiles[i].worker = units.unit[i];
   frame.queued_units = units.queued ? units.count : 0;
   if (!units.queued) {
