@@ -307,12 +307,12 @@ void BandWorker::clipped_triangle(uint32_t d, uint32_t primitive, uint32_t a, ui
   const auto draw_piece = [&](const FastTriangle& t) {
     if (!t.rect.empty() && owns_rect(t.rect.x0, t.rect.y0, t.rect.x1, t.rect.y1)) submit(t, fd.raster);
   };
-  const std::vector<ClippedPrimitive>& list = fd.clipped.primitives;
+  const std::vector<ClippedEntry>& list = fd.clipped;
   size_t& next = clipped_next_[d];  // the walk meets a draw's primitives in increasing order
   while (next < list.size() && list[next].primitive < primitive) ++next;
   if (next < list.size() && list[next].primitive == primitive && !list[next].in_place) {
-    const ClippedPrimitive& entry = list[next];
-    for (uint32_t k = entry.first; k < entry.first + entry.count; ++k) draw_piece(fd.clipped.pieces[k]);
+    const ClippedEntry& entry = list[next];
+    for (uint32_t k = 0; k < entry.count; ++k) draw_piece(entry.pieces[k]);
     return;
   }
   for_each_piece(frame_, d, primitive, a, b, c, draw_piece, [&](const RasterPrimitive& binned) {

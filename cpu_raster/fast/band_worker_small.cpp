@@ -148,7 +148,7 @@ bool BandWorker::columns_reach_own_tiles(TileRowRange r, uint32_t columns) const
 
 uint32_t block_tile_columns(const FastFrame& frame, uint32_t d, const SmallBlock& block) {
   const SmallBlockInput& in = block.in;
-  const ClippedTable& clipped = frame.draws[d].clipped;
+  const std::vector<ClippedEntry>& clipped = frame.draws[d].clipped;
   int32_t x0 = INT32_MAX, x1 = INT32_MIN;
   float x_min = INFINITY, x_max = -INFINITY;
   for (uint32_t l = 0; l < in.count; ++l) {
@@ -158,11 +158,11 @@ uint32_t block_tile_columns(const FastFrame& frame, uint32_t d, const SmallBlock
     if (fa & fb & fc & kVertexClipBits) continue;  // ClipFate::Outside
     if ((fa | fb | fc) & kVertexClipBits) {
       const uint32_t primitive = block.first + l;
-      const auto entry = std::lower_bound(clipped.primitives.begin(), clipped.primitives.end(), primitive,
-                                          [](const ClippedPrimitive& p, uint32_t q) { return p.primitive < q; });
-      if (entry == clipped.primitives.end() || entry->primitive != primitive || entry->in_place) return kColumnsAny;
-      for (uint32_t k = entry->first; k < entry->first + entry->count; ++k) {
-        const PixelRect& r = clipped.pieces[k].rect;
+      const auto entry = std::lower_bound(clipped.begin(), clipped.end(), primitive,
+                                          [](const ClippedEntry& p, uint32_t q) { return p.primitive < q; });
+      if (entry == clipped.end() || entry->primitive != primitive || entry->in_place) return kColumnsAny;
+      for (uint32_t k = 0; k < entry->count; ++k) {
+        const PixelRect& r = entry->pieces[k].rect;
         if (r.empty()) continue;
         x0 = std::min(x0, r.x0);
         x1 = std::max(x1, r.x1);

@@ -29,7 +29,7 @@ void drop_fast_draw(FastDraw& fd) {
   fd.block_rows = nullptr;
   fd.block_columns = nullptr;
   fd.group_rows = nullptr;
-  fd.clipped = ClippedTable{};
+  fd.clipped.clear();
   fd.pipelined_chunks.clear();
 }
 
@@ -359,28 +359,29 @@ void measure_all_block_rows(FastFrame& frame, const std::vector<TrailingCheck>& 
   for (size_t i = 0; i < clip_tasks.size(); ++i)
     if (clip_met[i]) drop_fast_draw(frame.draws[tasks[clip_tasks[i].row_task].draw]);
   // the clipped triangles in primitive order: each row task's own, then its clip tasks' (each
-  // draw's table sized first: one copy of each part, no regrowth)
-  std::vector<std::pair<size_t, size_t>> sizes(frame.draws.size(), {0, 0});
-  const auto count_part = [&sizes](uint32_t d, const ClippedTable& part) {
-    sizes[d].first += part.primitives.size();
-    sizes[d].second += part.pieces.size();
-  };
-  for (size_t t = 0; t < tasks.size(); ++t) count_part(tasks[t].draw, clipped[t]);
-  for (size_t i = 0; i < clip_tasks.size(); ++i) count_part(tasks[clip_tasks[i].row_task].draw, clip_tables[i]);
-  for (uint32_t d = 0; d < frame.draws.size(); ++d) {
-    if (!frame.draws[d].small_blocks || sizes[d].first == 0) continue;
-    frame.draws[d].clipped.primitives.reserve(frame.draws[d].clipped.primitives.size() + sizes[d].first);
-    frame.draws[d].clipped.pieces.reserve(frame.draws[d].clipped.pieces.size() + sizes[d].second);
-  }
+  // draw's entries sized first); their pieces stay in the tasks' tables, which the frame keeps
+  // (moving a table keeps its pieces where they are). Copying the pieces together took 8-11 us of
+  // the serial part at 16 workers (perspective's 614 clipped triangles: about 900 pieces of 60
+  // bytes, written on other cores).
+  std::vector<size_t> entries(frame.draws.size(), 0);
+  for (size_t t = 0; t < tasks.size(); ++t) entries[tasks[t].draw] += clipped[t].primitives.size();
+  for (size_t i = 0; i < clip_tasks.size(); ++i)
+    entries[tasks[clip_tasks[i].row_task].draw] += clip_tables[i].primitives.size();
+  for (uint32_t d = 0; d < frame.draws.size(); ++d)
+    if (frame.draws[d].small_blocks && entries[d] > 0)
+      frame.draws[d].clipped.reserve(frame.draws[d].clipped.size() + entries[d]);
   for (size_t t = 0, i = 0; t < tasks.size(); ++t) {
     FastDraw& fd = frame.draws[tasks[t].draw];
     if (!fd.small_blocks)  // dropped: its blocks count nowhere
       std::fill_n(reach.begin() + std::ptrdiff_t(t * (tiles_y + 1)), tiles_y + 1, 0);
     else
-      append_clipped(fd.clipped, clipped[t]);
+      index_clipped(fd.clipped, clipped[t]);
     for (; i < clip_tasks.size() && clip_tasks[i].row_task == t; ++i)
-      if (fd.small_blocks) append_clipped(fd.clipped, clip_tables[i]);
+      if (fd.small_blocks) index_clipped(fd.clipped, clip_tables[i]);
   }
+  frame.clipped_tables.reserve(frame.clipped_tables.size() + clipped.size() + clip_tables.size());
+  for (ClippedTable& table : clipped) frame.clipped_tables.push_back(std::move(table));
+  for (ClippedTable& table : clip_tables) frame.clipped_tables.push_back(std::move(table));
   balance_tile_rows(frame, reach, tasks.size(), !any_row);
 }
 

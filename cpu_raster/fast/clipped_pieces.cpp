@@ -150,13 +150,9 @@ bool clip_block_triangles(FastFrame& frame, uint32_t d, uint32_t begin, uint32_t
       [] { return false; });
 }
 
-void append_clipped(ClippedTable& table, const ClippedTable& part) {
-  const uint32_t offset = uint32_t(table.pieces.size());
-  for (ClippedPrimitive entry : part.primitives) {
-    entry.first += offset;
-    table.primitives.push_back(entry);
-  }
-  table.pieces.insert(table.pieces.end(), part.pieces.begin(), part.pieces.end());
+void index_clipped(std::vector<ClippedEntry>& entries, const ClippedTable& table) {
+  for (const ClippedPrimitive& p : table.primitives)
+    entries.push_back({p.primitive, p.count, table.pieces.data() + p.first, p.in_place});
 }
 
 }  // namespace rastercmp::cpu::fast

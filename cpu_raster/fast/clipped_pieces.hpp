@@ -87,7 +87,8 @@ void for_each_piece(const FastFrame& frame, uint32_t d, uint32_t primitive, uint
 bool clip_block_triangles(FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end, ClippedTable& table,
                           uint32_t watch_from);
 
-// Appends `part` (the next primitives of the same draw) to `table`.
-void append_clipped(ClippedTable& table, const ClippedTable& part);
+// Appends an entry for each of `table`'s primitives (the next ones of the same draw) to `entries`,
+// pointing into table.pieces: the table must outlive them, and its pieces must not grow.
+void index_clipped(std::vector<ClippedEntry>& entries, const ClippedTable& table);
 
 }  // namespace rastercmp::cpu::fast

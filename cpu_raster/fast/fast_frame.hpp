@@ -18,17 +18,26 @@
 
 namespace rastercmp::cpu::fast {
 
-// The pieces of one clipped triangle (clipped_pieces.hpp).
+// The pieces of one clipped triangle (clipped_pieces.hpp) in its ClippedTable.
 struct ClippedPrimitive {
   uint32_t primitive = 0;
   uint32_t first = 0, count = 0;  // ClippedTable::pieces[first, first + count)
   bool in_place = false;          // a piece takes llvmpipe's wrapping set-up: the walk clips it itself
 };
 
-// Per draw, sorted by primitive: the clipped triangles the block-row phase set up (clipped_pieces.hpp).
+// The clipped triangles one task of the block-row or clip phase set up, in primitive order
+// (clipped_pieces.hpp).
 struct ClippedTable {
   std::vector<ClippedPrimitive> primitives;
   std::vector<FastTriangle> pieces;  // rectangles cut to the draw region (maybe empty)
+};
+
+// A clipped triangle of a draw with its pieces where its task's table holds them
+// (FastFrame::clipped_tables): the tables are indexed, not copied together.
+struct ClippedEntry {
+  uint32_t primitive = 0, count = 0;
+  const FastTriangle* pieces = nullptr;  // [pieces, pieces + count)
+  bool in_place = false;                 // ClippedPrimitive::in_place
 };
 
 struct FastDraw {
@@ -60,7 +69,8 @@ struct FastDraw {
   // block_rows (the least lo and the greatest hi; kNoRow: none; kBlockAnyRow: one may reach any).
   // A walk skips a group that reaches none of its worker's rows.
   uint32_t* group_rows = nullptr;
-  ClippedTable clipped;            // several workers: its clipped triangles, set up once
+  // several workers: its clipped triangles, set up once, sorted by primitive
+  std::vector<ClippedEntry> clipped;
   // Several workers, a line or triangle list the exact front end walks: per primitive, the tile
   // rows it may reach (exact_reach.hpp's packed form), from the reach phase; null elsewhere.
   uint32_t* list_reach = nullptr;
@@ -89,6 +99,7 @@ struct FastFrame {
   FrameRaster raster;     // pointers into targets, tiles, dispatch
   std::vector<TileState> tiles;
   std::vector<FastDraw> draws;
+  std::vector<ClippedTable> clipped_tables;  // the pieces FastDraw::clipped points into
   uint32_t workers = 1;  // each tile drawn by one of them: TileState::worker (row_balance.hpp)
   // 0: TileState::worker is the worker that draws the tile. Otherwise the tiles are in this many
   // units, TileState::worker the unit, which the workers take from a queue (render_fast.cpp).
