@@ -422,15 +422,28 @@ const std::vector<uint32_t> kModelWorkers = {1, 2, 4, 8, 16, 32, 64};
 // records each worker's thread CPU time per phase and each queue task's (RenderProfile); on N free
 // cores a phase would take projected_seconds (its busiest worker; a queue phase: its tasks handed
 // in order to the first worker free), so the projected render time is the calling thread's serial
-// time plus that per phase, and the projected speed-up at N is projected(1) / projected(N). What it
-// leaves out: waking the workers, memory bandwidth and caches shared by N cores. Checked against the
-// measured wall time where N <= hardware threads. Median over --reps per N.
+// time plus that per phase. The reps take every N in turn (rep 1 at N = 1, 2, ..., 64, then rep 2,
+// ...), so that a host whose speed drifts between states over seconds (a shared VM) moves every N
+// alike, and each scene's profile at N is the median of its reps' (median_profile: each task's and
+// each worker's time the median of the reps'), so that a task the host held up in one rep does not
+// set its phase. The projected speed-up at N is projected(1) / projected(N). What it leaves out:
+// waking the workers, memory bandwidth and caches shared by N cores. Checked against the measured
+// wall time where N <= hardware threads.
+struct ModelRep {
+  double wall = 0;  // seconds per render of the case
+  // per scene (the case's order): its profile on N workers; a scene queued side by side: its
+  // time on one worker (queued_seconds) instead
+  std::vector<cpu::fast::RenderProfile> profiles;
+  std::vector<double> queued_seconds;
+  std::vector<size_t> queue;  // the queued scenes in queue order (side_by_side_queue)
+  std::vector<bool> in_queue;
+};
+
 struct ModelPoint {
-  double projected = 0, wall = 0;  // seconds per render of the case, medians over the reps
-  std::vector<std::pair<std::string, double>> phases;  // per phase: the busiest worker, summed over scenes
+  double projected = 0, wall = 0;  // seconds per render of the case; wall: the median of the reps'
   double worker_spread = 0;        // bands phase: projected / mean worker time (1 = even)
-  // With keep_profiles: the profiles of the rep the phases are from, per scene run on N workers.
-  std::vector<std::pair<std::string, cpu::fast::RenderProfile>> profiles;
+  std::vector<std::pair<std::string, double>> phases;  // per phase: its projection, summed over scenes
+  std::vector<std::pair<std::string, cpu::fast::RenderProfile>> profiles;  // each scene's median profile
 };
 
 // The projection of queued scenes rendered side by side (render_fast_side_by_side) on `workers`
@@ -442,88 +455,84 @@ double side_by_side_seconds(const std::vector<double>& scene_seconds, uint32_t w
   return *std::max_element(free.begin(), free.end());
 }
 
-ModelPoint model_point(std::vector<Scene>& scenes, std::vector<RenderResult>& results, CpuOptions options,
-                       uint32_t workers, unsigned reps, bool side_by_side, bool keep_profiles) {
+// One rep of the case's scenes on `workers` workers.
+ModelRep model_rep(std::vector<Scene>& scenes, std::vector<RenderResult>& results, CpuOptions options, uint32_t workers,
+                   bool side_by_side) {
   options.threads = workers;
-  cpu::fast::RenderProfile profile;
   cpu::fast::FastConfig config;
-  config.profile = &profile;
   config.profile_threads = std::max(1u, std::thread::hardware_concurrency());
-  std::vector<double> projected, wall;
-  std::vector<std::vector<std::pair<std::string, double>>> phases;
-  std::vector<std::vector<std::pair<std::string, cpu::fast::RenderProfile>>> kept_profiles;
-  std::vector<double> spreads;
-  for (unsigned rep = 0; rep < reps; ++rep) {
-    double rep_projected = 0, rep_wall = 0, busiest_bands = 0, mean_bands = 0;
-    std::vector<std::pair<std::string, double>> rep_phases{{"serial", 0.0}};  // summed over the scenes
-    std::vector<std::pair<std::string, cpu::fast::RenderProfile>> rep_profiles;
-    std::vector<cpu::fast::RenderProfile> profiles(scenes.size());
-    if (side_by_side)
-      rep_wall = seconds_of([&] { cpu::fast::render_fast_side_by_side(scenes, options, config, results, &profiles); });
-    // side by side: the queued scenes' times on one worker, in queue order
-    const std::vector<size_t> queue =
-        side_by_side ? cpu::fast::side_by_side_queue(scenes, options, config) : std::vector<size_t>{};
-    std::vector<double> queued;
-    std::vector<bool> in_queue(scenes.size(), false);
-    for (const size_t i : queue) {
-      double total = profiles[i].serial_seconds;
-      for (const cpu::fast::PhaseTimes& phase : profiles[i].phases) total += cpu::fast::projected_seconds(phase);
-      queued.push_back(total);
-      in_queue[i] = true;
+  ModelRep rep;
+  rep.profiles.resize(scenes.size());
+  rep.queued_seconds.assign(scenes.size(), 0.0);
+  rep.in_queue.assign(scenes.size(), false);
+  if (side_by_side) {
+    rep.wall =
+        seconds_of([&] { cpu::fast::render_fast_side_by_side(scenes, options, config, results, &rep.profiles); });
+    rep.queue = cpu::fast::side_by_side_queue(scenes, options, config);
+    for (const size_t i : rep.queue) {
+      rep.in_queue[i] = true;
+      rep.queued_seconds[i] = cpu::fast::projected_seconds(rep.profiles[i]);
     }
-    for (size_t i = 0; i < scenes.size(); ++i) {
-      if (in_queue[i]) continue;
-      if (side_by_side) {
-        profile = profiles[i];
-      } else {
-        rep_wall += seconds_of([&] { cpu::fast::render_fast_into(scenes[i], options, config, results[i]); });
-      }
-      if (keep_profiles) rep_profiles.emplace_back(scenes[i].name, profile);
-      rep_projected += profile.serial_seconds;
-      rep_phases.front().second += profile.serial_seconds;
-      for (const cpu::fast::PhaseTimes& phase : profile.phases) {
-        const double busiest = cpu::fast::projected_seconds(phase);
-        rep_projected += busiest;
-        auto it = std::find_if(rep_phases.begin(), rep_phases.end(), [&](const auto& p) { return p.first == phase.phase; });
-        if (it == rep_phases.end()) it = rep_phases.insert(rep_phases.end(), {phase.phase, 0.0});
-        it->second += busiest;
-        if (phase.phase == "bands") {
-          busiest_bands += busiest;
-          double sum = 0;
-          for (double t : phase.worker_seconds) sum += t;
-          mean_bands += sum / double(phase.worker_seconds.size());
-        }
-      }
-    }
-    if (!queued.empty()) {
-      const double side = side_by_side_seconds(queued, workers);
-      rep_projected += side;
-      rep_phases.emplace_back("side by side", side);
-    }
-    projected.push_back(rep_projected);
-    wall.push_back(rep_wall);
-    phases.push_back(std::move(rep_phases));
-    kept_profiles.push_back(std::move(rep_profiles));
-    spreads.push_back(mean_bands > 0 ? busiest_bands / mean_bands : 1.0);
+    return rep;
   }
+  for (size_t i = 0; i < scenes.size(); ++i) {
+    config.profile = &rep.profiles[i];
+    rep.wall += seconds_of([&] { cpu::fast::render_fast_into(scenes[i], options, config, results[i]); });
+  }
+  return rep;
+}
+
+// The point at N from its reps: each scene's median profile projected, the queued scenes' median
+// times on one worker list-scheduled on N.
+ModelPoint model_point(const std::vector<ModelRep>& reps, const std::vector<Scene>& scenes, uint32_t workers) {
   ModelPoint point;
-  point.projected = bench::summarize(projected).median;
-  point.wall = bench::summarize(wall).median;
-  point.worker_spread = bench::summarize(spreads).median;
-  // the phases of the rep whose projection is the median's (its breakdown sums to it)
-  const size_t median_rep = size_t(std::min_element(projected.begin(), projected.end(),
-                                                    [&](double a, double b) {
-                                                      return std::abs(a - point.projected) < std::abs(b - point.projected);
-                                                    }) -
-                                   projected.begin());
-  point.phases = phases[median_rep];
-  point.profiles = std::move(kept_profiles[median_rep]);
+  std::vector<double> walls, queued;
+  for (const ModelRep& rep : reps) walls.push_back(rep.wall);
+  point.wall = bench::summarize(walls).median;
+  point.phases = {{"serial", 0.0}};
+  double busiest_bands = 0, mean_bands = 0;
+  for (size_t i = 0; i < scenes.size(); ++i) {
+    if (reps.front().in_queue[i]) continue;
+    std::vector<cpu::fast::RenderProfile> of_scene;
+    for (const ModelRep& rep : reps) of_scene.push_back(rep.profiles[i]);
+    const cpu::fast::RenderProfile profile = cpu::fast::median_profile(of_scene);
+    point.projected += profile.serial_seconds;
+    point.phases.front().second += profile.serial_seconds;
+    for (const cpu::fast::PhaseTimes& phase : profile.phases) {
+      const double busiest = cpu::fast::projected_seconds(phase);
+      point.projected += busiest;
+      auto it =
+          std::find_if(point.phases.begin(), point.phases.end(), [&](const auto& p) { return p.first == phase.phase; });
+      if (it == point.phases.end()) it = point.phases.insert(point.phases.end(), {phase.phase, 0.0});
+      it->second += busiest;
+      if (phase.phase == "bands") {
+        busiest_bands += busiest;
+        double sum = 0;
+        for (double t : phase.worker_seconds) sum += t;
+        for (const cpu::fast::TaskTime& task : phase.tasks) sum += task.seconds;
+        mean_bands += sum / double(phase.worker_seconds.size());
+      }
+    }
+    point.profiles.emplace_back(scenes[i].name, profile);
+  }
+  for (const size_t i : reps.front().queue) {  // in queue order
+    std::vector<double> times;
+    for (const ModelRep& rep : reps) times.push_back(rep.queued_seconds[i]);
+    queued.push_back(bench::summarize(times).median);
+  }
+  if (!queued.empty()) {
+    const double side = side_by_side_seconds(queued, workers);
+    point.projected += side;
+    point.phases.emplace_back("side by side", side);
+  }
+  point.worker_spread = mean_bands > 0 ? busiest_bands / mean_bands : 1.0;
   return point;
 }
 
-// --tasks: each queue phase of each scene at N workers (the median rep's), its tasks' count, their
-// CPU time summed, the largest and every task's time in queue order (the times the list
-// scheduling of projected_seconds hands out): a line each appended to `text`, and as JSON.
+// --tasks: each queue phase of each scene at N workers (its median profile), its tasks' count,
+// their CPU time summed, the largest and every task's time in queue order (the times the list
+// scheduling of projected_seconds hands out; in the JSON with the worker it hands each to): a
+// line each appended to `text`, and as JSON.
 nlohmann::ordered_json describe_tasks(const ModelPoint& point, uint32_t workers, std::string& text) {
   nlohmann::ordered_json out = nlohmann::ordered_json::array();
   for (const auto& [scene, profile] : point.profiles) {
@@ -533,13 +542,14 @@ nlohmann::ordered_json describe_tasks(const ModelPoint& point, uint32_t workers,
       size_t largest = 0;
       std::string times;
       nlohmann::ordered_json tasks = nlohmann::ordered_json::array();
+      const cpu::fast::PhaseSchedule schedule = cpu::fast::schedule_phase(phase);
       for (size_t i = 0; i < phase.tasks.size(); ++i) {
         sum += phase.tasks[i].seconds;
         if (phase.tasks[i].seconds > phase.tasks[largest].seconds) largest = i;
         times += fmt::format(" {:.1f}", phase.tasks[i].seconds * 1e6);
-        tasks.push_back({{"seconds", phase.tasks[i].seconds}, {"worker", phase.tasks[i].worker}});
+        tasks.push_back({{"seconds", phase.tasks[i].seconds}, {"worker", schedule.workers[i]}});
       }
-      const double projected = cpu::fast::projected_seconds(phase);
+      const double projected = schedule.seconds;
       text += fmt::format(
           "{} at {} workers, {}: {} tasks, {:.1f} us of CPU, the largest {:.1f} us (task {}), "
           "the phase projected {:.1f} us; us in queue order:{}\n",
@@ -560,11 +570,14 @@ int run_scaling_model(const BenchArgs& args) {
   bench::LoadMonitor load;
   load.start();
   fmt::print("CPU: {} ({} hardware threads), fast path kernels: {}\n", cpu_model(), cores, fast_kernels());
-  fmt::print("fast path on N workers, projected from each worker's thread CPU time per phase; median of {} reps\n",
-             args.reps);
+  fmt::print(
+      "fast path on N workers, projected from each worker's thread CPU time per phase; median of {} reps, each "
+      "rep every N in turn\n",
+      args.reps);
   fmt::print(
       "projected = serial + per phase its busiest worker (queue phases: their tasks list-scheduled on N); "
-      "measured: wall time, where N <= {} hardware threads\n\n",
+      "speed-up: median over the reps of projected(1) / projected(N); measured: wall time, where N <= {} hardware "
+      "threads\n\n",
       cores);
   fmt::print("| scene | N | projected ms | speed-up | measured ms | bands busiest/mean | largest phase |\n");
   fmt::print("|---|---:|---:|---:|---:|---:|---|\n");
@@ -588,9 +601,15 @@ int run_scaling_model(const BenchArgs& args) {
     }
     experiments::DataBlock block{c.name, {{"workers", "speedup", experiments::gp_quote(c.name)}}};
     nlohmann::ordered_json row{{"name", c.name}};
+    // every N in turn within a rep (ModelRep)
+    std::vector<std::vector<ModelRep>> reps(counts.size());
+    for (unsigned rep = 0; rep < args.reps; ++rep)
+      for (size_t k = 0; k < counts.size(); ++k)
+        reps[k].push_back(model_rep(kept, results, options, counts[k], c.side_by_side));
     double one = 0;
-    for (const uint32_t n : counts) {
-      const ModelPoint point = model_point(kept, results, options, n, args.reps, c.side_by_side, n == args.tasks_at);
+    for (size_t k = 0; k < counts.size(); ++k) {
+      const uint32_t n = counts[k];
+      const ModelPoint point = model_point(reps[k], kept, n);
       if (n == 1) one = point.projected;
       const double speedup = point.projected > 0 ? one / point.projected : 0;
       const auto largest = std::max_element(point.phases.begin(), point.phases.end(),

@@ -22,4 +22,9 @@ std::string host_cpu_model();
 // The calling thread's CPU time in seconds (CLOCK_THREAD_CPUTIME_ID).
 double thread_cpu_seconds();
 
+// What an interval timed with thread_cpu_seconds() holds of the clock's own cost: the least of 64
+// intervals between back-to-back calls, measured once (a system call: 0.5 us on the 2-vCPU Zen 5
+// VM of docs/performance.md).
+double thread_cpu_clock_cost();
+
 }  // namespace rastercmp

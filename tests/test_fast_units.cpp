@@ -25,6 +25,7 @@
 #include "cpu_raster/fast/exact_rows.hpp"
 #include "cpu_raster/fast/fast_frame.hpp"
 #include "cpu_raster/fast/frame_memory.hpp"
+#include "cpu_raster/fast/phase_run.hpp"
 #include "cpu_raster/fast/tile_depth_bounds.hpp"
 #include "cpu_raster/fast/tile_raster.hpp"
 #include "cpu_raster/fast/worker_pool.hpp"
@@ -142,6 +143,62 @@ TEST(FastRenderProfile, QueuePhasesAreProjectedByListScheduling) {
   PhaseTimes alone{"vertices", {3.0}, {{1.0, 0}, {2.0, 0}}};
   EXPECT_DOUBLE_EQ(projected_seconds(alone), 3.0);
   EXPECT_DOUBLE_EQ(projected_seconds(PhaseTimes{"vertices", {}, {}}), 0.0);
+}
+
+// The model's profile at N from several reps: each time the median of the reps'; one task a rep
+// the host held up no longer sets its phase. Reps of different shapes: the median rep's profile.
+TEST(FastRenderProfile, MedianProfileTakesEachTimesMedian) {
+  const auto rep = [](double serial, double outlier_at, double bands) {
+    RenderProfile r;
+    r.serial_seconds = serial;
+    PhaseTimes rows{"block rows", {1.0, 0.0}, {}};  // worker 0: 1.0 outside its tasks
+    for (uint32_t i = 0; i < 4; ++i) {
+      rows.tasks.push_back({i == outlier_at ? 9.0 : 1.0, i % 2});
+      rows.worker_seconds[i % 2] += rows.tasks.back().seconds;
+    }
+    r.phases = {rows, PhaseTimes{"bands", {bands, 2.0}, {}}};
+    return r;
+  };
+  const RenderProfile m = median_profile({rep(0.5, 0, 4.0), rep(0.7, 1, 5.0), rep(0.6, 2, 3.0)});
+  EXPECT_DOUBLE_EQ(m.serial_seconds, 0.6);
+  ASSERT_EQ(m.phases.size(), 2u);
+  EXPECT_EQ(m.phases[0].phase, "block rows");
+  ASSERT_EQ(m.phases[0].tasks.size(), 4u);
+  for (const TaskTime& task : m.phases[0].tasks) EXPECT_DOUBLE_EQ(task.seconds, 1.0);
+  EXPECT_DOUBLE_EQ(m.phases[0].worker_seconds[0], 1.0);  // the time outside the tasks
+  EXPECT_DOUBLE_EQ(m.phases[0].worker_seconds[1], 0.0);
+  // on two free cores: worker 1 takes task 0, worker 0 (free at 1, the lower of a tie) task 1, ...
+  EXPECT_EQ(schedule_phase(m.phases[0]).workers, (std::vector<uint32_t>{1, 0, 1, 0}));
+  EXPECT_DOUBLE_EQ(projected_seconds(m.phases[0]), 3.0);  // each rep alone: 9 or 10
+  EXPECT_DOUBLE_EQ(m.phases[1].worker_seconds[0], 4.0);
+  EXPECT_DOUBLE_EQ(projected_seconds(m), 0.6 + 3.0 + 4.0);
+  RenderProfile other = rep(0.1, 9, 1.0);
+  other.phases.pop_back();
+  const RenderProfile fallback = median_profile({rep(0.5, 9, 4.0), other, rep(0.6, 9, 6.0)});
+  EXPECT_DOUBLE_EQ(projected_seconds(fallback), projected_seconds(rep(0.5, 9, 4.0)));
+}
+
+// The profile's intervals leave out the clock's own cost (a system call, about as long as a short
+// task): an interval no longer than that reads 0, a longer one the rest; each task's two readings
+// come out of its worker's time.
+TEST(FastRenderProfile, IntervalsLeaveOutTheClocksOwnCost) {
+  const double cost = thread_cpu_clock_cost();
+  EXPECT_GE(cost, 0.0);
+  EXPECT_LT(cost, 1e-3);
+  EXPECT_EQ(cost, thread_cpu_clock_cost());  // measured once
+  EXPECT_EQ(profiled_seconds(1.0, 1.0 + cost / 2), 0.0);
+  EXPECT_NEAR(profiled_seconds(1.0, 1.0 + cost + 0.25), 0.25, 1e-12);
+  FastFrame frame;
+  RenderProfile profile;
+  frame.profile = &profile;
+  profile.phases.push_back(PhaseTimes{"block rows", {1.0, 2.0}, {}});
+  TaskTimes times(frame, 3);
+  for (size_t i = 0; i < 3; ++i) times.run(i, i == 2 ? 1u : 0u, [] {});
+  times.attach(frame);
+  ASSERT_EQ(profile.phases[0].tasks.size(), 3u);
+  for (const TaskTime& task : profile.phases[0].tasks) EXPECT_GE(task.seconds, 0.0);
+  EXPECT_NEAR(profile.phases[0].worker_seconds[0], 1.0 - 4 * cost, 1e-12);
+  EXPECT_NEAR(profile.phases[0].worker_seconds[1], 2.0 - 2 * cost, 1e-12);
 }
 
 // docs/lavapipe-rules.md §7.10: every pool job runs with FTZ/DAZ, whatever mode the pool's threads

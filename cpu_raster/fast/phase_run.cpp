@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
+#include <cstdint>
 
 #include "cpu_raster/fast/worker_pool.hpp"
 
@@ -23,12 +25,12 @@ void run_phase(FastFrame& frame, const char* phase, uint32_t workers, const std:
   // outside job(0) (waking the others, spinning until they finish) belongs to no phase: on N free
   // cores it would overlap the busiest worker's.
   const double phase_start = thread_cpu_seconds();
-  frame.profile->serial_seconds += phase_start - frame.serial_mark;
+  frame.profile->serial_seconds += profiled_seconds(frame.serial_mark, phase_start);
   PhaseTimes times{phase, std::vector<double>(workers, 0.0), {}};
   const auto timed = [&](uint32_t w) {
     const double start = thread_cpu_seconds();
     job(w);
-    times.worker_seconds[w] = thread_cpu_seconds() - start;
+    times.worker_seconds[w] = profiled_seconds(start, thread_cpu_seconds());
   };
   if (threads == workers) {
     dispatch(timed);
@@ -46,15 +48,91 @@ void run_phase(FastFrame& frame, const char* phase, uint32_t workers, const std:
   frame.serial_mark = thread_cpu_seconds();
 }
 
-double projected_seconds(const PhaseTimes& phase) {
+PhaseSchedule schedule_phase(const PhaseTimes& phase) {
+  PhaseSchedule schedule;
   std::vector<double> free = phase.worker_seconds;
-  if (free.empty()) return 0;
-  if (phase.tasks.empty()) return *std::max_element(free.begin(), free.end());
+  if (free.empty()) return schedule;
   for (const TaskTime& task : phase.tasks)
     if (task.worker < free.size()) free[task.worker] -= task.seconds;
   for (double& f : free) f = std::max(f, 0.0);
-  for (const TaskTime& task : phase.tasks) *std::min_element(free.begin(), free.end()) += task.seconds;
-  return *std::max_element(free.begin(), free.end());
+  for (const TaskTime& task : phase.tasks) {
+    const auto first_free = std::min_element(free.begin(), free.end());
+    *first_free += task.seconds;
+    schedule.workers.push_back(uint32_t(first_free - free.begin()));
+  }
+  schedule.seconds = phase.tasks.empty() ? *std::max_element(phase.worker_seconds.begin(), phase.worker_seconds.end())
+                                         : *std::max_element(free.begin(), free.end());
+  return schedule;
+}
+
+double projected_seconds(const PhaseTimes& phase) { return schedule_phase(phase).seconds; }
+
+double projected_seconds(const RenderProfile& profile) {
+  double total = profile.serial_seconds;
+  for (const PhaseTimes& phase : profile.phases) total += projected_seconds(phase);
+  return total;
+}
+
+namespace {
+
+double median_of(std::vector<double> values) {
+  const size_t mid = values.size() / 2;
+  std::nth_element(values.begin(), values.begin() + std::ptrdiff_t(mid), values.end());
+  if (values.size() % 2 == 1) return values[mid];
+  return (values[mid] + *std::max_element(values.begin(), values.begin() + std::ptrdiff_t(mid))) / 2;
+}
+
+bool same_shape(const RenderProfile& a, const RenderProfile& b) {
+  if (a.phases.size() != b.phases.size()) return false;
+  for (size_t p = 0; p < a.phases.size(); ++p) {
+    const PhaseTimes &x = a.phases[p], &y = b.phases[p];
+    if (x.phase != y.phase || x.worker_seconds.size() != y.worker_seconds.size() || x.tasks.size() != y.tasks.size())
+      return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+RenderProfile median_profile(const std::vector<RenderProfile>& reps) {
+  const bool shaped =
+      std::all_of(reps.begin(), reps.end(), [&](const RenderProfile& r) { return same_shape(r, reps[0]); });
+  if (!shaped) {
+    std::vector<double> totals;
+    for (const RenderProfile& r : reps) totals.push_back(projected_seconds(r));
+    const double median = median_of(totals);
+    size_t best = 0;
+    for (size_t i = 1; i < reps.size(); ++i)
+      if (std::abs(totals[i] - median) < std::abs(totals[best] - median)) best = i;
+    return reps[best];
+  }
+  RenderProfile out;
+  std::vector<double> values;
+  const auto median_by = [&](const auto& value_of) {
+    values.clear();
+    for (const RenderProfile& r : reps) values.push_back(value_of(r));
+    return median_of(values);
+  };
+  out.serial_seconds = median_by([](const RenderProfile& r) { return r.serial_seconds; });
+  for (size_t p = 0; p < reps[0].phases.size(); ++p) {
+    PhaseTimes phase{reps[0].phases[p].phase, {}, {}};
+    const size_t workers = reps[0].phases[p].worker_seconds.size(), tasks = reps[0].phases[p].tasks.size();
+    // each worker's time outside the phase's tasks (all of it in a phase without tasks)
+    const auto outside = [p](const RenderProfile& r, size_t w) {
+      const PhaseTimes& of = r.phases[p];
+      double t = of.worker_seconds[w];
+      for (const TaskTime& task : of.tasks)
+        if (task.worker == w) t -= task.seconds;
+      return std::max(t, 0.0);
+    };
+    for (size_t w = 0; w < workers; ++w)
+      phase.worker_seconds.push_back(median_by([&](const RenderProfile& r) { return outside(r, w); }));
+    for (size_t i = 0; i < tasks; ++i)  // no worker: their times are not in worker_seconds
+      phase.tasks.push_back(
+          {median_by([&](const RenderProfile& r) { return r.phases[p].tasks[i].seconds; }), UINT32_MAX});
+    out.phases.push_back(std::move(phase));
+  }
+  return out;
 }
 
 }  // namespace rastercmp::cpu::fast

@@ -345,7 +345,7 @@ void render_fast_into(const Scene& scene, const CpuOptions& options, const FastC
   if (frame.failure.error) std::rethrow_exception(frame.failure.error);
   if (frame.packed_owner) finish_pitched(frame, result);
   move_into_result(std::move(frame.targets), lavapipe_profile_device(options), options.fma, result);
-  if (config.profile) config.profile->serial_seconds += thread_cpu_seconds() - frame.serial_mark;
+  if (config.profile) config.profile->serial_seconds += profiled_seconds(frame.serial_mark, thread_cpu_seconds());
 }
 
 // render_fast_side_by_side's queue order: a vertex weighs as much as this many samples' clears.

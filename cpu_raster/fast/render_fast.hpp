@@ -42,10 +42,26 @@ struct PhaseTimes {
 // phase, the queue's tasks handed in order to the first worker free (ties: the lower), each worker
 // first busy for its time outside tasks (worker 0: the profile check beside the vertex phase).
 double projected_seconds(const PhaseTimes& phase);
+// The same with the worker each task goes to (a queue phase: workers[i] for tasks[i]).
+struct PhaseSchedule {
+  double seconds = 0;
+  std::vector<uint32_t> workers;
+};
+PhaseSchedule schedule_phase(const PhaseTimes& phase);
 struct RenderProfile {
   std::vector<PhaseTimes> phases;  // in the order they ran
   double serial_seconds = 0;       // the calling thread's time outside the phases
 };
+// The projected time of a render on as many free cores as it had workers: its serial time plus
+// projected_seconds of each phase.
+double projected_seconds(const RenderProfile& profile);
+// One profile from several renders of the same scene on as many workers (reps): each time the
+// median of the reps' (the serial time; per phase each worker's, and for a queue phase each task's
+// in queue order, each worker then holding the median of its time outside tasks). A time that one
+// rep read long (the host took the core for a while) does not set a phase's projection, where in
+// one rep's profile the longest task of a phase nearly always is one such. Reps whose phases,
+// workers or tasks differ in number: the rep whose projection is the median's. reps not empty.
+RenderProfile median_profile(const std::vector<RenderProfile>& reps);
 
 // Knobs for tests and benchmarks; the defaults are what render_cpu_fast uses.
 struct FastConfig {
