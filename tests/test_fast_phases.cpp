@@ -498,6 +498,7 @@ TEST(FastRowBalance, HeavyRowsCutIntoRunsOfTiles) {
   const std::vector<uint64_t> even(16, 5);
   const TileUnits rows = balance_tiles(even, 16, 4);
   EXPECT_FALSE(rows.queued);
+  EXPECT_FALSE(cuts_rows(even, 16, 4));
   EXPECT_EQ(rows.count, 4u);
   const std::vector<uint32_t> by_row = balance_rows(even, 4);
   for (size_t t = 0; t < rows.unit.size(); ++t) EXPECT_EQ(rows.unit[t], by_row[t / 16]);
@@ -506,6 +507,8 @@ TEST(FastRowBalance, HeavyRowsCutIntoRunsOfTiles) {
     SCOPED_TRACE("workers " + std::to_string(workers));
     const TileUnits cut = balance_tiles(skewed, 16, workers);
     EXPECT_EQ(cut.queued, workers > 2);  // 880 of 2,221: more than a quarter, not more than half
+    EXPECT_EQ(cuts_rows(skewed, 16, workers), cut.queued);
+    EXPECT_FALSE(cuts_rows(skewed, 1, workers));  // one tile a row: nothing to cut
     ASSERT_EQ(cut.unit.size(), skewed.size() * 16);
     EXPECT_EQ(cut, balance_tiles(skewed, 16, workers));
     for (const uint32_t u : cut.unit) EXPECT_LT(u, cut.count);

@@ -129,13 +129,13 @@ void balance_tile_rows(FastFrame& frame, const std::vector<int32_t>& reach, size
   const auto weigh = [&] {
     for (size_t r = 0; r < tiles_y; ++r)
       weights[r] = unowned && blocks[r] == 0 ? 0 : tile_row_weight(blocks[r], tiles_x);
-    return balance_tiles(weights, tiles_x, frame.workers, pace_speeds(frame));
   };
-  TileUnits units = weigh();
-  if (unowned && units.queued) {
+  weigh();
+  if (unowned && cuts_rows(weights, tiles_x, frame.workers)) {
     unowned = false;
-    units = weigh();
+    weigh();
   }
+  const TileUnits units = balance_tiles(weights, tiles_x, frame.workers, pace_speeds(frame));
   std::vector<int32_t> empty_rows;
   for (size_t r = 0; r < tiles_y; ++r)
     if (unowned && blocks[r] == 0) empty_rows.push_back(int32_t(r));

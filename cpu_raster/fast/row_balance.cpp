@@ -61,16 +61,28 @@ std::vector<uint32_t> contiguous_runs(uint32_t rows, uint32_t workers, const std
   return owner;
 }
 
+namespace {
+
+uint64_t share_of(const std::vector<uint64_t>& weights, uint32_t workers) {
+  const uint64_t total = std::accumulate(weights.begin(), weights.end(), uint64_t(0));
+  return std::max<uint64_t>((total + workers - 1) / workers, 1);
+}
+
+}  // namespace
+
+bool cuts_rows(const std::vector<uint64_t>& weights, uint32_t tiles_x, uint32_t workers) {
+  const uint64_t share = share_of(weights, std::max(workers, 1u));
+  return workers > 1 && tiles_x > 1 &&
+         std::any_of(weights.begin(), weights.end(), [share](uint64_t w) { return w > share; });
+}
+
 TileUnits balance_tiles(const std::vector<uint64_t>& weights, uint32_t tiles_x, uint32_t workers,
                         const std::vector<double>& speeds) {
   workers = std::max(workers, 1u);
   tiles_x = std::max(tiles_x, 1u);
-  const uint64_t total = std::accumulate(weights.begin(), weights.end(), uint64_t(0));
-  const uint64_t share = std::max<uint64_t>((total + workers - 1) / workers, 1);
+  const uint64_t share = share_of(weights, workers);
   TileUnits units;
-  const bool cut = workers > 1 && tiles_x > 1 &&
-                   std::any_of(weights.begin(), weights.end(), [share](uint64_t w) { return w > share; });
-  if (!cut) {  // whole rows, each worker's its own
+  if (!cuts_rows(weights, tiles_x, workers)) {  // whole rows, each worker's its own
     const std::vector<uint32_t> rows = balance_rows(weights, workers, speeds);
     for (const uint32_t w : rows) units.unit.insert(units.unit.end(), tiles_x, w);
     units.count = workers;

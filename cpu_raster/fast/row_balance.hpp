@@ -45,6 +45,8 @@ std::vector<uint32_t> balance_rows(const std::vector<uint64_t>& weights, uint32_
 // the workers take the pieces from a queue in that order (queued): the estimate knows rows, not
 // columns, and a queue evens out what it gets wrong. Deterministic.
 inline constexpr uint64_t kPiecesPerShare = 2;
+// Whether balance_tiles cuts rows into queued units: some row weighs more than a worker's share.
+bool cuts_rows(const std::vector<uint64_t>& weights, uint32_t tiles_x, uint32_t workers);
 struct TileUnits {
   std::vector<uint32_t> unit;  // per tile
   uint32_t count = 0;          // units
