@@ -491,14 +491,22 @@ TEST(FastRowBalance, RowsSharedOutByTheWorkersSpeeds) {
   EXPECT_EQ(contiguous_runs(16, 2), (std::vector<uint32_t>{0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1}));
 }
 
-// balance_tiles: rows as balance_rows while no row weighs more than a worker's share; otherwise
-// the heavy rows cut into runs of whole tiles, every tile in exactly one unit, each unit one run of
-// one row, units in order of their estimate, heaviest first.
+// balance_tiles: rows as balance_rows while no row weighs more than a quarter over a worker's
+// share; otherwise the heavy rows cut into runs of whole tiles, every tile in exactly one unit,
+// each unit one run of one row, units in order of their estimate, heaviest first.
 TEST(FastRowBalance, HeavyRowsCutIntoRunsOfTiles) {
   const std::vector<uint64_t> even(16, 5);
   const TileUnits rows = balance_tiles(even, 16, 4);
   EXPECT_FALSE(rows.queued);
   EXPECT_FALSE(cuts_rows(even, 16, 4));
+  // a row up to a quarter over a worker's share stays whole (kCutShareNum / kCutShareDen)
+  std::vector<uint64_t> near(16, 100);
+  near[3] = 120;  // share ceil(1,620 / 16) = 102: 1.18 shares
+  EXPECT_FALSE(cuts_rows(near, 16, 16));
+  EXPECT_FALSE(balance_tiles(near, 16, 16).queued);
+  near[3] = 140;  // share 103: 1.36 shares
+  EXPECT_TRUE(cuts_rows(near, 16, 16));
+  EXPECT_TRUE(balance_tiles(near, 16, 16).queued);
   EXPECT_EQ(rows.count, 4u);
   const std::vector<uint32_t> by_row = balance_rows(even, 4);
   for (size_t t = 0; t < rows.unit.size(); ++t) EXPECT_EQ(rows.unit[t], by_row[t / 16]);

@@ -72,8 +72,9 @@ uint64_t share_of(const std::vector<uint64_t>& weights, uint32_t workers) {
 
 bool cuts_rows(const std::vector<uint64_t>& weights, uint32_t tiles_x, uint32_t workers) {
   const uint64_t share = share_of(weights, std::max(workers, 1u));
-  return workers > 1 && tiles_x > 1 &&
-         std::any_of(weights.begin(), weights.end(), [share](uint64_t w) { return w > share; });
+  return workers > 1 && tiles_x > 1 && std::any_of(weights.begin(), weights.end(), [share](uint64_t w) {
+           return w * kCutShareDen > share * kCutShareNum;
+         });
 }
 
 TileUnits balance_tiles(const std::vector<uint64_t>& weights, uint32_t tiles_x, uint32_t workers,

@@ -36,16 +36,24 @@ std::vector<uint32_t> balance_rows(const std::vector<uint64_t>& weights, uint32_
                                    const std::vector<double>& speeds = {});
 
 // How the band phase shares out the tiles (weights.size() rows of tiles_x tiles, row-major). When
-// no row weighs more than a worker's share (the total / workers): whole rows, unit[t] the worker
-// that draws tile t (balance_rows), count = workers. Otherwise (perspective's horizon row held two
-// fifths of its work: one worker's whole at 16) the rows are cut into pieces: a row over the share
+// no row weighs more than kCutShare times a worker's share (the total / workers): whole rows,
+// unit[t] the worker that draws tile t (balance_rows), count = workers. Otherwise (perspective's
+// horizon row held two fifths of its work: one worker's whole at 16) the rows are cut into pieces:
+// a row over the share
 // into k = ceil(kPiecesPerShare * weight / share) runs of whole tiles (at most tiles_x), each taken
 // to weigh its part of the row by its tiles, every other row one piece; unit[t] is then the
 // piece's place among them by weight, heaviest first (ties: lower row, then left piece first), and
 // the workers take the pieces from a queue in that order (queued): the estimate knows rows, not
 // columns, and a queue evens out what it gets wrong. Deterministic.
 inline constexpr uint64_t kPiecesPerShare = 2;
-// Whether balance_tiles cuts rows into queued units: some row weighs more than a worker's share.
+// Cut only where a row outweighs the share by more than a quarter: cut rows cost more than their
+// weight (the block-column phase, each unit's walk of the draws), and whole rows leave a worker at
+// most the heaviest row. tiny_1m at 16 workers, its rows 0.99-1.13 shares each, was cut into 38
+// units: bands projected 1.60 ms and block columns 0.23 (92,000 blocks), where whole rows project
+// 1.30-1.59 ms in all (docs/performance-log.md, "Perspective at 16 workers ...").
+inline constexpr uint64_t kCutShareNum = 5, kCutShareDen = 4;
+// Whether balance_tiles cuts rows into queued units: some row weighs more than kCutShareNum /
+// kCutShareDen of a worker's share.
 bool cuts_rows(const std::vector<uint64_t>& weights, uint32_t tiles_x, uint32_t workers);
 struct TileUnits {
   std::vector<uint32_t> unit;  // per tile
