@@ -1,0 +1,276 @@
+// rastercmp bench --scaling --model [--tasks N]: the fast path on 1, 2, 4, ..., 64 workers, each
+// worker's and queued task's thread CPU time per phase projected onto as many free cores
+// (docs/performance.md, "Scaling model").
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <string>
+#include <thread>
+#include <utility>
+#include <vector>
+
+#include <fmt/core.h>
+#include <nlohmann/json.hpp>
+
+#include "app/bench_common.hpp"
+#include "app/options.hpp"
+#include "bench/bench_stats.hpp"
+#include "cpu_raster/cpu_raster.hpp"
+#include "cpu_raster/fast/render_fast.hpp"
+#include "experiments/gnuplot.hpp"
+#include "model/errors.hpp"
+#include "model/host.hpp"
+#include "model/render_result.hpp"
+
+namespace rastercmp::app {
+
+const std::vector<uint32_t> kModelWorkers = {1, 2, 4, 8, 16, 32, 64};
+
+namespace {
+
+// --scaling --model: a model of the fast path on N cores, measured on the cores there are. Each
+// render runs with N workers (as render_cpu_fast does: a small scene takes one worker), their jobs
+// run by at most the host's hardware threads one after another (FastConfig::profile_threads), and
+// records each worker's thread CPU time per phase and each queue task's (RenderProfile); on N free
+// cores a phase would take projected_seconds (its busiest worker; a queue phase: its tasks handed
+// in order to the first worker free), so the projected render time is the calling thread's serial
+// time plus that per phase. The reps take every N in turn (rep 1 at N = 1, 2, ..., 64, then rep 2,
+// ...), so that a host whose speed drifts between states over seconds (a shared VM) moves every N
+// alike, and each scene's profile at N is the median of its reps' (median_profile: each task's and
+// each worker's time the median of the reps'), so that a task the host held up in one rep does not
+// set its phase. The projected speed-up at N is projected(1) / projected(N). What it leaves out:
+// waking the workers, memory bandwidth and caches shared by N cores. Checked against the measured
+// wall time where N <= hardware threads.
+struct ModelRep {
+  double wall = 0;  // seconds per render of the case
+  // per scene (the case's order): its profile on N workers; a scene queued side by side: its
+  // time on one worker (queued_seconds) instead
+  std::vector<cpu::fast::RenderProfile> profiles;
+  std::vector<double> queued_seconds;
+  std::vector<size_t> queue;  // the queued scenes in queue order (side_by_side_queue)
+  std::vector<bool> in_queue;
+};
+
+struct ModelPoint {
+  double projected = 0, wall = 0;                      // seconds per render of the case; wall: the median of the reps'
+  double worker_spread = 0;                            // bands phase: projected / mean worker time (1 = even)
+  std::vector<std::pair<std::string, double>> phases;  // per phase: its projection, summed over scenes
+  std::vector<std::pair<std::string, cpu::fast::RenderProfile>> profiles;  // each scene's median profile
+};
+
+// The projection of queued scenes rendered side by side (render_fast_side_by_side) on `workers`
+// free cores: each scene's time on one worker, in queue order (side_by_side_queue), to the first
+// worker free.
+double side_by_side_seconds(const std::vector<double>& scene_seconds, uint32_t workers) {
+  std::vector<double> free(std::max(workers, 1u), 0.0);
+  for (const double t : scene_seconds) *std::min_element(free.begin(), free.end()) += t;
+  return *std::max_element(free.begin(), free.end());
+}
+
+// One rep of the case's scenes on `workers` workers.
+ModelRep model_rep(std::vector<Scene>& scenes, std::vector<RenderResult>& results, CpuOptions options, uint32_t workers,
+                   bool side_by_side) {
+  options.threads = workers;
+  cpu::fast::FastConfig config;
+  config.profile_threads = std::max(1u, std::thread::hardware_concurrency());
+  ModelRep rep;
+  rep.profiles.resize(scenes.size());
+  rep.queued_seconds.assign(scenes.size(), 0.0);
+  rep.in_queue.assign(scenes.size(), false);
+  if (side_by_side) {
+    rep.wall =
+        seconds_of([&] { cpu::fast::render_fast_side_by_side(scenes, options, config, results, &rep.profiles); });
+    rep.queue = cpu::fast::side_by_side_queue(scenes, options, config);
+    for (const size_t i : rep.queue) {
+      rep.in_queue[i] = true;
+      rep.queued_seconds[i] = cpu::fast::projected_seconds(rep.profiles[i]);
+    }
+    return rep;
+  }
+  for (size_t i = 0; i < scenes.size(); ++i) {
+    config.profile = &rep.profiles[i];
+    rep.wall += seconds_of([&] { cpu::fast::render_fast_into(scenes[i], options, config, results[i]); });
+  }
+  return rep;
+}
+
+// The point at N from its reps: each scene's median profile projected, the queued scenes' median
+// times on one worker list-scheduled on N.
+ModelPoint model_point(const std::vector<ModelRep>& reps, const std::vector<Scene>& scenes, uint32_t workers) {
+  ModelPoint point;
+  std::vector<double> walls, queued;
+  for (const ModelRep& rep : reps) walls.push_back(rep.wall);
+  point.wall = bench::summarize(walls).median;
+  point.phases = {{"serial", 0.0}};
+  double busiest_bands = 0, mean_bands = 0;
+  for (size_t i = 0; i < scenes.size(); ++i) {
+    if (reps.front().in_queue[i]) continue;
+    std::vector<cpu::fast::RenderProfile> of_scene;
+    for (const ModelRep& rep : reps) of_scene.push_back(rep.profiles[i]);
+    const cpu::fast::RenderProfile profile = cpu::fast::median_profile(of_scene);
+    point.projected += profile.serial_seconds;
+    point.phases.front().second += profile.serial_seconds;
+    for (const cpu::fast::PhaseTimes& phase : profile.phases) {
+      const double busiest = cpu::fast::projected_seconds(phase);
+      point.projected += busiest;
+      auto it =
+          std::find_if(point.phases.begin(), point.phases.end(), [&](const auto& p) { return p.first == phase.phase; });
+      if (it == point.phases.end()) it = point.phases.insert(point.phases.end(), {phase.phase, 0.0});
+      it->second += busiest;
+      if (phase.phase == "bands") {
+        busiest_bands += busiest;
+        double sum = 0;
+        for (double t : phase.worker_seconds) sum += t;
+        for (const cpu::fast::TaskTime& task : phase.tasks) sum += task.seconds;
+        mean_bands += sum / double(phase.worker_seconds.size());
+      }
+    }
+    point.profiles.emplace_back(scenes[i].name, profile);
+  }
+  for (const size_t i : reps.front().queue) {  // in queue order
+    std::vector<double> times;
+    for (const ModelRep& rep : reps) times.push_back(rep.queued_seconds[i]);
+    queued.push_back(bench::summarize(times).median);
+  }
+  if (!queued.empty()) {
+    const double side = side_by_side_seconds(queued, workers);
+    point.projected += side;
+    point.phases.emplace_back("side by side", side);
+  }
+  point.worker_spread = mean_bands > 0 ? busiest_bands / mean_bands : 1.0;
+  return point;
+}
+
+// --tasks: each queue phase of each scene at N workers (its median profile), its tasks' count,
+// their CPU time summed, the largest and every task's time in queue order (the times the list
+// scheduling of projected_seconds hands out; in the JSON with the worker it hands each to): a
+// line each appended to `text`, and as JSON.
+nlohmann::ordered_json describe_tasks(const ModelPoint& point, uint32_t workers, std::string& text) {
+  nlohmann::ordered_json out = nlohmann::ordered_json::array();
+  for (const auto& [scene, profile] : point.profiles) {
+    for (const cpu::fast::PhaseTimes& phase : profile.phases) {
+      if (phase.tasks.empty()) continue;
+      double sum = 0;
+      size_t largest = 0;
+      std::string times;
+      nlohmann::ordered_json tasks = nlohmann::ordered_json::array();
+      const cpu::fast::PhaseSchedule schedule = cpu::fast::schedule_phase(phase);
+      for (size_t i = 0; i < phase.tasks.size(); ++i) {
+        sum += phase.tasks[i].seconds;
+        if (phase.tasks[i].seconds > phase.tasks[largest].seconds) largest = i;
+        times += fmt::format(" {:.1f}", phase.tasks[i].seconds * 1e6);
+        tasks.push_back({{"seconds", phase.tasks[i].seconds}, {"worker", schedule.workers[i]}});
+      }
+      const double projected = schedule.seconds;
+      text += fmt::format(
+          "{} at {} workers, {}: {} tasks, {:.1f} us of CPU, the largest {:.1f} us (task {}), "
+          "the phase projected {:.1f} us; us in queue order:{}\n",
+          scene, workers, phase.phase, phase.tasks.size(), sum * 1e6, phase.tasks[largest].seconds * 1e6, largest,
+          projected * 1e6, times);
+      out.push_back({{"scene", scene}, {"phase", phase.phase}, {"projected_seconds", projected}, {"tasks", tasks}});
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+int run_scaling_model(const BenchArgs& args) {
+  std::vector<BenchCase> cases = make_cases(args);
+  const std::vector<uint32_t>& counts = kModelWorkers;
+  const uint32_t cores = std::max(1u, std::thread::hardware_concurrency());
+  CpuOptions options;
+  options.fma = lavapipe_fuses_on_this_host();
+  bench::LoadMonitor load;
+  load.start();
+  fmt::print("CPU: {} ({} hardware threads), fast path kernels: {}\n", cpu_model(), cores, fast_kernels());
+  fmt::print(
+      "fast path on N workers, projected from each worker's thread CPU time per phase; {} reps, each rep every N "
+      "in turn, each scene's profile the median of its reps'; each interval less the clock's own cost, {:.2f} us\n",
+      args.reps, thread_cpu_clock_cost() * 1e6);
+  fmt::print(
+      "projected = serial + per phase its busiest worker (queue phases: their tasks list-scheduled on N); "
+      "speed-up: projected(1) / projected(N); measured: wall time, where N <= {} hardware threads\n\n",
+      cores);
+  fmt::print("| scene | N | projected ms | speed-up | measured ms | bands busiest/mean | largest phase |\n");
+  fmt::print("|---|---:|---:|---:|---:|---:|---|\n");
+  nlohmann::ordered_json j;
+  j["cpu_model"] = cpu_model();
+  j["hardware_threads"] = cores;
+  j["fast_kernels"] = fast_kernels();
+  j["reps"] = args.reps;
+  j["clock_cost_seconds"] = thread_cpu_clock_cost();
+  std::vector<experiments::DataBlock> blocks;
+  std::string plot = "plot ";
+  std::string tasks_text;  // --tasks, after the table
+  for (BenchCase& c : cases) {
+    std::vector<Scene> kept;
+    std::vector<RenderResult> results;
+    for (Scene& scene : c.scenes) {
+      try {
+        results.push_back(render_cpu_fast(scene, options));
+        kept.push_back(std::move(scene));
+      } catch (const NotSupportedError&) {
+      }
+    }
+    experiments::DataBlock block{c.name, {{"workers", "speedup", experiments::gp_quote(c.name)}}};
+    nlohmann::ordered_json row{{"name", c.name}};
+    // every N in turn within a rep (ModelRep)
+    std::vector<std::vector<ModelRep>> reps(counts.size());
+    for (unsigned rep = 0; rep < args.reps; ++rep)
+      for (size_t k = 0; k < counts.size(); ++k)
+        reps[k].push_back(model_rep(kept, results, options, counts[k], c.side_by_side));
+    double one = 0;
+    for (size_t k = 0; k < counts.size(); ++k) {
+      const uint32_t n = counts[k];
+      const ModelPoint point = model_point(reps[k], kept, n);
+      if (n == 1) one = point.projected;
+      const double speedup = point.projected > 0 ? one / point.projected : 0;
+      const auto largest = std::max_element(point.phases.begin(), point.phases.end(),
+                                            [](const auto& a, const auto& b) { return a.second < b.second; });
+      fmt::print("| {} | {} | {:.2f} | {:.2f}x | {} | {:.2f} | {} {:.0f}% |\n", c.name, n, point.projected * 1e3,
+                 speedup, n <= cores ? fmt::format("{:.2f}", point.wall * 1e3) : std::string("-"), point.worker_spread,
+                 largest->first, point.projected > 0 ? 100.0 * largest->second / point.projected : 0.0);
+      const nlohmann::ordered_json tasks =
+          n == args.tasks_at ? describe_tasks(point, n, tasks_text) : nlohmann::ordered_json();
+      std::fflush(stdout);
+      block.rows.push_back({fmt::format("{}", n), fmt::format("{}", speedup), "x"});
+      nlohmann::ordered_json phases;
+      for (const auto& [name, seconds] : point.phases) phases[name] = seconds;
+      row["workers"].push_back({{"workers", n},
+                                {"projected_seconds", point.projected},
+                                {"projected_speedup", speedup},
+                                {"measured_wall_seconds", n <= cores ? nlohmann::json(point.wall) : nlohmann::json()},
+                                {"bands_busiest_over_mean", point.worker_spread},
+                                {"phases_busiest_seconds", phases}});
+      if (n == args.tasks_at) row["workers"].back()["tasks"] = tasks;
+    }
+    plot += fmt::format("DATA index {} using 1:2 title columnheader(3) with linespoints lw 2 pt 7, ", blocks.size());
+    blocks.push_back(std::move(block));
+    j["scenes"].push_back(std::move(row));
+  }
+  load.stop();
+  if (args.tasks_at != 0)
+    fmt::print("\nqueue phases' tasks at {} workers (thread CPU time; --tasks):\n{}", args.tasks_at,
+               tasks_text.empty() ? std::string("none: no scene ran a queue phase\n") : tasks_text);
+  j["load"] = {{"other_processes_cores", load.other_cores()},
+               {"this_run_cores", load.own_cores()},
+               {"load_average_1min", load.load_average_1min()},
+               {"seconds", load.wall_seconds()}};
+  fmt::print("\nload: other processes kept {:.2f} of the cores busy on average, this run {:.2f}, over {:.1f} s\n",
+             load.other_cores(), load.own_cores(), load.wall_seconds());
+  if (!args.json_path.empty()) {
+    std::ofstream out(args.json_path);
+    if (!out) throw UsageError("--json " + args.json_path + ": cannot write the file");
+    out << j.dump(2) << "\n";
+  }
+  const std::string body =
+      "set title " + experiments::gp_quote("fast path: projected speed-up on N cores (" + cpu_model() + ")") +
+      " noenhanced\nset logscale xy 2\nset xlabel 'workers N'\nset ylabel 'projected speed-up over 1 worker'\n"
+      "set key outside right top\nset grid\n" +
+      plot + "x title 'ideal' with lines dt 2 lc rgb 'gray'\n";
+  write_chart(args.chart_dir, "bench_scaling_model", blocks, body);
+  return kExitOk;
+}
+
+}  // namespace rastercmp::app
