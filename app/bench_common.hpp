@@ -7,7 +7,9 @@
 #include <string>
 #include <vector>
 
+#include "cpu_raster/exact/cpu_options.hpp"
 #include "experiments/gnuplot.hpp"
+#include "model/render_result.hpp"
 #include "model/scene.hpp"
 
 namespace rastercmp::app {
@@ -36,6 +38,12 @@ struct BenchCase {
 
 // The cases of args.scenes (every standard scene and the suite when none is named).
 std::vector<BenchCase> make_cases(const BenchArgs& args);
+
+// The scenes the fast path renders (those the CPU profile supports: NotSupportedError leaves one
+// out) moved into `kept`, with their renders into `results` (each render's buffers, reused by the
+// timed renders).
+void keep_supported(std::vector<Scene>& scenes, const CpuOptions& options, std::vector<Scene>& kept,
+                    std::vector<RenderResult>& results);
 
 // The host's CPU (model/host.hpp) and the fast path's kernels on it.
 std::string cpu_model();

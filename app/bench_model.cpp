@@ -204,15 +204,9 @@ int run_scaling_model(const BenchArgs& args) {
   std::string plot = "plot ";
   std::string tasks_text;  // --tasks, after the table
   for (BenchCase& c : cases) {
-    std::vector<Scene> kept;
+    std::vector<Scene> kept;  // the scenes the CPU profile supports
     std::vector<RenderResult> results;
-    for (Scene& scene : c.scenes) {
-      try {
-        results.push_back(render_cpu_fast(scene, options));
-        kept.push_back(std::move(scene));
-      } catch (const NotSupportedError&) {
-      }
-    }
+    keep_supported(c.scenes, options, kept, results);
     experiments::DataBlock block{c.name, {{"workers", "speedup", experiments::gp_quote(c.name)}}};
     nlohmann::ordered_json row{{"name", c.name}};
     // every N in turn within a rep (ModelRep)

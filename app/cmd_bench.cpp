@@ -304,13 +304,7 @@ int run_scaling(const BenchArgs& args) {
   for (BenchCase& c : cases) {
     std::vector<Scene> kept;  // the scenes the CPU profile supports
     std::vector<RenderResult> results;
-    for (Scene& scene : c.scenes) {
-      try {
-        results.push_back(render_cpu_fast(scene, options));
-        kept.push_back(std::move(scene));
-      } catch (const NotSupportedError&) {
-      }
-    }
+    keep_supported(c.scenes, options, kept, results);
     fmt::print("| {} |", c.name);
     experiments::DataBlock block{c.name, {{"threads", "ms", experiments::gp_quote(c.name)}}};
     nlohmann::ordered_json row{{"name", c.name}};
@@ -388,6 +382,17 @@ double seconds_of(const std::function<void()>& run) {
   const auto start = std::chrono::steady_clock::now();
   run();
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+void keep_supported(std::vector<Scene>& scenes, const CpuOptions& options, std::vector<Scene>& kept,
+                    std::vector<RenderResult>& results) {
+  for (Scene& scene : scenes) {
+    try {
+      results.push_back(render_cpu_fast(scene, options));
+      kept.push_back(std::move(scene));
+    } catch (const NotSupportedError&) {
+    }
+  }
 }
 
 std::vector<BenchCase> make_cases(const BenchArgs& args) {
