@@ -173,6 +173,27 @@ nlohmann::ordered_json describe_tasks(const ModelPoint& point, uint32_t workers,
   return out;
 }
 
+// --tasks: where each scene's serial time at N workers goes (its median profile): the calling
+// thread's time before each phase and after the last; a line each appended to `text`, and as JSON.
+nlohmann::ordered_json describe_serial(const ModelPoint& point, uint32_t workers, std::string& text) {
+  nlohmann::ordered_json out = nlohmann::ordered_json::array();
+  for (const auto& [scene, profile] : point.profiles) {
+    std::string parts;
+    nlohmann::ordered_json before = nlohmann::ordered_json::array();
+    for (const cpu::fast::PhaseTimes& phase : profile.phases) {
+      parts += fmt::format(" {:.1f} before {},", phase.serial_before * 1e6, phase.phase);
+      before.push_back({{"phase", phase.phase}, {"seconds", phase.serial_before}});
+    }
+    text += fmt::format("{} at {} workers, serial {:.1f} us:{} {:.1f} after the last phase\n", scene, workers,
+                        profile.serial_seconds * 1e6, parts, profile.serial_after() * 1e6);
+    out.push_back({{"scene", scene},
+                   {"serial_seconds", profile.serial_seconds},
+                   {"before_phases", before},
+                   {"after_last_phase_seconds", profile.serial_after()}});
+  }
+  return out;
+}
+
 }  // namespace
 
 int run_scaling_model(const BenchArgs& args) {
@@ -202,7 +223,7 @@ int run_scaling_model(const BenchArgs& args) {
   j["clock_cost_seconds"] = thread_cpu_clock_cost();
   std::vector<experiments::DataBlock> blocks;
   std::string plot = "plot ";
-  std::string tasks_text;  // --tasks, after the table
+  std::string tasks_text, serial_text;  // --tasks, after the table
   for (BenchCase& c : cases) {
     std::vector<Scene> kept;  // the scenes the CPU profile supports
     std::vector<RenderResult> results;
@@ -227,6 +248,8 @@ int run_scaling_model(const BenchArgs& args) {
                  largest->first, point.projected > 0 ? 100.0 * largest->second / point.projected : 0.0);
       const nlohmann::ordered_json tasks =
           n == args.tasks_at ? describe_tasks(point, n, tasks_text) : nlohmann::ordered_json();
+      const nlohmann::ordered_json serial =
+          n == args.tasks_at ? describe_serial(point, n, serial_text) : nlohmann::ordered_json();
       std::fflush(stdout);
       block.rows.push_back({fmt::format("{}", n), fmt::format("{}", speedup), "x"});
       nlohmann::ordered_json phases;
@@ -237,7 +260,10 @@ int run_scaling_model(const BenchArgs& args) {
                                 {"measured_wall_seconds", n <= cores ? nlohmann::json(point.wall) : nlohmann::json()},
                                 {"bands_busiest_over_mean", point.worker_spread},
                                 {"phases_busiest_seconds", phases}});
-      if (n == args.tasks_at) row["workers"].back()["tasks"] = tasks;
+      if (n == args.tasks_at) {
+        row["workers"].back()["tasks"] = tasks;
+        row["workers"].back()["serial_parts"] = serial;
+      }
     }
     plot += fmt::format("DATA index {} using 1:2 title columnheader(3) with linespoints lw 2 pt 7, ", blocks.size());
     blocks.push_back(std::move(block));
@@ -247,6 +273,8 @@ int run_scaling_model(const BenchArgs& args) {
   if (args.tasks_at != 0)
     fmt::print("\nqueue phases' tasks at {} workers (thread CPU time; --tasks):\n{}", args.tasks_at,
                tasks_text.empty() ? std::string("none: no scene ran a queue phase\n") : tasks_text);
+  if (args.tasks_at != 0)
+    fmt::print("\nthe calling thread's serial time at {} workers, us (--tasks):\n{}", args.tasks_at, serial_text);
   j["load"] = {{"other_processes_cores", load.other_cores()},
                {"this_run_cores", load.own_cores()},
                {"load_average_1min", load.load_average_1min()},

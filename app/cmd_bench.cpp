@@ -443,7 +443,8 @@ void add_bench_command(CLI::App& app, int& exit_code) {
                 "on N cores from every worker's thread CPU time per phase");
   cmd->add_option("--tasks", args->tasks_at,
                   "with --scaling --model: print each queue phase's tasks at N workers (1, 2, 4, ..., 64): their "
-                  "count, CPU time summed, the largest and each one's time in queue order (also in --json)")
+                  "count, CPU time summed, the largest and each one's time in queue order, and the calling thread's "
+                  "serial time before each phase (also in --json)")
       ->check(CLI::IsMember(kModelWorkers));
   cmd->add_option("--chart-dir", args->chart_dir, "folder of the --scaling chart (default bench-scaling)");
   cmd->callback([args, &exit_code] { exit_code = run_bench(*args); });

@@ -121,6 +121,14 @@ TEST(FastRenderProfile, EveryPhaseHasEachWorkersTime) {
     }
   }
   EXPECT_GE(profile.serial_seconds, 0.0);
+  // The serial time's parts: before each phase, and after the last.
+  double before = 0;
+  for (const PhaseTimes& phase : profile.phases) {
+    EXPECT_GE(phase.serial_before, 0.0) << phase.phase;
+    before += phase.serial_before;
+  }
+  EXPECT_LE(before, profile.serial_seconds);
+  EXPECT_DOUBLE_EQ(profile.serial_after(), profile.serial_seconds - before);
   // One thread: the same phases on one worker, no pool; a second render refills, not appends.
   options.threads = 1;
   render_fast(scene, options, config);
@@ -156,12 +164,16 @@ TEST(FastRenderProfile, MedianProfileTakesEachTimesMedian) {
       rows.tasks.push_back({i == outlier_at ? 9.0 : 1.0, i % 2});
       rows.worker_seconds[i % 2] += rows.tasks.back().seconds;
     }
-    r.phases = {rows, PhaseTimes{"bands", {bands, 2.0}, {}}};
+    rows.serial_before = serial / 2;
+    r.phases = {rows, PhaseTimes{"bands", {bands, 2.0}, {}, serial / 4}};
     return r;
   };
   const RenderProfile m = median_profile({rep(0.5, 0, 4.0), rep(0.7, 1, 5.0), rep(0.6, 2, 3.0)});
   EXPECT_DOUBLE_EQ(m.serial_seconds, 0.6);
   ASSERT_EQ(m.phases.size(), 2u);
+  EXPECT_DOUBLE_EQ(m.phases[0].serial_before, 0.3);  // each part the median of the reps'
+  EXPECT_DOUBLE_EQ(m.phases[1].serial_before, 0.15);
+  EXPECT_DOUBLE_EQ(m.serial_after(), 0.6 - 0.3 - 0.15);
   EXPECT_EQ(m.phases[0].phase, "block rows");
   ASSERT_EQ(m.phases[0].tasks.size(), 4u);
   for (const TaskTime& task : m.phases[0].tasks) EXPECT_DOUBLE_EQ(task.seconds, 1.0);

@@ -25,8 +25,8 @@ void run_phase(FastFrame& frame, const char* phase, uint32_t workers, const std:
   // outside job(0) (waking the others, spinning until they finish) belongs to no phase: on N free
   // cores it would overlap the busiest worker's.
   const double phase_start = thread_cpu_seconds();
-  frame.profile->serial_seconds += profiled_seconds(frame.serial_mark, phase_start);
-  PhaseTimes times{phase, std::vector<double>(workers, 0.0), {}};
+  PhaseTimes times{phase, std::vector<double>(workers, 0.0), {}, profiled_seconds(frame.serial_mark, phase_start)};
+  frame.profile->serial_seconds += times.serial_before;
   const auto timed = [&](uint32_t w) {
     const double start = thread_cpu_seconds();
     job(w);
@@ -66,6 +66,12 @@ PhaseSchedule schedule_phase(const PhaseTimes& phase) {
 }
 
 double projected_seconds(const PhaseTimes& phase) { return schedule_phase(phase).seconds; }
+
+double RenderProfile::serial_after() const {
+  double before = 0;
+  for (const PhaseTimes& phase : phases) before += phase.serial_before;
+  return std::max(serial_seconds - before, 0.0);
+}
 
 double projected_seconds(const RenderProfile& profile) {
   double total = profile.serial_seconds;
@@ -115,7 +121,8 @@ RenderProfile median_profile(const std::vector<RenderProfile>& reps) {
   };
   out.serial_seconds = median_by([](const RenderProfile& r) { return r.serial_seconds; });
   for (size_t p = 0; p < reps[0].phases.size(); ++p) {
-    PhaseTimes phase{reps[0].phases[p].phase, {}, {}};
+    PhaseTimes phase{
+        reps[0].phases[p].phase, {}, {}, median_by([p](const RenderProfile& r) { return r.phases[p].serial_before; })};
     const size_t workers = reps[0].phases[p].worker_seconds.size(), tasks = reps[0].phases[p].tasks.size();
     // each worker's time outside the phase's tasks (all of it in a phase without tasks)
     const auto outside = [p](const RenderProfile& r, size_t w) {

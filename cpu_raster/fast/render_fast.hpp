@@ -37,6 +37,7 @@ struct PhaseTimes {
   std::string phase;
   std::vector<double> worker_seconds;  // one per worker
   std::vector<TaskTime> tasks;         // queue phases: one per task, in queue order
+  double serial_before = 0;            // the calling thread's time since the previous phase (or the start)
 };
 // The phase's time on as many free cores as it had workers: its busiest worker's time; for a queue
 // phase, the queue's tasks handed in order to the first worker free (ties: the lower), each worker
@@ -51,16 +52,19 @@ PhaseSchedule schedule_phase(const PhaseTimes& phase);
 struct RenderProfile {
   std::vector<PhaseTimes> phases;  // in the order they ran
   double serial_seconds = 0;       // the calling thread's time outside the phases
+  // serial_seconds less every phase's serial_before: the time after the last phase
+  double serial_after() const;
 };
 // The projected time of a render on as many free cores as it had workers: its serial time plus
 // projected_seconds of each phase.
 double projected_seconds(const RenderProfile& profile);
 // One profile from several renders of the same scene on as many workers (reps): each time the
-// median of the reps' (the serial time; per phase each worker's, and for a queue phase each task's
-// in queue order, each worker then holding the median of its time outside tasks). A time that one
-// rep read long (the host took the core for a while) does not set a phase's projection, where in
-// one rep's profile the longest task of a phase nearly always is one such. Reps whose phases,
-// workers or tasks differ in number: the rep whose projection is the median's. reps not empty.
+// median of the reps' (the serial time and its part before each phase; per phase each worker's,
+// and for a queue phase each task's in queue order, each worker then holding the median of its
+// time outside tasks). A time that one rep read long (the host took the core for a while) does not
+// set a phase's projection, where in one rep's profile the longest task of a phase nearly always
+// is one such. Reps whose phases, workers or tasks differ in number: the rep whose projection is
+// the median's. reps not empty.
 RenderProfile median_profile(const std::vector<RenderProfile>& reps);
 
 // Knobs for tests and benchmarks; the defaults are what render_cpu_fast uses.
