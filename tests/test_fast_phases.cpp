@@ -120,7 +120,8 @@ TEST(FastVertices, Avx512PassEqualsScalarPass) {
 // exact path's (pipelined_chunks_by with clip_test.hpp's mask) for every topology, with and
 // without indices: chunks of several sizes, a few clipped vertices at random places (a chunk's
 // flag then hangs on one vertex), indices past the positions (counted as unclipped), positions
-// with w = 0 at the origin (no clip bit, a failed snap).
+// with w = 0 at the origin (no clip bit, a failed snap); also chunk by chunk, as the chunk-flag
+// phase's tasks scan them.
 TEST(FastChunkFlags, CompactRowsGiveTheExactPathsChunkFlags) {
   fast_test::Random r(7);
   const ViewportTransform viewport = make_viewport_transform(Viewport{0, 0, 640, 480, 0, 1});
@@ -160,6 +161,11 @@ TEST(FastChunkFlags, CompactRowsGiveTheExactPathsChunkFlags) {
         });
         SCOPED_TRACE(std::string(to_string(topology)) + (indexed ? " indexed " : " ") + std::to_string(vertices));
         EXPECT_EQ(transformed_pipelined_chunks(frame, 0), exact);
+        // the chunk-flag phase's tasks: runs of three chunks, each flag written once
+        std::vector<uint8_t> ranged(exact.size(), 2);
+        for (uint32_t c = 0; c < exact.size(); c += 3)
+          transformed_pipelined_chunk_range(frame, 0, c, std::min(uint32_t(exact.size()), c + 3), ranged.data());
+        for (size_t c = 0; c < exact.size(); ++c) EXPECT_EQ(ranged[c], exact[c] ? 1 : 0) << "chunk " << c;
         if (vertices == 9000) {
           EXPECT_NE(std::count(exact.begin(), exact.end(), true), 0);
         }

@@ -36,18 +36,28 @@ struct ChunkVertices {
 };
 ChunkVertices chunk_vertices(Topology topology, uint32_t first, uint32_t last);
 
-// Per chunk, in order: whether `is_clipped(position)` holds for a vertex the chunk's primitives use.
+// How many chunks the draw is cut into.
+inline uint32_t chunk_count(const Draw& draw) {
+  const uint32_t per_chunk = primitives_per_chunk(draw);
+  return (primitive_count(draw) + per_chunk - 1) / per_chunk;
+}
+
+// Whether `is_clipped(position)` holds for a vertex chunk c's primitives use.
+template <class IsClipped>
+bool chunk_pipelined_by(const Draw& draw, uint32_t c, IsClipped is_clipped) {
+  const uint32_t count = primitive_count(draw), per_chunk = primitives_per_chunk(draw);
+  const auto position = [&](uint32_t k) { return draw.indices.empty() ? k : draw.indices[k]; };
+  const ChunkVertices v = chunk_vertices(draw.topology, c * per_chunk, std::min(count, (c + 1) * per_chunk));
+  bool clipped = v.hub && is_clipped(position(0));
+  for (uint32_t k = v.begin; k < v.end && !clipped; ++k) clipped = is_clipped(position(k));
+  return clipped;
+}
+
+// Per chunk, in order: chunk_pipelined_by.
 template <class IsClipped>
 std::vector<bool> pipelined_chunks_by(const Draw& draw, IsClipped is_clipped) {
-  const uint32_t count = primitive_count(draw), per_chunk = primitives_per_chunk(draw);
-  std::vector<bool> pipelined((count + per_chunk - 1) / per_chunk, false);
-  const auto position = [&](uint32_t k) { return draw.indices.empty() ? k : draw.indices[k]; };
-  for (uint32_t c = 0; c < pipelined.size(); ++c) {
-    const ChunkVertices v = chunk_vertices(draw.topology, c * per_chunk, std::min(count, (c + 1) * per_chunk));
-    bool clipped = v.hub && is_clipped(position(0));
-    for (uint32_t k = v.begin; k < v.end && !clipped; ++k) clipped = is_clipped(position(k));
-    pipelined[c] = clipped;
-  }
+  std::vector<bool> pipelined(chunk_count(draw), false);
+  for (uint32_t c = 0; c < pipelined.size(); ++c) pipelined[c] = chunk_pipelined_by(draw, c, is_clipped);
   return pipelined;
 }
 

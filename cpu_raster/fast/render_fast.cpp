@@ -161,6 +161,44 @@ void init_frame(FastFrame& frame, const Scene& scene, const CpuOptions& options,
   raster.tiles = frame.tiles.data();
 }
 
+// Chunks a task of the chunk-flag phase scans: perspective's 235 chunks make 30 tasks.
+constexpr uint32_t kChunkFlagTask = 8;
+
+// The §1.5 chunk flags of the draws in `draws` (transformed_pipelined_chunks), per draw (empty for
+// the others). With several workers in a phase of their own, each task scanning kChunkFlagTask
+// chunks of one draw: every scan reads index lines and rows cold, which on one thread held 18-25 us
+// of perspective's serial part at 16 workers (docs/performance-log.md).
+std::vector<std::vector<bool>> flag_chunks(FastFrame& frame, const std::vector<uint32_t>& draws) {
+  std::vector<std::vector<bool>> flags(frame.draws.size());
+  if (draws.empty()) return flags;
+  if (frame.workers == 1) {
+    for (uint32_t d : draws) flags[d] = transformed_pipelined_chunks(frame, d);
+    return flags;
+  }
+  struct ChunkTask {
+    uint32_t draw, begin, end;
+  };
+  std::vector<std::vector<uint8_t>> bytes(frame.draws.size());  // one byte a chunk: tasks write apart
+  std::vector<ChunkTask> tasks;
+  for (uint32_t d : draws) {
+    const uint32_t chunks = chunk_count(frame.scene->draws[d]);
+    bytes[d].assign(chunks, 0);
+    for (uint32_t c = 0; c < chunks; c += kChunkFlagTask) tasks.push_back({d, c, std::min(chunks, c + kChunkFlagTask)});
+  }
+  std::atomic<size_t> next{0};
+  TaskTimes times(frame, tasks.size());
+  run_phase(frame, "chunk flags", tasks.size() <= 1 ? 1 : frame.workers, [&](uint32_t w) {
+    for (size_t i = next++; i < tasks.size(); i = next++)
+      times.run(i, w, [&] {
+        const ChunkTask& t = tasks[i];
+        transformed_pipelined_chunk_range(frame, t.draw, t.begin, t.end, bytes[t.draw].data());
+      });
+  });
+  times.attach(frame);
+  for (uint32_t d : draws) flags[d].assign(bytes[d].begin(), bytes[d].end());
+  return flags;
+}
+
 // Positions [begin, end) of one draw, transformed by one call of the vertex pass.
 struct VertexPiece {
   uint32_t draw;
@@ -237,6 +275,15 @@ std::vector<TrailingCheck> transform_all_vertices(FastFrame& frame, bool check_p
   times.attach(frame);
   std::vector<uint32_t> draw_flags(frame.draws.size(), 0);
   for (const VertexPiece& piece : pieces) draw_flags[piece.draw] |= piece.flags;
+  // the §1.5 chunk flags, from the vertices' clip bits: the trailing run's (below) and the
+  // pipeline path's cull's
+  const auto any_clipped = [&](uint32_t d) { return (draw_flags[d] & kVertexClipBits) != 0; };
+  const auto culled = [&](uint32_t d) { return frame.scene->draws[d].state.cull_mode != CullMode::None; };
+  std::vector<uint32_t> flagged;
+  for (uint32_t d = 0; d < frame.draws.size(); ++d)
+    if (frame.draws[d].fast && any_clipped(d) && (frame.draws[d].setup.depth_active() || culled(d)))
+      flagged.push_back(d);
+  std::vector<std::vector<bool>> chunk_flags = flag_chunks(frame, flagged);
   std::vector<TrailingCheck> checks;
   for (uint32_t d = 0; d < frame.draws.size(); ++d) {
     FastDraw& fd = frame.draws[d];
@@ -244,11 +291,8 @@ std::vector<TrailingCheck> transform_all_vertices(FastFrame& frame, bool check_p
     const Draw& draw = frame.scene->draws[d];
     fd.chunk_size = primitives_per_chunk(draw);
     fd.pipelined_chunks.clear();
-    // the §1.5 chunk flags, from the vertices' clip bits: the trailing run's (below) and the
-    // pipeline path's cull's
-    const bool clipped = (draw_flags[d] & kVertexClipBits) != 0, cull = draw.state.cull_mode != CullMode::None;
-    std::vector<bool> pipelined;
-    if (clipped && (fd.setup.depth_active() || cull)) pipelined = transformed_pipelined_chunks(frame, d);
+    const bool clipped = any_clipped(d), cull = culled(d);
+    std::vector<bool> pipelined = std::move(chunk_flags[d]);  // empty where no flag is read below
     // A draw whose last chunks take the draw pipeline has those primitives set up outside lavapipe's
     // denormal mode (SetupDenormals, front_end.hpp). The fast path sets up in the mode; where that
     // can change a set-up, the exact front end draws the draw. With several workers the run's

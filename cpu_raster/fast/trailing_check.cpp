@@ -14,19 +14,39 @@
 
 namespace rastercmp::cpu::fast {
 
+namespace {
+
+// The vertex phase's clip bits of a position, from its compact rows (FastDraw::tile_rows).
+struct RowClipped {
+  const int16_t* rows;
+  size_t positions;
+  bool operator()(uint32_t position) const { return position < positions && row_clip_bits(rows[position]) != 0; }
+};
+
+// Each chunk's scan mostly stops within its first few vertices, each chunk's first index line
+// read cold: the lines of chunks [begin, end) asked for at once, before the scan waits on them
+// one by one.
+void prefetch_chunk_indices(const Draw& draw, uint32_t begin, uint32_t end) {
+  if (draw.indices.empty()) return;
+  const uint32_t per_chunk = primitives_per_chunk(draw);
+  for (uint32_t c = begin; c < end; ++c)
+    __builtin_prefetch(draw.indices.data() + chunk_vertices(draw.topology, c * per_chunk, c * per_chunk).begin);
+}
+
+}  // namespace
+
 std::vector<bool> transformed_pipelined_chunks(const FastFrame& frame, uint32_t d) {
   const Draw& draw = frame.scene->draws[d];
-  const int16_t* rows = frame.draws[d].tile_rows;
-  const size_t positions = draw.positions_clip.size();
-  // Each chunk's scan mostly stops within its first few vertices, each chunk's first index line
-  // read cold: those lines asked for at once, before the scan waits on them one by one.
-  const uint32_t count = primitive_count(draw), per_chunk = primitives_per_chunk(draw);
-  if (!draw.indices.empty())
-    for (uint32_t first = 0; first < count; first += per_chunk)
-      __builtin_prefetch(draw.indices.data() + chunk_vertices(draw.topology, first, first).begin);
-  return pipelined_chunks_by(draw, [rows, positions](uint32_t position) {
-    return position < positions && row_clip_bits(rows[position]) != 0;
-  });
+  prefetch_chunk_indices(draw, 0, chunk_count(draw));
+  return pipelined_chunks_by(draw, RowClipped{frame.draws[d].tile_rows, draw.positions_clip.size()});
+}
+
+void transformed_pipelined_chunk_range(const FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end,
+                                       uint8_t* pipelined) {
+  const Draw& draw = frame.scene->draws[d];
+  prefetch_chunk_indices(draw, begin, end);
+  const RowClipped clipped{frame.draws[d].tile_rows, draw.positions_clip.size()};
+  for (uint32_t c = begin; c < end; ++c) pipelined[c] = chunk_pipelined_by(draw, c, clipped) ? 1 : 0;
 }
 
 TrailingPipelineRun transformed_trailing_run(const FastFrame& frame, uint32_t d, const std::vector<bool>& pipelined) {

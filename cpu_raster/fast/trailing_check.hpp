@@ -19,6 +19,11 @@ namespace rastercmp::cpu::fast {
 // as unclipped: such an index makes the render throw (the profile check) before anything is drawn.
 std::vector<bool> transformed_pipelined_chunks(const FastFrame& frame, uint32_t d);
 
+// The same flags of chunks [begin, end) only, into pipelined[begin, end): a task of the chunk-flag
+// phase (render_fast.cpp), which shares a draw's chunks out between the workers.
+void transformed_pipelined_chunk_range(const FastFrame& frame, uint32_t d, uint32_t begin, uint32_t end,
+                                       uint8_t* pipelined);
+
 // The draw's trailing pipelined run (front_end.hpp: trailing_pipeline_run_of) from its chunk flags
 // (transformed_pipelined_chunks) and the vertex phase's clip bits, a position past the draw's
 // counting as unclipped as there.
