@@ -255,8 +255,13 @@ void write_json(const std::string& path, const std::vector<CaseReport>& reports,
                {"loadavg_1min", load.load_average_1min()},
                {"wall_s", load.wall_seconds()}};
   for (const CaseReport& r : reports) {
+    const auto target = std::find_if(std::begin(kTargets), std::end(kTargets),
+                                     [&](const Target& t) { return t.scene == r.name; });
     j["scenes"].push_back(
         {{"name", r.name},
+         {"target", target == std::end(kTargets)
+                        ? nlohmann::ordered_json()
+                        : nlohmann::ordered_json{{"must", target->must}, {"aim", target->aim}}},
          {"triangles", r.triangles},
          {"fragments", r.fragments},
          {"pixels", r.pixels},

@@ -1,5 +1,6 @@
-// `rastercmp bench --scaling --model --tasks N`: each queue phase's tasks at N workers, printed
-// after the table and in the JSON (app/cmd_bench.cpp). The fast path alone: no Vulkan device.
+// `rastercmp bench --scaling --model --tasks N`: each queue phase's tasks and the serial time's
+// parts at N workers, printed after the table and in the JSON (app/bench_model.cpp; the fast path
+// alone: no Vulkan device); `rastercmp bench --json`: each scene's target beside its times.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -28,6 +29,11 @@ TEST(CliBench, ModelListsEachQueuePhasesTasksAtTheWorkersAsked) {
   }
   for (const char* phase : {"vertices", "block rows", "bands"})
     EXPECT_TRUE(printed.count(phase)) << phase << "\n" << r.out;
+  ASSERT_NE(r.out.find("the calling thread's serial time at 16 workers"), std::string::npos) << r.out;
+  EXPECT_TRUE(std::regex_search(r.out, std::regex(R"(bench\.perspective at 16 workers, serial [0-9.]+ us: [0-9.]+ )"
+                                                  R"(before vertices, .* [0-9.]+ before bands, [0-9.]+ after the )"
+                                                  R"(last phase)")))
+      << r.out;
   const nlohmann::json j = nlohmann::json::parse(read_file(tmp / "model.json"));
   size_t with_tasks = 0;
   for (const nlohmann::json& point : j["scenes"][0]["workers"]) {
@@ -49,8 +55,45 @@ TEST(CliBench, ModelListsEachQueuePhasesTasksAtTheWorkersAsked) {
       // list scheduling hands each task to a worker: the phase takes at least its largest task
       EXPECT_GE(phase["projected_seconds"].get<double>(), largest) << name;
     }
+    // the serial time's parts: one per phase in the order they ran, the vertices first and the
+    // bands last, and the rest after the last phase
+    ASSERT_EQ(point["serial_parts"].size(), 1u);
+    const nlohmann::json& serial = point["serial_parts"][0];
+    EXPECT_EQ(serial["scene"], "bench.perspective");
+    std::vector<std::string> phases;
+    double parts = serial["after_last_phase_seconds"].get<double>();
+    EXPECT_GE(parts, 0.0);
+    for (const nlohmann::json& before : serial["before_phases"]) {
+      phases.push_back(before["phase"]);
+      EXPECT_GE(before["seconds"].get<double>(), 0.0) << phases.back();
+      parts += before["seconds"].get<double>();
+    }
+    ASSERT_GE(phases.size(), 3u);
+    EXPECT_EQ(phases.front(), "vertices");
+    EXPECT_EQ(phases.back(), "bands");
+    for (const auto& [name, count] : printed)
+      EXPECT_NE(std::find(phases.begin(), phases.end(), name), phases.end()) << name;
+    // each part is the median of its reps' (one rep here): they add up to the serial time
+    EXPECT_NEAR(parts, serial["serial_seconds"].get<double>(), 1e-9);
   }
   EXPECT_EQ(with_tasks, 1u);
+}
+
+// The bench's JSON carries each scene's target (kTargets), the one its printed verdict reads.
+TEST(CliBench, JsonCarriesEachScenesTarget) {
+  RASTERCMP_SKIP_WITHOUT_VULKAN();
+  const TempDir tmp;
+  const RunResult r = run_cli({"bench", "--reps", "1", "--exact-reps", "1", "--scene", "fill_f2b", "--json",
+                               (tmp / "bench.json").string()});
+  ASSERT_EQ(r.exit_code, 0) << describe({"bench"}, r);
+  const std::regex verdict(R"(target fill_f2b +lavapipe/fast +[0-9.]+x +must reach +([0-9]+)x: .* aim +([0-9]+)x)");
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(r.out, m, verdict)) << r.out;
+  const nlohmann::json j = nlohmann::json::parse(read_file(tmp / "bench.json"));
+  ASSERT_EQ(j["scenes"].size(), 1u);
+  EXPECT_EQ(j["scenes"][0]["name"], "fill_f2b");
+  EXPECT_EQ(j["scenes"][0]["target"]["must"].get<double>(), std::stod(m[1]));
+  EXPECT_EQ(j["scenes"][0]["target"]["aim"].get<double>(), std::stod(m[2]));
 }
 
 }  // namespace
