@@ -40,9 +40,11 @@ namespace {
 // each worker's time the median of the reps'), so that a task the host held up in one rep does not
 // set its phase. The projected speed-up at N is projected(1) / projected(N). What it leaves out:
 // waking the workers, memory bandwidth and caches shared by N cores. Checked against the measured
-// wall time where N <= hardware threads.
+// wall time where N <= hardware threads: the same renders again without a profile, right after the
+// profiled ones (a profiled render also pays the clock readings the projection leaves out, two a
+// queued task: about 0.1 ms of perspective's at two workers).
 struct ModelRep {
-  double wall = 0;  // seconds per render of the case
+  double wall = 0;  // seconds per unprofiled render of the case (0 where not timed)
   // per scene (the case's order): its profile on N workers; a scene queued side by side: its
   // time on one worker (queued_seconds) instead
   std::vector<cpu::fast::RenderProfile> profiles;
@@ -67,9 +69,9 @@ double side_by_side_seconds(const std::vector<double>& scene_seconds, uint32_t w
   return *std::max_element(free.begin(), free.end());
 }
 
-// One rep of the case's scenes on `workers` workers.
+// One rep of the case's scenes on `workers` workers, profiled, then (`timed`) timed unprofiled.
 ModelRep model_rep(std::vector<Scene>& scenes, std::vector<RenderResult>& results, CpuOptions options, uint32_t workers,
-                   bool side_by_side) {
+                   bool side_by_side, bool timed) {
   options.threads = workers;
   cpu::fast::FastConfig config;
   config.profile_threads = std::max(1u, std::thread::hardware_concurrency());
@@ -78,18 +80,21 @@ ModelRep model_rep(std::vector<Scene>& scenes, std::vector<RenderResult>& result
   rep.queued_seconds.assign(scenes.size(), 0.0);
   rep.in_queue.assign(scenes.size(), false);
   if (side_by_side) {
-    rep.wall =
-        seconds_of([&] { cpu::fast::render_fast_side_by_side(scenes, options, config, results, &rep.profiles); });
+    cpu::fast::render_fast_side_by_side(scenes, options, config, results, &rep.profiles);
     rep.queue = cpu::fast::side_by_side_queue(scenes, options, config);
     for (const size_t i : rep.queue) {
       rep.in_queue[i] = true;
       rep.queued_seconds[i] = cpu::fast::projected_seconds(rep.profiles[i]);
     }
+    if (timed)
+      rep.wall = seconds_of([&] { cpu::fast::render_fast_side_by_side(scenes, options, config, results, nullptr); });
     return rep;
   }
   for (size_t i = 0; i < scenes.size(); ++i) {
     config.profile = &rep.profiles[i];
-    rep.wall += seconds_of([&] { cpu::fast::render_fast_into(scenes[i], options, config, results[i]); });
+    cpu::fast::render_fast_into(scenes[i], options, config, results[i]);
+    config.profile = nullptr;
+    if (timed) rep.wall += seconds_of([&] { cpu::fast::render_fast_into(scenes[i], options, config, results[i]); });
   }
   return rep;
 }
@@ -211,7 +216,8 @@ int run_scaling_model(const BenchArgs& args) {
       args.reps, thread_cpu_clock_cost() * 1e6);
   fmt::print(
       "projected = serial + per phase its busiest worker (queue phases: their tasks list-scheduled on N); "
-      "speed-up: projected(1) / projected(N); measured: wall time, where N <= {} hardware threads\n\n",
+      "speed-up: projected(1) / projected(N); measured: wall time of the same renders unprofiled, where N <= {} "
+      "hardware threads\n\n",
       cores);
   fmt::print("| scene | N | projected ms | speed-up | measured ms | bands busiest/mean | largest phase |\n");
   fmt::print("|---|---:|---:|---:|---:|---:|---|\n");
@@ -234,7 +240,7 @@ int run_scaling_model(const BenchArgs& args) {
     std::vector<std::vector<ModelRep>> reps(counts.size());
     for (unsigned rep = 0; rep < args.reps; ++rep)
       for (size_t k = 0; k < counts.size(); ++k)
-        reps[k].push_back(model_rep(kept, results, options, counts[k], c.side_by_side));
+        reps[k].push_back(model_rep(kept, results, options, counts[k], c.side_by_side, counts[k] <= cores));
     double one = 0;
     for (size_t k = 0; k < counts.size(); ++k) {
       const uint32_t n = counts[k];

@@ -36,7 +36,13 @@ TEST(CliBench, ModelListsEachQueuePhasesTasksAtTheWorkersAsked) {
       << r.out;
   const nlohmann::json j = nlohmann::json::parse(read_file(tmp / "model.json"));
   size_t with_tasks = 0;
+  const uint32_t cores = j["hardware_threads"];
   for (const nlohmann::json& point : j["scenes"][0]["workers"]) {
+    // the measured wall time (unprofiled renders) where N <= the host's hardware threads, else none
+    if (point["workers"].get<uint32_t>() <= cores)
+      EXPECT_GT(point["measured_wall_seconds"].get<double>(), 0.0) << point["workers"];
+    else
+      EXPECT_TRUE(point["measured_wall_seconds"].is_null()) << point["workers"];
     if (point["workers"] != 16) {
       EXPECT_FALSE(point.contains("tasks")) << point["workers"];
       continue;
