@@ -36,15 +36,15 @@ std::vector<uint32_t> balance_rows(const std::vector<uint64_t>& weights, uint32_
                                    const std::vector<double>& speeds = {});
 
 // How the band phase shares out the tiles (weights.size() rows of tiles_x tiles, row-major). When
-// no row weighs more than kCutShare times a worker's share (the total / workers): whole rows,
-// unit[t] the worker that draws tile t (balance_rows), count = workers. Otherwise (perspective's
-// horizon row held two fifths of its work: one worker's whole at 16) the rows are cut into pieces:
-// a row over the share
-// into k = ceil(kPiecesPerShare * weight / share) runs of whole tiles (at most tiles_x), each taken
-// to weigh its part of the row by its tiles, every other row one piece; unit[t] is then the
-// piece's place among them by weight, heaviest first (ties: lower row, then left piece first), and
-// the workers take the pieces from a queue in that order (queued): the estimate knows rows, not
-// columns, and a queue evens out what it gets wrong. Deterministic.
+// no row weighs more than kCutShareNum / kCutShareDen of a worker's share (the total / workers;
+// cuts_rows): whole rows, unit[t] the worker that draws tile t (balance_rows), count = workers.
+// Otherwise (perspective's horizon row held two fifths of its work: one worker's whole at 16) the
+// rows are cut into pieces: a row over the share is cut into k = ceil(kPiecesPerShare * weight /
+// share) runs of whole tiles (at most tiles_x), each taken to weigh its part of the row by its
+// tiles, every other row one piece; unit[t] is then the piece's place among them by weight,
+// heaviest first (ties: lower row, then left piece first), and the workers take the pieces from a
+// queue in that order (queued): the estimate knows rows, not columns, and a queue evens out what it
+// gets wrong. Deterministic.
 inline constexpr uint64_t kPiecesPerShare = 2;
 // Cut only where a row outweighs the share by more than a quarter: cut rows cost more than their
 // weight (the block-column phase, each unit's walk of the draws), and whole rows leave a worker at
