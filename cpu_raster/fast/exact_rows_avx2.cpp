@@ -343,7 +343,8 @@ RASTERCMP_AVX2 bool depth_rows(const RasterPrimitive& p, int32_t y0, int32_t y1,
 // per step of four rows either one gathered eight-lane step, when every row's run is at most two
 // columns (lane 2k + j: row k, column u0[k] + j, valid when j < the run), or, row by row, steps of
 // eight contiguous columns masked to the run (a row of one sample per pixel is contiguous in the
-// attachments). Each lane's depth, test and write are draw_gathered's (the gathered step's writes
+// attachments; a step whose eight columns all lie in the visit read and written whole, the
+// others masked). Each lane's depth, test and write are draw_gathered's (the gathered step's writes
 // scattered on AVX-512 hosts, blended elsewhere: StepWrites), or where the frame's rows spread over
 // the L1's sets draw_pairs' (each row's two pixels one 64-bit word); a step holds distinct samples
 // of one primitive, so reading its stored values before writing any reads what the exact path's
@@ -438,6 +439,20 @@ RASTERCMP_AVX2 bool thin_rows(const RasterPrimitive& p, int32_t y0, int32_t y1, 
                             gathered.offset, d);
           const __m256i raw = to_raw<F>(z);
           __m256i pass = covered;
+          if (px + 7 <= p.visit.x1) {
+            // all eight columns in the visit, so in this worker's tiles: read and written whole,
+            // a column not covered or failing with the value it held (as draw_pairs); the masked
+            // load and stores below cost lines_20k 5% more on a Zen 5 host (performance-log.md)
+            __m256i* depth_at = reinterpret_cast<__m256i*>(depth_row + px);
+            __m256i* owner_at = reinterpret_cast<__m256i*>(owner_row + px);
+            const __m256i stored = _mm256_loadu_si256(depth_at);
+            if constexpr (Op != CompareOp::Always)
+              pass = _mm256_and_si256(covered, depth_passes<F, Op>(z, raw, stored));
+            if (_mm256_testz_si256(pass, pass)) continue;
+            if (d.write) _mm256_storeu_si256(depth_at, _mm256_blendv_epi8(stored, raw, pass));
+            _mm256_storeu_si256(owner_at, _mm256_blendv_epi8(_mm256_loadu_si256(owner_at), id, pass));
+            continue;
+          }
           if constexpr (Op != CompareOp::Always) {
             const __m256i stored = _mm256_maskload_epi32(reinterpret_cast<const int*>(depth_row + px), covered);
             pass = _mm256_and_si256(covered, depth_passes<F, Op>(z, raw, stored));
