@@ -5,6 +5,7 @@
 // exact rows, test_fast_lean_setup.cpp the lean set-ups; test_fast_units.cpp the stages around
 // them (vertices, clears, the pool, block rows, row balance, depth bounds, exact rows).
 #include <gtest/gtest.h>
+#include <sys/mman.h>
 
 #include <algorithm>
 #include <array>
@@ -151,6 +152,85 @@ TEST(FastSmallTriangles, WindowCompositorEqualsGridScatter) {
 TEST(FastSmallTriangles, EightPixelWindowCompositorEqualsGridScatter) {
   if (!host_has_avx2_fma()) GTEST_SKIP() << "host without AVX2/FMA: the eight-pixel window compositor does not run";
   expect_window_equals_grid_scatter(&setup_small_block_avx2, &select_window_block_avx2);
+}
+
+// Attachment memory for the compositor's tile test: rows of 8 KiB whose columns 0-63 end a page
+// and whose columns 64-1087 fill the next one, which is read-only while `guarded`.
+struct GuardedRows {
+  static constexpr int32_t kWidth = 2048, kHeight = 48;
+  static constexpr size_t kPage = 4096, kRowBytes = kWidth * sizeof(uint32_t);
+  static constexpr size_t kBytes = kHeight * kRowBytes + kRowBytes;
+  char* base = nullptr;
+  GuardedRows() {
+    void* p = mmap(nullptr, kBytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    base = p == MAP_FAILED ? nullptr : static_cast<char*>(p);
+  }
+  ~GuardedRows() {
+    if (base != nullptr) munmap(base, kBytes);
+  }
+  uint32_t* pixels() const { return reinterpret_cast<uint32_t*>(base + kPage - 64 * sizeof(uint32_t)); }
+  bool guard(bool guarded) const {
+    for (int32_t y = 0; y < kHeight; ++y)
+      if (mprotect(base + size_t(y) * kRowBytes + kPage, kPage, guarded ? PROT_READ : PROT_READ | PROT_WRITE) != 0)
+        return false;
+    return true;
+  }
+};
+
+// The eight-pixel compositor stores a window row's last unit whole only where the unit's columns
+// past the window lie in the tile of the window's last column (this worker's): blocks whose
+// windows end a few columns before column 64, the next tile's first, drawn with columns 64 and
+// on read-only (a store into them stops the test with SIGSEGV), and the bytes of columns 0-63
+// equal to the grid lanes' scatter.
+TEST(FastSmallTriangles, EightPixelWindowCompositorWritesNoColumnOfTheNextTile) {
+  if (!host_has_avx2_fma()) GTEST_SKIP() << "host without AVX2/FMA: the eight-pixel window compositor does not run";
+  fast_test::Random r(31);
+  GuardedRows owner_a, owner_b, depth_a, depth_b;
+  ASSERT_TRUE(owner_a.base && owner_b.base && depth_a.base && depth_b.base);
+  int crossing = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    EightTriangles block;
+    const float bx = float(r.range(36.0, 54.0)), by = float(r.range(8.0, 30.0));
+    for (int l = 0; l < 8; ++l) {
+      const float cx = bx + 3.0f * float(l / 2) + float(r.range(-1.0, 1.0)), cy = by + float(r.range(-1.0, 1.0));
+      for (int k = 0; k < 3; ++k)
+        block.add(k, cx + float(r.range(-3.0, 3.0)), cy + float(r.range(-3.0, 3.0)), float(r.range(0.0, 1.0)));
+    }
+    SmallBlockInput in = block.input(PixelRect{0, 0, 63, GuardedRows::kHeight - 1});
+    in.depth.format = DepthFormat::D32Sfloat;
+    in.depth.op = CompareOp(r.below(8));
+    in.depth.write = !r.chance(0.2);
+    SmallBlockOutput grid, window;
+    setup_small_block_avx2(in, grid);
+    in.window_ok = true;
+    setup_small_block_avx2(in, window);
+    if (!window.window) continue;
+    const int32_t width = window.grid_x1 - window.grid_x0 + 1;
+    crossing += window.grid_x0 + 8 * ((width + 7) / 8) > 64 ? 1 : 0;
+    for (int32_t y = 0; y < GuardedRows::kHeight; ++y)
+      for (int32_t x = 0; x < 64; ++x) {
+        const size_t i = size_t(y) * GuardedRows::kWidth + size_t(x);
+        owner_a.pixels()[i] = owner_b.pixels()[i] = kOwnerBackground;
+        depth_a.pixels()[i] = depth_b.pixels()[i] = std::bit_cast<uint32_t>(float(r.range(0.0, 1.0)));
+      }
+    const TileTarget a{owner_a.pixels(), depth_a.pixels(), GuardedRows::kWidth, GuardedRows::kHeight};
+    const TileTarget b{owner_b.pixels(), depth_b.pixels(), GuardedRows::kWidth, GuardedRows::kHeight};
+    for (uint32_t lanes = grid.grid_mask; lanes != 0; lanes &= lanes - 1) {
+      const int l = std::countr_zero(lanes);
+      select_grid_scatter(in.depth.format, in.depth.op)(grid, l, 100 + uint32_t(l), grid.y0[l], grid.y1[l],
+                                                        in.depth.write, a);
+    }
+    ASSERT_TRUE(owner_b.guard(true) && depth_b.guard(true));
+    select_window_block_avx2(in.depth.format, in.depth.op)(window, 100, window.grid_y0, window.grid_y1, in.depth, b);
+    ASSERT_TRUE(owner_b.guard(false) && depth_b.guard(false));
+    for (int32_t y = 0; y < GuardedRows::kHeight; ++y)
+      for (int32_t x = 0; x < 64; ++x) {
+        const size_t i = size_t(y) * GuardedRows::kWidth + size_t(x);
+        ASSERT_EQ(owner_a.pixels()[i], owner_b.pixels()[i]) << "trial " << trial << " x " << x << " y " << y;
+        ASSERT_EQ(depth_a.pixels()[i], depth_b.pixels()[i]) << "trial " << trial << " x " << x << " y " << y;
+      }
+  }
+  EXPECT_GT(crossing, 50);  // windows whose last unit reaches into the next tile
 }
 
 // What a set-up output says about lane l that the drawing reads: its rectangle, and by class the
