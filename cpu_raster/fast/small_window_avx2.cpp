@@ -33,7 +33,7 @@ RASTERCMP_AVX2 inline __m256i load_unit(const uint32_t* p) {
 RASTERCMP_AVX2 inline void store_unit(uint32_t* p, __m256i v) { _mm256_store_si256(reinterpret_cast<__m256i*>(p), v); }
 
 // Row r of the window from the attachment row at `image` (its column grid_x0) and back: the
-// units before the last whole, and the last one whole too where its columns past the window's lie
+// units before the last whole, and the last one whole too where its columns past the window lie
 // in the tile of the window's last column (`whole_last`: this worker's, as the window's pixels
 // there are, and inside the row), else masked to the window's columns (the attachment's pixels
 // past them may be another worker's). A whole unit stores back, unchanged, the pixels past the
