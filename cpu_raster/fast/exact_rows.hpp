@@ -27,7 +27,9 @@ void rasterize_primitive_rows(const RasterPrimitive& p, const DepthTestState& de
 // whose values leave the range it evaluates exactly in double: then rasterize_primitive_rows.
 // A frame of one sample per pixel's gathered steps write their passing lanes with scatters when
 // avx512_writes (call so only on AVX-512 hosts), otherwise every valid lane, a failing one with
-// the values it held.
+// the values it held; its pairs and contiguous steps may also store back, unchanged, pixels of the
+// visit that the primitive does not cover. Nothing outside the visit is written, so the visit must
+// be pixels no other thread writes during the call (a worker's tiles).
 bool rasterize_rows_avx2(const RasterPrimitive& p, int32_t y0, int32_t y1, const DepthTestState& depth,
                          RenderTargets& targets, bool avx512_writes = false);
 
