@@ -276,11 +276,11 @@ int run_scaling_model(const BenchArgs& args) {
     j["scenes"].push_back(std::move(row));
   }
   load.stop();
-  if (args.tasks_at != 0)
+  if (args.tasks_at != 0) {
     fmt::print("\nqueue phases' tasks at {} workers (thread CPU time; --tasks):\n{}", args.tasks_at,
                tasks_text.empty() ? std::string("none: no scene ran a queue phase\n") : tasks_text);
-  if (args.tasks_at != 0)
     fmt::print("\nthe calling thread's serial time at {} workers, us (--tasks):\n{}", args.tasks_at, serial_text);
+  }
   j["load"] = {{"other_processes_cores", load.other_cores()},
                {"this_run_cores", load.own_cores()},
                {"load_average_1min", load.load_average_1min()},

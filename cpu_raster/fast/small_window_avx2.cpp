@@ -37,9 +37,9 @@ RASTERCMP_AVX2 inline void store_unit(uint32_t* p, __m256i v) { _mm256_store_si2
 // in the tile of the window's last column (`whole_last`: this worker's, as the window's pixels
 // there are, and inside the row), else masked to the window's columns (the attachment's pixels
 // past them may be another worker's). A whole unit stores back, unchanged, the pixels past the
-// window it loaded (no lane covers them); vpmaskmovd's store is slow on AMD hosts (grid_180k with
-// the AVX2 kernels 8-9% faster without it, performance-log.md). Written out for the at most four
-// units of a row: a loop of whole units is turned into a call to memmove.
+// window it loaded (no lane covers them); vpmaskmovd's store is slow on the Zen 5 host measured
+// (grid_180k with the AVX2 kernels 8-9% faster without it, performance-log.md). Written out for
+// the at most four units of a row: a loop of whole units is turned into a call to memmove.
 static_assert(kWindowWidth / kUnit == 4);
 RASTERCMP_AVX2 inline void copy_in(const uint32_t* image, uint32_t* row, int c) {
   store_unit(row + kUnit * c, _mm256_loadu_si256(reinterpret_cast<const __m256i*>(image + kUnit * c)));
