@@ -11,8 +11,11 @@
 // Kinds: scatter (the stored depths gathered, the passing lanes scattered: thin_rows on AVX-512
 // hosts), gather_only (the reads alone), blended (gathered, every lane stored back one by one,
 // failing ones with what they held: thin_rows on AVX2 hosts), pairs (each row's two pixels read
-// and written as one 64-bit word of each attachment, blended). With a pitch of 1,024 words a
-// steep line's rows are 4 KiB apart and fall in one set of the L1 data cache; 1,040 spreads them.
+// and written as one 64-bit word of each attachment, blended), records (the attachments
+// interleaved, each pixel's depth and owner side by side, a row's two pixels read and written as
+// one 16-byte record, blended: the same bytes in one cache line a row instead of two). With a
+// pitch of 1,024 words a steep line's rows are 4 KiB apart (8 KiB for records) and fall in one
+// set of the L1 data cache; 1,040 spreads them.
 #include <benchmark/benchmark.h>
 #include <immintrin.h>
 
@@ -28,7 +31,7 @@
 namespace rastercmp {
 namespace {
 
-enum class Kind { Scatter, GatherOnly, Blended, Pairs };
+enum class Kind { Scatter, GatherOnly, Blended, Pairs, Records };
 
 constexpr int32_t kLines = 20000, kHeight = 1024;
 
@@ -63,6 +66,31 @@ RASTERCMP_AVX2 uint32_t draw_lines(Kind kind, Attachments& a, int32_t pitch, int
       const __m256i index = _mm256_add_epi32(_mm256_mullo_epi32(row, _mm256_set1_epi32(pitch)), column);
       const uint32_t value = (uint32_t(l) * 2654435761u + uint32_t(s) * 40503u + pass * 9973u) & 0x3FFFFFFFu;
       const __m256i raw = _mm256_set1_epi32(int32_t(value));
+      if (kind == Kind::Records) {
+        // each pixel's depth and owner side by side (a.depth holds both): a row's two pixels are
+        // one 16-byte record, so one cache line a row instead of one in each attachment
+        alignas(16) int32_t at[8];
+        _mm256_store_si256(reinterpret_cast<__m256i*>(at), index);
+        float* record[4];
+        for (int k = 0; k < 4; ++k) record[k] = reinterpret_cast<float*>(depth + 2 * size_t(at[2 * k]));
+        // rows 0 and 2 in one register, 1 and 3 in the other: the shuffles give lane 2k + j
+        const __m256 even = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(record[0])),
+                                                 _mm_loadu_ps(record[2]), 1);
+        const __m256 odd = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(record[1])),
+                                                _mm_loadu_ps(record[3]), 1);
+        const __m256i stored = _mm256_castps_si256(_mm256_shuffle_ps(even, odd, 0x88));
+        const __m256i held = _mm256_castps_si256(_mm256_shuffle_ps(even, odd, 0xDD));
+        const __m256i passes = _mm256_cmpgt_epi32(stored, raw);
+        const __m256 new_depth = _mm256_castsi256_ps(_mm256_blendv_epi8(stored, raw, passes));
+        const __m256 new_owner = _mm256_castsi256_ps(_mm256_blendv_epi8(held, id, passes));
+        const __m256 rows_02 = _mm256_unpacklo_ps(new_depth, new_owner);
+        const __m256 rows_13 = _mm256_unpackhi_ps(new_depth, new_owner);
+        _mm_storeu_ps(record[0], _mm256_castps256_ps128(rows_02));
+        _mm_storeu_ps(record[2], _mm256_extractf128_ps(rows_02, 1));
+        _mm_storeu_ps(record[1], _mm256_castps256_ps128(rows_13));
+        _mm_storeu_ps(record[3], _mm256_extractf128_ps(rows_13, 1));
+        continue;
+      }
       if (kind == Kind::Pairs) {
         alignas(16) int32_t at[8];
         _mm256_store_si256(reinterpret_cast<__m256i*>(at), index);
@@ -113,8 +141,9 @@ void access(benchmark::State& state, Kind kind) {
     return state.SkipWithError("the scatter needs AVX-512 (F, VL, BW, DQ)");
   const int32_t pitch = int32_t(state.range(0)), rows = int32_t(state.range(1));
   Attachments a;
-  a.depth.resize(size_t(pitch) * kHeight);  // a line's columns stay below pitch - rows + rows / 8
-  a.owner.resize(a.depth.size());
+  // a line's columns stay below pitch - rows + rows / 8; records: both values in a.depth
+  a.depth.resize(size_t(pitch) * kHeight * (kind == Kind::Records ? 2 : 1));
+  a.owner.resize(kind == Kind::Records ? 0 : a.depth.size());
   std::mt19937 rng(1);
   for (int32_t l = 0; l < kLines; ++l) {
     a.column.push_back(int32_t(rng() % uint32_t(pitch - rows)));
@@ -151,6 +180,7 @@ int main(int argc, char** argv) {
   rastercmp::register_kind("gather_only", Kind::GatherOnly);
   rastercmp::register_kind("blended", Kind::Blended);
   rastercmp::register_kind("pairs", Kind::Pairs);
+  rastercmp::register_kind("records", Kind::Records);
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();
