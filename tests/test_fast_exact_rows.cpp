@@ -133,7 +133,7 @@ void protect_outside_piece(RenderTargets& t, const PixelRect& piece, int prot) {
 // at the middle column, and every page outside a piece's rows in its half is read-only while it is
 // drawn: a write there stops the test with SIGSEGV. The bytes are also the exact rasterizer's.
 TEST(FastExactRows, VectorRowsWriteNothingOutsideTheirVisit) {
-  if (!host_has_avx2_fma()) GTEST_SKIP() << "the host runs no AVX2";
+  if (!host_has_avx2_fma()) GTEST_SKIP() << "host without AVX2/FMA: the vector exact rows do not run";
   uint64_t pieces = 0, whole_steps = 0;
   for (uint64_t seed = 1; seed <= 40; ++seed) {
     fast_test::Random r(seed * 6151);
