@@ -292,8 +292,8 @@ TEST(ExperimentsCharts, TwelveSeriesGetDistinctStylesAndUnderscoresSurvive) {
          {{"\"series_" + std::to_string(i) + "\"", "x"}, {"1", std::to_string(i)}, {"2", std::to_string(i)}}});
   try {
     find_gnuplot();
-  } catch (const EnvironmentError&) {
-    GTEST_SKIP() << "gnuplot is not installed";
+  } catch (const EnvironmentError& e) {
+    FAIL() << "gnuplot is not installed (scripts/setup.sh installs it): " << e.what();
   }
   render_chart(dir.string(), "many", blocks,
                "set title 'near_coplanar'\nplot for [i=0:11] DATA index i using 1:2 title columnheader(1) with lines "
@@ -376,8 +376,8 @@ TEST(ExperimentsSceneNeeds, EachStageFromTheStateThatRequiresIt) {
 TEST(ExperimentsSceneNeeds, QuickRunTimesOnlySkippedStages) {
   try {
     find_gnuplot();
-  } catch (const EnvironmentError&) {
-    GTEST_SKIP() << "gnuplot is not installed";
+  } catch (const EnvironmentError& e) {
+    FAIL() << "gnuplot is not installed (scripts/setup.sh installs it): " << e.what();
   }
   const fs::path dir = fs::temp_directory_path() / "rastercmp_test_experiments_scene_needs";
   fs::remove_all(dir);

@@ -421,7 +421,7 @@ void expect_screenshot(const fs::path& png) {
 }
 
 TEST(ReportHtml, OpensInHeadlessChromiumWithWorkingLinksAndNoOverflow) {
-  if (!fs::exists("/usr/bin/chromium")) GTEST_SKIP() << "chromium is missing: run scripts/setup.sh";
+  ASSERT_TRUE(fs::exists("/usr/bin/chromium")) << "chromium is missing (scripts/setup.sh installs it)";
   const ScratchDir scratch_chromium("chromium");
   const fs::path& root = scratch_chromium.path();
   const fs::path report = root / "report";
