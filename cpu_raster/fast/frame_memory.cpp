@@ -30,7 +30,8 @@ void size_buffer(PixelBuffer& buffer, size_t count, uint32_t colour) {
 
 FastVertex* VertexScratch::acquire(size_t count) {
   if (count > capacity_) {
-    data_ = std::make_unique_for_overwrite<FastVertex[]>(count);
+    // FastVertex is an implicit-lifetime type: the array's elements begin their lifetime here
+    data_.reset(static_cast<FastVertex*>(::operator new[](count * sizeof(FastVertex), std::align_val_t{kAlignment})));
     capacity_ = count;
     advise_huge_pages(data_.get(), count * sizeof(FastVertex));
   }

@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <new>
 #include <numeric>
 #include <vector>
 
@@ -24,12 +25,20 @@ void size_buffer(PixelBuffer& buffer, size_t count, uint32_t colour);
 // madvise(MADV_HUGEPAGE) over the 2 MiB-aligned part of [data, data + bytes), where supported.
 void advise_huge_pages(void* data, size_t bytes);
 
+// Storage of the vertex phase's output, starting on a 64-byte line: the AVX-512 pass stores sixteen
+// vertices as four 64-byte vectors, the AVX2 pass eight as four of 32 bytes, each then within one
+// line (from malloc, which puts a large block 16 bytes into its pages, every 64-byte store crossed
+// two lines).
 class VertexScratch {
  public:
+  static constexpr size_t kAlignment = 64;
   FastVertex* acquire(size_t count);  // valid until the next acquire on this object
 
  private:
-  std::unique_ptr<FastVertex[]> data_;
+  struct Free {
+    void operator()(FastVertex* p) const { ::operator delete[](p, std::align_val_t{kAlignment}); }
+  };
+  std::unique_ptr<FastVertex[], Free> data_;
   size_t capacity_ = 0;
 };
 

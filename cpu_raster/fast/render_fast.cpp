@@ -226,20 +226,24 @@ std::vector<TrailingCheck> transform_all_vertices(FastFrame& frame, bool check_p
     const Topology topology = frame.scene->draws[d].topology;
     return is_triangle_topology(topology) || is_line_topology(topology);
   };
+  // each draw's vertices from a 64-byte line (VertexScratch): its pass stores them within lines
+  constexpr size_t kLineVertices = VertexScratch::kAlignment / sizeof(FastVertex);
+  const auto padded = [](size_t n) { return (n + kLineVertices - 1) / kLineVertices * kLineVertices; };
+  static_assert(kVertexBlock % kLineVertices == 0);
   size_t total = 0;
   for (uint32_t d = 0; d < frame.draws.size(); ++d)
-    if (transformed(d)) total += frame.scene->draws[d].positions_clip.size();
+    if (transformed(d)) total += padded(frame.scene->draws[d].positions_clip.size());
   FastVertex* scratch = thread_vertex_scratch().acquire(total);
   int16_t* rows = thread_row_scratch(total);
   std::vector<VertexPiece> pieces;
   std::vector<VertexTask> tasks;
-  size_t filled = kVertexBlock;  // positions in the last task
+  size_t filled = kVertexBlock;  // positions in the last task, each piece's rounded up to a line
   for (uint32_t d = 0; d < frame.draws.size(); ++d) {
     if (!transformed(d)) continue;
     const size_t n = frame.scene->draws[d].positions_clip.size();
     frame.draws[d].vertices = scratch;
     frame.draws[d].tile_rows = rows;
-    scratch += n;
+    scratch += padded(n);
     rows += n;
     for (size_t b = 0; b < n;) {
       if (filled == kVertexBlock) {
@@ -249,7 +253,7 @@ std::vector<TrailingCheck> transform_all_vertices(FastFrame& frame, bool check_p
       const size_t e = std::min(n, b + (kVertexBlock - filled));
       pieces.push_back({d, b, e});
       tasks.back().last = pieces.size();
-      filled += e - b;
+      filled += padded(e - b);  // a multiple of kLineVertices: a draw split between tasks at a line
       b = e;
     }
   }
