@@ -290,11 +290,7 @@ TEST(ExperimentsCharts, TwelveSeriesGetDistinctStylesAndUnderscoresSurvive) {
     blocks.push_back(
         {"series_" + std::to_string(i),
          {{"\"series_" + std::to_string(i) + "\"", "x"}, {"1", std::to_string(i)}, {"2", std::to_string(i)}}});
-  try {
-    find_gnuplot();
-  } catch (const EnvironmentError& e) {
-    FAIL() << "gnuplot is not installed (scripts/setup.sh installs it): " << e.what();
-  }
+  ASSERT_NO_THROW(find_gnuplot()) << "gnuplot is not installed (scripts/setup.sh installs it)";
   render_chart(dir.string(), "many", blocks,
                "set title 'near_coplanar'\nplot for [i=0:11] DATA index i using 1:2 title columnheader(1) with lines "
                "lt (i+1)\n");
@@ -374,11 +370,7 @@ TEST(ExperimentsSceneNeeds, EachStageFromTheStateThatRequiresIt) {
 // chart scene-needs --quick, end to end on a two-scene suite (CPU and gnuplot only): one row per
 // scene, and a skip is timed only where the timing scene does not need its stage.
 TEST(ExperimentsSceneNeeds, QuickRunTimesOnlySkippedStages) {
-  try {
-    find_gnuplot();
-  } catch (const EnvironmentError& e) {
-    FAIL() << "gnuplot is not installed (scripts/setup.sh installs it): " << e.what();
-  }
+  ASSERT_NO_THROW(find_gnuplot()) << "gnuplot is not installed (scripts/setup.sh installs it)";
   const fs::path dir = fs::temp_directory_path() / "rastercmp_test_experiments_scene_needs";
   fs::remove_all(dir);
   run_scene_needs({dir.string(), true, false}, {{"a.sliver", make_sliver_pair(3, 20)}, {"b.lines", make_line_star(64, 8)}});
