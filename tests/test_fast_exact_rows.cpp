@@ -108,10 +108,11 @@ TEST(FastExactRows, VectorRowsWriteWhatTheExactRasterizerWrites) {
   }
 }
 
-// Every attachment page but those of a piece's own rows in its half of the frame made read-only
-// (prot PROT_READ), or all made writable again (PROT_READ | PROT_WRITE). Each half row is whole
-// pages: the frame is 2048 px wide and its buffers start on a page (PixelAllocator, colour 0).
-void protect_outside_piece(RenderTargets& t, const PixelRect& piece, int prot) {
+// Every attachment page but those of a piece's own rows in its half of the frame (or, with
+// whole_rows, in the whole frame) made read-only (prot PROT_READ), or all made writable again
+// (PROT_READ | PROT_WRITE). Each half row is whole pages: the frame is 2048 px wide and its buffers
+// start on a page (PixelAllocator, colour 0).
+void protect_outside_piece(RenderTargets& t, const PixelRect& piece, int prot, bool whole_rows = false) {
   const size_t half = size_t(t.width / 2) * t.samples * sizeof(uint32_t);
   const size_t side = piece.x0 >= int32_t(t.width / 2) ? 1 : 0;
   for (PixelBuffer* buffer : {&t.owner, &t.depth_raw}) {
@@ -120,9 +121,37 @@ void protect_outside_piece(RenderTargets& t, const PixelRect& piece, int prot) {
     ASSERT_EQ(reinterpret_cast<uintptr_t>(base) % 4096, 0u);
     ASSERT_EQ(mprotect(base, buffer->size() * sizeof(uint32_t), prot), 0);
     if (prot != PROT_READ) continue;
-    for (int32_t y = piece.y0; y <= piece.y1; ++y)
-      ASSERT_EQ(mprotect(base + (size_t(y) * 2 + side) * half, half, PROT_READ | PROT_WRITE), 0);
+    for (int32_t y = piece.y0; y <= piece.y1; ++y) {
+      if (whole_rows)
+        ASSERT_EQ(mprotect(base + size_t(y) * 2 * half, 2 * half, PROT_READ | PROT_WRITE), 0);
+      else
+        ASSERT_EQ(mprotect(base + (size_t(y) * 2 + side) * half, half, PROT_READ | PROT_WRITE), 0);
+    }
   }
+}
+
+// Lines across the middle of frames 2048 px wide and up to their right edge: steep ones near the
+// middle, shallow ones across the frame (every mode, widths 0.5-5 px, 1x and 4x, the random
+// scenes' depth states).
+Scene lines_across_wide_frame(uint64_t seed, fast_test::Random& r) {
+  Scene scene = fast_test::random_scene(seed);
+  scene.width = 2048;
+  scene.height = 24 + r.below(24);
+  scene.samples = seed % 4 == 0 ? 4 : 1;
+  scene.scissor.reset();
+  for (Draw& draw : scene.draws) {
+    draw.topology = Topology::LineList;
+    draw.indices.clear();
+    draw.positions_clip.clear();
+    draw.state.line_width = r.chance(0.5) ? 1.0f : float(r.range(0.5, 5.0));
+    for (uint32_t k = 0; k < 80; ++k) {
+      const double reach = k % 2 == 0 ? 0.02 : 1.1;  // steep near the middle, or shallow across it
+      const float z = float(r.range(0.0, 1.0));
+      draw.positions_clip.emplace_back(float(r.range(-reach, reach)), float(r.range(-1.2, 1.2)), z, 1.0f);
+      draw.positions_clip.emplace_back(float(r.range(-reach, reach)), float(r.range(-1.2, 1.2)), z, 1.0f);
+    }
+  }
+  return scene;
 }
 
 // rasterize_rows_avx2 writes nothing outside the rows and columns of the visit it is given, which
@@ -137,23 +166,7 @@ TEST(FastExactRows, VectorRowsWriteNothingOutsideTheirVisit) {
   uint64_t pieces = 0, whole_steps = 0;
   for (uint64_t seed = 1; seed <= 40; ++seed) {
     fast_test::Random r(seed * 6151);
-    Scene scene = fast_test::random_scene(seed);
-    scene.width = 2048;
-    scene.height = 24 + r.below(24);
-    scene.samples = seed % 4 == 0 ? 4 : 1;
-    scene.scissor.reset();
-    for (Draw& draw : scene.draws) {
-      draw.topology = Topology::LineList;
-      draw.indices.clear();
-      draw.positions_clip.clear();
-      draw.state.line_width = r.chance(0.5) ? 1.0f : float(r.range(0.5, 5.0));
-      for (uint32_t k = 0; k < 80; ++k) {
-        const double reach = k % 2 == 0 ? 0.02 : 1.1;  // steep near the middle, or shallow across it
-        const float z = float(r.range(0.0, 1.0));
-        draw.positions_clip.emplace_back(float(r.range(-reach, reach)), float(r.range(-1.2, 1.2)), z, 1.0f);
-        draw.positions_clip.emplace_back(float(r.range(-reach, reach)), float(r.range(-1.2, 1.2)), z, 1.0f);
-      }
-    }
+    const Scene scene = lines_across_wide_frame(seed, r);
     const int32_t middle = int32_t(scene.width / 2);
     const auto halves = [middle](const RasterPrimitive& p) {
       return std::array<PixelRect, 2>{PixelRect{p.visit.x0, p.visit.y0, std::min(p.visit.x1, middle - 1), p.visit.y1},
@@ -178,6 +191,36 @@ TEST(FastExactRows, VectorRowsWriteNothingOutsideTheirVisit) {
   }
   EXPECT_GT(pieces, 2000u);
   EXPECT_GT(whole_steps, 500u);
+}
+
+// With whole_rows (every column of the rows the caller's, as a worker's whole tile rows), a step
+// may store back pixels of its rows beside the visit, and rasterize_rows_avx2 writes nothing outside
+// those rows: the lines above, each primitive's rows split at a random row, every page outside a
+// piece's rows read-only while it is drawn. The bytes are also the exact rasterizer's.
+TEST(FastExactRows, VectorRowsWithWholeRowsWriteNothingOutsideTheirRows) {
+  if (!host_has_avx2_fma()) GTEST_SKIP() << "host without AVX2/FMA: the vector exact rows do not run";
+  uint64_t pieces = 0;
+  for (uint64_t seed = 1; seed <= 40; ++seed) {
+    fast_test::Random r(seed * 4217);
+    const Scene scene = lines_across_wide_frame(seed, r);
+    const auto rows = [&r](const RasterPrimitive& p) {
+      const int32_t split = p.visit.y0 + int32_t(r.below(uint32_t(p.visit.y1 - p.visit.y0 + 1)));
+      return std::array<PixelRect, 2>{PixelRect{p.visit.x0, p.visit.y0, p.visit.x1, split - 1},
+                                      PixelRect{p.visit.x0, split, p.visit.x1, p.visit.y1}};
+    };
+    const bool avx512_writes = host_has_avx512() && seed % 2 == 1;
+    const auto guarded = [&](const RasterPrimitive& p, int32_t y0, int32_t y1, const DepthTestState& depth,
+                             RenderTargets& targets) {
+      protect_outside_piece(targets, p.visit, PROT_READ, true);
+      const bool drawn = rasterize_rows_avx2(p, y0, y1, depth, targets, avx512_writes, true);
+      protect_outside_piece(targets, p.visit, PROT_READ | PROT_WRITE, true);
+      return drawn;
+    };
+    expect_vector_rows_match(
+        scene, seed, r, rows, [&](const RasterPrimitive&, bool vector) { pieces += vector ? 1 : 0; }, guarded);
+    if (HasFatalFailure()) return;
+  }
+  EXPECT_GT(pieces, 2000u);
 }
 
 // The box kernels' small per-sample primitives (sample_box_rows, exact_rows_4x_avx2.cpp, through
