@@ -193,7 +193,8 @@ TEST(FastExactRows, VectorRowsWriteNothingOutsideTheirVisit) {
   EXPECT_GT(whole_steps, 500u);
 }
 
-// With whole_rows (every column of the rows the caller's, as a worker's whole tile rows), a step
+// With owned_row_end the frame's last column (every column of the rows the caller's, as a worker's
+// whole tile rows), a step
 // may store back pixels of its rows beside the visit, and rasterize_rows_avx2 writes nothing outside
 // those rows: the lines above, each primitive's rows split at a random row, every page outside a
 // piece's rows read-only while it is drawn. The bytes are also the exact rasterizer's.
@@ -212,7 +213,7 @@ TEST(FastExactRows, VectorRowsWithWholeRowsWriteNothingOutsideTheirRows) {
     const auto guarded = [&](const RasterPrimitive& p, int32_t y0, int32_t y1, const DepthTestState& depth,
                              RenderTargets& targets) {
       protect_outside_piece(targets, p.visit, PROT_READ, true);
-      const bool drawn = rasterize_rows_avx2(p, y0, y1, depth, targets, avx512_writes, true);
+      const bool drawn = rasterize_rows_avx2(p, y0, y1, depth, targets, avx512_writes, int32_t(targets.width) - 1);
       protect_outside_piece(targets, p.visit, PROT_READ | PROT_WRITE, true);
       return drawn;
     };

@@ -251,13 +251,14 @@ void BandWorker::raster_exact_in_band(const RasterPrimitive& primitive, const De
   if (visit.empty()) return;
   // Most often every tile row of the visit is all this worker's: drawn whole, in one call (the visit
   // lies in the framebuffer, so the cut below would leave it as it is, in pieces), every column of
-  // its rows the worker's (whole_rows).
+  // its rows the worker's (owned_row_end: the frame's last, short of a wider pitch's extra columns).
   const int32_t ty_lo = visit.y0 >> kTileOrder, ty_hi = visit.y1 >> kTileOrder;
   if (ty_lo >= 0 && whole_before_[size_t(ty_hi) + 1] - whole_before_[size_t(ty_lo)] == uint32_t(ty_hi - ty_lo + 1)) {
     prepare_tiles(visit, depth.write);
     if (frame_.raster.avx512 && rasterize_box_avx512(primitive, visit.y0, visit.y1, depth, frame_.targets)) return;
     if (frame_.raster.avx2 &&
-        rasterize_rows_avx2(primitive, visit.y0, visit.y1, depth, frame_.targets, frame_.raster.avx512, true))
+        rasterize_rows_avx2(primitive, visit.y0, visit.y1, depth, frame_.targets, frame_.raster.avx512,
+                           int32_t(frame_.scene->width) - 1))
       return;
     if (primitive.binned)
       rasterize_binned_rows(primitive, depth, frame_.targets, frame_.raster.avx2);

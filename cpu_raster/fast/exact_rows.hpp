@@ -29,12 +29,13 @@ void rasterize_primitive_rows(const RasterPrimitive& p, const DepthTestState& de
 // avx512_writes (call so only on AVX-512 hosts), otherwise every valid lane, a failing one with
 // the values it held; its pairs and contiguous steps may also store back, unchanged, pixels of the
 // visit that the primitive does not cover. Nothing outside the visit is written, so the visit must
-// be pixels no other thread writes during the call (a worker's tiles); with whole_rows, nothing
-// outside the rows [y0, y1], whose every column [0, targets.width) must then be the caller's: its
-// steps may also store back pixels of those rows beside the visit unchanged (fewer gathered and
-// masked steps at a visit's last columns).
+// be pixels no other thread writes during the call (a worker's tiles). With owned_row_end >= 0,
+// every column [0, owned_row_end] of the rows [y0, y1] must be the caller's (a worker's whole tile
+// rows; owned_row_end at most the frame's last column) and its steps may also store back pixels of
+// those columns beside the visit unchanged (fewer gathered and masked steps at a visit's last
+// columns); nothing outside them is written.
 bool rasterize_rows_avx2(const RasterPrimitive& p, int32_t y0, int32_t y1, const DepthTestState& depth,
-                         RenderTargets& targets, bool avx512_writes = false, bool whole_rows = false);
+                         RenderTargets& targets, bool avx512_writes = false, int32_t owned_row_end = -1);
 
 // The visits of small per-sample primitives in 4x frames that the box kernels take (at most
 // kBoxColumns columns and kBoxPixels pixels; exact_rows_4x_avx2.cpp, exact_rows_avx512.cpp).

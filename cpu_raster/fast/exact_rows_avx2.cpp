@@ -211,8 +211,8 @@ RASTERCMP_AVX2 inline __m256i pairs_of(uint32_t* const* pair) {
 // L1's sets (rows_share_l1_sets false: there plain loads and stores beat the gather and scatters,
 // which suffer less where the rows share a set; rastercmp_bench_access). `at[k]`: row k's first
 // pixel, `live[k]`: its run is not empty. Every pixel of a live row's pair is in this worker's
-// tiles (the caller checks u0[k] + 1 against the last column it owns: the visit's, or with whole
-// rows the row's), so the step writes back, unchanged, what a lane that is not covered or fails
+// tiles (the caller checks u0[k] + 1 against the last column it owns: the visit's, or in whole
+// rows owned_row_end), so the step writes back, unchanged, what a lane that is not covered or fails
 // held (no other worker writes it), as the blended writes do; an empty row's words go to a scratch
 // pair.
 template <DepthFormat F, CompareOp Op>
@@ -354,8 +354,8 @@ RASTERCMP_AVX2 inline void prefetch_rows(uintptr_t depth_bytes, uintptr_t owner_
 // per step of four rows either one gathered eight-lane step, when every row's run is at most two
 // columns (lane 2k + j: row k, column u0[k] + j, valid when j < the run), or, row by row, steps of
 // eight contiguous columns masked to the run (a row of one sample per pixel is contiguous in the
-// attachments; a step whose eight columns are all the worker's, in the visit or with whole rows in
-// the row, read and written whole, the others masked). Each lane's depth, test and write are
+// attachments; a step whose eight columns are all the worker's, in the visit or in the row up to
+// owned_row_end, read and written whole, the others masked). Each lane's depth, test and write are
 // draw_gathered's (the gathered step's writes scattered on AVX-512 hosts, blended elsewhere:
 // StepWrites), or where the frame's rows spread over the L1's sets draw_pairs' (each row's two
 // pixels one 64-bit word); a step holds distinct samples of one primitive, so reading its stored
@@ -363,7 +363,7 @@ RASTERCMP_AVX2 inline void prefetch_rows(uintptr_t depth_bytes, uintptr_t owner_
 // depth_rows: a thin line's fragment is drawn where its row's columns are known.
 template <DepthFormat F, CompareOp Op>
 RASTERCMP_AVX2 bool thin_rows(const RasterPrimitive& p, int32_t y0, int32_t y1, const KernelDepth& d,
-                              RenderTargets& targets, bool avx512_writes, bool whole_rows) {
+                              RenderTargets& targets, bool avx512_writes, int32_t owned_row_end) {
   PlaneRows planes;
   if (!init_plane_rows(planes, p, 1, y0, y1)) return false;
   start_sample(planes, 0);
@@ -379,8 +379,8 @@ RASTERCMP_AVX2 bool thin_rows(const RasterPrimitive& p, int32_t y0, int32_t y1, 
   const uintptr_t depth_bytes = reinterpret_cast<uintptr_t>(depth), owner_bytes = reinterpret_cast<uintptr_t>(owner);
   const __m128i row_lanes = _mm_setr_epi32(0, 1, 2, 3), width4 = _mm_set1_epi32(width);
   const __m128i last_column = _mm_set1_epi32(p.visit.x1), one4 = _mm_set1_epi32(1);
-  // the last column a step may read and write back: the visit's, or with whole rows the row's
-  const int32_t last_owned = whole_rows ? width - 1 : p.visit.x1;
+  // the last column a step may read and write back: the visit's, or the worker's in its rows
+  const int32_t last_owned = std::max(p.visit.x1, owned_row_end);
   const __m128i last_owned4 = _mm_set1_epi32(last_owned);
   // the gathered steps as 64-bit pairs where the rows spread over the L1's sets (draw_pairs)
   const bool pairs = !rows_share_l1_sets(size_t(width) * sizeof(uint32_t));
@@ -456,7 +456,7 @@ RASTERCMP_AVX2 bool thin_rows(const RasterPrimitive& p, int32_t y0, int32_t y1, 
           const __m256i raw = to_raw<F>(z);
           __m256i pass = covered;
           if (px + 7 <= last_owned) {
-            // all eight columns this worker's (in the visit, or with whole rows in the row): read
+            // all eight columns this worker's (in the visit, or in the row up to owned_row_end): read
             // and written whole, a column not covered or failing with the value it held (as
             // draw_pairs); the masked load and stores below cost lines_20k 5% more on a Zen 5 host
             // (performance-log.md)
@@ -486,8 +486,8 @@ RASTERCMP_AVX2 bool thin_rows(const RasterPrimitive& p, int32_t y0, int32_t y1, 
 
 template <DepthFormat F, CompareOp Op>
 RASTERCMP_AVX2 bool depth_kernel(const RasterPrimitive& p, int32_t y0, int32_t y1, const KernelDepth& d,
-                                 RenderTargets& targets, bool avx512_writes, bool whole_rows) {
-  if (targets.samples == 1) return thin_rows<F, Op>(p, y0, y1, d, targets, avx512_writes, whole_rows);
+                                 RenderTargets& targets, bool avx512_writes, int32_t owned_row_end) {
+  if (targets.samples == 1) return thin_rows<F, Op>(p, y0, y1, d, targets, avx512_writes, owned_row_end);
   return depth_rows<F, Op>(p, y0, y1, d, targets);
 }
 
@@ -506,7 +506,8 @@ RASTERCMP_AVX2 bool coverage_rows(const RasterPrimitive& p, int32_t y0, int32_t 
   });
 }
 
-using DepthRowsFn = bool (*)(const RasterPrimitive&, int32_t, int32_t, const KernelDepth&, RenderTargets&, bool, bool);
+using DepthRowsFn = bool (*)(const RasterPrimitive&, int32_t, int32_t, const KernelDepth&, RenderTargets&, bool,
+                             int32_t);
 
 struct DepthRowsMaker {
   template <DepthFormat F, CompareOp Op>
@@ -522,7 +523,7 @@ constexpr auto kDepthRows = kernel_table<DepthRowsMaker>();
 }  // namespace
 
 bool rasterize_rows_avx2(const RasterPrimitive& p, int32_t y0, int32_t y1, const DepthTestState& depth,
-                         RenderTargets& targets, bool avx512_writes, bool whole_rows) {
+                         RenderTargets& targets, bool avx512_writes, int32_t owned_row_end) {
   if (p.binned || depth.compute_when_inactive || (p.per_sample && targets.samples > kStandardSamples4x.size()))
     return false;
   if (uint64_t(targets.width) * targets.height * targets.samples > uint64_t(INT32_MAX)) return false;  // gather indices
@@ -534,7 +535,7 @@ bool rasterize_rows_avx2(const RasterPrimitive& p, int32_t y0, int32_t y1, const
                       depth.range.zmin, depth.range.zmax, depth.fma};
   if (p.per_sample && targets.samples == 4)
     return select_sample_rows_avx2(depth.format, depth.op)(p, y0, y1, d, targets);
-  return select_kernel(kDepthRows, depth.format, depth.op)(p, y0, y1, d, targets, avx512_writes, whole_rows);
+  return select_kernel(kDepthRows, depth.format, depth.op)(p, y0, y1, d, targets, avx512_writes, owned_row_end);
 }
 
 }  // namespace rastercmp::cpu::fast
