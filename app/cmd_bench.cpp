@@ -436,9 +436,9 @@ void add_bench_command(CLI::App& app, int& exit_code) {
       ->check(CLI::Range(1, 1000));
   cmd->add_option("--exact-reps", args->exact_reps, "timed repetitions of the exact path (at most --reps)");
   cmd->add_option("--scene", args->scenes,
-                  "fill_b2f, fill_f2b, grid_180k, tiny_1m, perspective, lines_20k, msaa4_grid, engine_1080p, suite or a scene "
-                  "or model file "
-                  "(repeatable)");
+                  "fill_b2f, fill_f2b, grid_180k, tiny_1m, perspective, lines_20k, msaa4_grid, engine_1080p, suite, "
+                  "lines_<L>px[_<A>deg] (20,000 lines of L px at A degrees or at random, in a 512 px frame) or a scene "
+                  "or model file (repeatable)");
   cmd->add_option("--suite", args->suite_dir, "suite folder for the suite row (default: the built-in scenes/)");
   cmd->add_option("--threads", args->threads, "threads of the fast CPU path")->check(CLI::Range(1, 64));
   cmd->add_flag("--scaling", args->scaling,

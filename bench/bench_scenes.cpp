@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <random>
+#include <regex>
+#include <string>
 
 #include "cpu_raster/exact/front_end.hpp"
 #include "cpu_raster/exact/profile_support.hpp"
@@ -18,6 +21,31 @@ namespace {
 
 // Uniform in [0, 1) from the 53 high bits: the same numbers on every standard library.
 double unit(std::mt19937_64& rng) { return double(rng() >> 11) * 0x1.0p-53; }
+
+std::string fmt_degrees(double degrees) { return std::to_string(int(degrees)) + " degrees"; }
+
+// lines_<L>px or lines_<L>px_<A>deg (standard_bench_scene): L and A (or -1: random angles);
+// nothing when `name` has neither form.
+struct LineShape {
+  uint32_t length_px;
+  double angle_degrees;
+};
+std::optional<LineShape> line_shape_of(const std::string& name) {
+  static const std::regex form("lines_([0-9]+)px(?:_([0-9]+)deg)?");
+  std::smatch m;
+  if (!std::regex_match(name, m, form)) return std::nullopt;
+  const unsigned long length = m[1].length() > 4 ? 0 : std::stoul(m[1].str());
+  if (length < 1 || length > 256)
+    throw UsageError("bench scene \"" + name + "\": the line length " + m[1].str() + " px, expected 1-256 px");
+  double angle = -1.0;
+  if (m[2].matched) {
+    const unsigned long degrees = m[2].length() > 4 ? 181 : std::stoul(m[2].str());
+    if (degrees > 180)
+      throw UsageError("bench scene \"" + name + "\": the angle " + m[2].str() + " degrees, expected 0-180 degrees");
+    angle = double(degrees);
+  }
+  return LineShape{uint32_t(length), angle};
+}
 
 void add_quad_indices(std::vector<uint32_t>& indices, uint32_t v00, uint32_t v10, uint32_t v01, uint32_t v11,
                       bool flip) {
@@ -134,6 +162,35 @@ Scene lines_scene(uint32_t count, uint32_t size, uint64_t seed) {
   return scene;
 }
 
+Scene line_shape_scene(uint32_t count, uint32_t length_px, double angle_degrees, uint32_t size, uint64_t seed) {
+  Scene scene;
+  scene.name = "bench.lines." + std::to_string(length_px) + "px";
+  scene.description = std::to_string(count) + " line segments of " + std::to_string(length_px) + " px, " +
+                      (angle_degrees < 0 ? std::string("random angles") : fmt_degrees(angle_degrees)) +
+                      ", wholly inside the frame, D32, LESS";
+  scene.width = scene.height = size;
+  Draw draw;
+  draw.name = "lines";
+  draw.topology = Topology::LineList;
+  std::mt19937_64 rng(seed);
+  const double half = 0.5 * double(length_px), pixel = 2.0 / double(size);  // clip units per pixel
+  for (uint32_t n = 0; n < count; ++n) {
+    const double turn = unit(rng) < 0.5 ? 0.0 : 180.0;  // either way along the angle
+    const double radians =
+        (angle_degrees < 0 ? 360.0 * unit(rng) : angle_degrees + turn) * 3.141592653589793 / 180.0;
+    const double dx = half * std::cos(radians), dy = half * std::sin(radians);  // pixels from the centre
+    // the centre at least |dx| + 1, |dy| + 1 px from every side
+    const double cx = std::abs(dx) + 1.0 + (double(size) - 2.0 * std::abs(dx) - 2.0) * unit(rng);
+    const double cy = std::abs(dy) + 1.0 + (double(size) - 2.0 * std::abs(dy) - 2.0) * unit(rng);
+    const double z = 0.1 + 0.8 * unit(rng);
+    draw.positions_clip.emplace_back(float((cx - dx) * pixel - 1.0), float((cy - dy) * pixel - 1.0), float(z), 1.0f);
+    draw.positions_clip.emplace_back(float((cx + dx) * pixel - 1.0), float((cy + dy) * pixel - 1.0),
+                                     float(z + 0.1 * (unit(rng) - 0.5)), 1.0f);
+  }
+  scene.draws.push_back(std::move(draw));
+  return scene;
+}
+
 Scene msaa_grid_scene(uint32_t cells, uint32_t size) {
   Scene scene = grid_scene(cells, size);
   scene.name = "bench.msaa4.grid." + std::to_string(cells);
@@ -166,8 +223,11 @@ BenchScene standard_bench_scene(const std::string& name) {
   if (name == "lines_20k") return {name, lines_scene(20000)};
   if (name == "msaa4_grid") return {name, msaa_grid_scene(100, 512)};
   if (name == "engine_1080p") return {name, engine_scene()};
+  if (const std::optional<LineShape> shape = line_shape_of(name))
+    return {name, line_shape_scene(20000, shape->length_px, shape->angle_degrees)};
   throw UsageError("unknown bench scene \"" + name +
-                   "\"; known: fill_b2f, fill_f2b, grid_180k, tiny_1m, perspective, lines_20k, msaa4_grid, engine_1080p");
+                   "\"; known: fill_b2f, fill_f2b, grid_180k, tiny_1m, perspective, lines_20k, msaa4_grid, engine_1080p, "
+                   "lines_<L>px, lines_<L>px_<A>deg");
 }
 
 std::vector<BenchScene> standard_bench_scenes() {

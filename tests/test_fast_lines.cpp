@@ -4,11 +4,14 @@
 // (frame_row_pitch, the thin rows' pairs). Same bytes, every kernel set the host runs.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "bench/bench_scenes.hpp"
 #include "cpu_raster/fast/render_fast.hpp"
+#include "model/errors.hpp"
 #include "model/host.hpp"
 #include "tests/test_fast_support.hpp"
 
@@ -103,6 +106,40 @@ TEST(FastRowPitch, LinesInFramesWhoseRowsShareL1SetsMatchExactPath) {
   EXPECT_EQ(cpu::fast::frame_row_pitch(with_triangles), 512u);
   expect_fast_matches(with_triangles, true, {2u});
   expect_fast_matches(bench::lines_scene(300, 500), true, {2u});
+}
+
+// The bench's scenes of lines by length and angle (lines_<L>px[_<A>deg], bench_scenes.hpp): 20,000
+// lines of L px in a 512 px frame, each wholly inside it, at A degrees either way along the axis or
+// at angles all round; a length or angle out of range, or another name, is a UsageError naming it.
+// A small version on the fast path writes the exact path's bytes.
+TEST(FastLines, BenchLineShapeScenes) {
+  const Scene steep = bench::standard_bench_scene("lines_64px_80deg").scene;
+  ASSERT_EQ(steep.width, 512u);
+  ASSERT_EQ(steep.draws.size(), 1u);
+  const std::vector<glm::vec4>& p = steep.draws[0].positions_clip;
+  ASSERT_EQ(p.size(), 40000u);
+  for (size_t i = 0; i < p.size(); i += 2) {
+    const double dx = double(p[i + 1].x - p[i].x) * 256.0, dy = double(p[i + 1].y - p[i].y) * 256.0;  // pixels
+    ASSERT_NEAR(std::hypot(dx, dy), 64.0, 1e-3) << "line " << i / 2;
+    ASSERT_NEAR(std::abs(std::atan2(dy, dx)) * 180.0 / 3.141592653589793, dy >= 0 ? 80.0 : 100.0, 1e-3);
+    for (const glm::vec4& v : {p[i], p[i + 1]}) {
+      ASSERT_LT(std::abs(v.x), 1.0f);
+      ASSERT_LT(std::abs(v.y), 1.0f);
+    }
+  }
+  const Scene around = bench::standard_bench_scene("lines_16px").scene;
+  const std::vector<glm::vec4>& any = around.draws[0].positions_clip;
+  bool left = false, right = false, up = false, down = false;
+  for (size_t i = 0; i < any.size(); i += 2) {
+    left |= any[i + 1].x - any[i].x < -0.05f;
+    right |= any[i + 1].x - any[i].x > 0.05f;
+    down |= any[i + 1].y - any[i].y < -0.05f;
+    up |= any[i + 1].y - any[i].y > 0.05f;
+  }
+  EXPECT_TRUE(left && right && up && down);
+  for (const char* bad : {"lines_0px", "lines_257px", "lines_64px_181deg", "lines_99999px", "lines_px", "lines_64"})
+    EXPECT_THROW(bench::standard_bench_scene(bad), UsageError) << bad;
+  expect_fast_matches(bench::line_shape_scene(600, 40, 60.0, 128), true, {1u, 2u});
 }
 
 }  // namespace
