@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <optional>
 #include <random>
@@ -22,7 +23,12 @@ namespace {
 // Uniform in [0, 1) from the 53 high bits: the same numbers on every standard library.
 double unit(std::mt19937_64& rng) { return double(rng() >> 11) * 0x1.0p-53; }
 
-std::string fmt_degrees(double degrees) { return std::to_string(int(degrees)) + " degrees"; }
+// "80 degrees", "22.5 degrees".
+std::string degrees_text(double degrees) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%g degrees", degrees);
+  return text;
+}
 
 // lines_<L>px or lines_<L>px_<A>deg (standard_bench_scene): L and A (or -1: random angles);
 // nothing when `name` has neither form.
@@ -164,9 +170,9 @@ Scene lines_scene(uint32_t count, uint32_t size, uint64_t seed) {
 
 Scene line_shape_scene(uint32_t count, uint32_t length_px, double angle_degrees, uint32_t size, uint64_t seed) {
   Scene scene;
-  scene.name = "bench.lines." + std::to_string(length_px) + "px";
-  scene.description = std::to_string(count) + " line segments of " + std::to_string(length_px) + " px, " +
-                      (angle_degrees < 0 ? std::string("random angles") : fmt_degrees(angle_degrees)) +
+  const std::string angle = angle_degrees < 0 ? std::string("random angles") : degrees_text(angle_degrees);
+  scene.name = "bench.lines." + std::to_string(length_px) + "px, " + angle;
+  scene.description = std::to_string(count) + " line segments of " + std::to_string(length_px) + " px, " + angle +
                       ", wholly inside the frame, D32, LESS";
   scene.width = scene.height = size;
   Draw draw;
