@@ -59,6 +59,13 @@ void expect_vector_rows_match(const Scene& scene, uint64_t seed, fast_test::Rand
   }
 }
 
+// A visit's rows split at a random row, as the tile rows of two workers split them (the first piece
+// empty when the split is its first row).
+std::array<PixelRect, 2> split_at_random_row(const PixelRect& visit, fast_test::Random& r) {
+  const int32_t split = visit.y0 + int32_t(r.below(uint32_t(visit.y1 - visit.y0 + 1)));
+  return {PixelRect{visit.x0, visit.y0, visit.x1, split - 1}, PixelRect{visit.x0, split, visit.x1, visit.y1}};
+}
+
 // rasterize_rows_avx2 (exact_rows.hpp) against the exact rasterizer, primitive by primitive on the
 // same targets: random scenes of lines (every mode, widths 0.5-6 px, non-integer too) and triangles,
 // half of them in 4x frames (per-sample triangles and rectangular lines, pixel-centre Bresenham
@@ -79,11 +86,7 @@ TEST(FastExactRows, VectorRowsWriteWhatTheExactRasterizerWrites) {
       if (r.chance(0.5)) draw.state.line_width = float(r.range(0.5, 6.0));
       if (r.chance(0.15)) draw.state.line_mode = LineMode::RectangularSmooth;
     }
-    const auto rows = [&r](const RasterPrimitive& p) {
-      const int32_t split = p.visit.y0 + int32_t(r.below(uint32_t(p.visit.y1 - p.visit.y0 + 1)));
-      return std::array<PixelRect, 2>{PixelRect{p.visit.x0, p.visit.y0, p.visit.x1, split - 1},
-                                      PixelRect{p.visit.x0, split, p.visit.x1, p.visit.y1}};
-    };
+    const auto rows = [&r](const RasterPrimitive& p) { return split_at_random_row(p.visit, r); };
     const bool avx512_writes = host_has_avx512() && seed % 4 == 1;
     const auto kernel = [avx512_writes](const RasterPrimitive& p, int32_t y0, int32_t y1, const DepthTestState& depth,
                                         RenderTargets& targets) {
@@ -154,6 +157,20 @@ Scene lines_across_wide_frame(uint64_t seed, fast_test::Random& r) {
   return scene;
 }
 
+// rasterize_rows_avx2 on a piece with every page outside it read-only while it draws
+// (protect_outside_piece): outside the piece's rows in its half of the frame, or with whole_rows
+// (owned_row_end the frame's last column) outside its rows.
+auto guarded_rows(bool avx512_writes, bool whole_rows) {
+  return [avx512_writes, whole_rows](const RasterPrimitive& p, int32_t y0, int32_t y1, const DepthTestState& depth,
+                                     RenderTargets& targets) {
+    protect_outside_piece(targets, p.visit, PROT_READ, whole_rows);
+    const bool drawn =
+        rasterize_rows_avx2(p, y0, y1, depth, targets, avx512_writes, whole_rows ? int32_t(targets.width) - 1 : -1);
+    protect_outside_piece(targets, p.visit, PROT_READ | PROT_WRITE, whole_rows);
+    return drawn;
+  };
+}
+
 // rasterize_rows_avx2 writes nothing outside the rows and columns of the visit it is given, which
 // the workers' shared rows rely on: its steps that write every lane back (the blended gathered
 // steps, the pairs, a row's whole eight columns) leave out any column past the visit, as the masked
@@ -173,13 +190,7 @@ TEST(FastExactRows, VectorRowsWriteNothingOutsideTheirVisit) {
                                       PixelRect{std::max(p.visit.x0, middle), p.visit.y0, p.visit.x1, p.visit.y1}};
     };
     const bool avx512_writes = host_has_avx512() && seed % 2 == 1;
-    const auto guarded = [&](const RasterPrimitive& p, int32_t y0, int32_t y1, const DepthTestState& depth,
-                             RenderTargets& targets) {
-      protect_outside_piece(targets, p.visit, PROT_READ);
-      const bool drawn = rasterize_rows_avx2(p, y0, y1, depth, targets, avx512_writes);
-      protect_outside_piece(targets, p.visit, PROT_READ | PROT_WRITE);
-      return drawn;
-    };
+    const auto guarded = guarded_rows(avx512_writes, false);
     expect_vector_rows_match(
         scene, seed, r, halves,
         [&](const RasterPrimitive& p, bool vector) {
@@ -194,29 +205,19 @@ TEST(FastExactRows, VectorRowsWriteNothingOutsideTheirVisit) {
 }
 
 // With owned_row_end the frame's last column (every column of the rows the caller's, as a worker's
-// whole tile rows), a step
-// may store back pixels of its rows beside the visit, and rasterize_rows_avx2 writes nothing outside
-// those rows: the lines above, each primitive's rows split at a random row, every page outside a
-// piece's rows read-only while it is drawn. The bytes are also the exact rasterizer's.
+// whole tile rows), a step may store back pixels of its rows beside the visit, and
+// rasterize_rows_avx2 writes nothing outside those rows: the lines above, each primitive's rows
+// split at a random row, every page outside a piece's rows read-only while it is drawn. The bytes
+// are also the exact rasterizer's.
 TEST(FastExactRows, VectorRowsWithWholeRowsWriteNothingOutsideTheirRows) {
   if (!host_has_avx2_fma()) GTEST_SKIP() << "host without AVX2/FMA: the vector exact rows do not run";
   uint64_t pieces = 0;
   for (uint64_t seed = 1; seed <= 40; ++seed) {
     fast_test::Random r(seed * 4217);
     const Scene scene = lines_across_wide_frame(seed, r);
-    const auto rows = [&r](const RasterPrimitive& p) {
-      const int32_t split = p.visit.y0 + int32_t(r.below(uint32_t(p.visit.y1 - p.visit.y0 + 1)));
-      return std::array<PixelRect, 2>{PixelRect{p.visit.x0, p.visit.y0, p.visit.x1, split - 1},
-                                      PixelRect{p.visit.x0, split, p.visit.x1, p.visit.y1}};
-    };
+    const auto rows = [&r](const RasterPrimitive& p) { return split_at_random_row(p.visit, r); };
     const bool avx512_writes = host_has_avx512() && seed % 2 == 1;
-    const auto guarded = [&](const RasterPrimitive& p, int32_t y0, int32_t y1, const DepthTestState& depth,
-                             RenderTargets& targets) {
-      protect_outside_piece(targets, p.visit, PROT_READ, true);
-      const bool drawn = rasterize_rows_avx2(p, y0, y1, depth, targets, avx512_writes, int32_t(targets.width) - 1);
-      protect_outside_piece(targets, p.visit, PROT_READ | PROT_WRITE, true);
-      return drawn;
-    };
+    const auto guarded = guarded_rows(avx512_writes, true);
     expect_vector_rows_match(
         scene, seed, r, rows, [&](const RasterPrimitive&, bool vector) { pieces += vector ? 1 : 0; }, guarded);
     if (HasFatalFailure()) return;
