@@ -5,11 +5,11 @@
 // position of the largest scene drawn so far on that thread).
 #pragma once
 
+#include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <new>
-#include <bit>
 #include <vector>
 
 #include "cpu_raster/fast/fast_vertices.hpp"
