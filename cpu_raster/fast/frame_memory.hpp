@@ -56,7 +56,8 @@ VertexScratch& thread_vertex_scratch();
 // lie one set apart. The pitch changes where values live, never a value: the frame's pixels are
 // copied to the result at its width when it is drawn (BandWorker::pack_tile_row).
 inline constexpr size_t kL1WayBytes = 4096;
-// gcd(row_bytes, kL1WayBytes) >= kL1WayBytes / 2; the way a power of two, a multiple of its half
+// Whether gcd(row_bytes, kL1WayBytes) >= kL1WayBytes / 2: with the way a power of two, whether
+// row_bytes is a multiple of half a way.
 static_assert(std::has_single_bit(kL1WayBytes));
 inline bool rows_share_l1_sets(size_t row_bytes) { return row_bytes % (kL1WayBytes / 2) == 0; }
 inline uint32_t spread_row_pitch(uint32_t width) {
