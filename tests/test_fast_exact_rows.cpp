@@ -7,12 +7,15 @@
 
 #include <array>
 #include <cstdint>
+#include <cstdio>
+#include <cstring>
 
 #include "cpu_raster/exact/front_end.hpp"
 #include "cpu_raster/exact/rasterize.hpp"
 #include "cpu_raster/exact/render_targets.hpp"
 #include "cpu_raster/fast/cpu_features.hpp"
 #include "cpu_raster/fast/exact_rows.hpp"
+#include "cpu_raster/fast/exact_rows_avx2.hpp"
 #include "tests/test_fast_support.hpp"
 
 namespace rastercmp::cpu::fast {
@@ -23,7 +26,8 @@ namespace {
 // makes of each primitive's visit, as the tile rows and runs of tiles of several workers cut it
 // (rasterize_primitive_rows where it declines a piece); `seen(p, vector)` for each piece drawn. Both
 // targets must hold the same owner and depth bytes after every draw.
-bool vector_rows(const RasterPrimitive& p, int32_t y0, int32_t y1, const DepthTestState& depth, RenderTargets& targets) {
+bool vector_rows(const RasterPrimitive& p, int32_t y0, int32_t y1, const DepthTestState& depth,
+                 RenderTargets& targets) {
   return rasterize_rows_avx2(p, y0, y1, depth, targets);
 }
 
@@ -283,6 +287,64 @@ void expect_small_per_sample_triangles_match(bool avx512) {
   if (avx512) {
     EXPECT_GT(boxed, 1500u);
   }
+}
+
+// A random int64 of about `bits` bits, either sign; one time in five within two of a bound
+// (+-2^bits), where the checks of init_plane_rows turn.
+int64_t near_bits(fast_test::Random& r, uint32_t bits) {
+  const int64_t edge = int64_t(1) << bits, sign = r.chance(0.5) ? -1 : 1;
+  if (r.chance(0.2)) return sign * (edge + int64_t(r.below(5)) - 2);
+  return sign * int64_t(r.unit() * double(edge));
+}
+
+// The four-plane rows (init_four_plane_rows, the way init_plane_rows takes for a line of one
+// sample) against the plane by plane ones (init_plane_rows_each): the same verdict through
+// init_plane_rows, and wherever the four-plane way takes a primitive, every value bit for bit (the
+// places, each plane's first value, row and column steps, reciprocal). The planes at random, their
+// deltas, constants, visit columns and rows from small to past every bound (2^30 a delta, 2^20 a
+// column, 2^51 a value, int32 a row), flat planes and per-sample primitives among them.
+TEST(FastExactRows, FourPlaneRowsAreThePlaneByPlaneRows) {
+  if (!host_has_avx2_fma()) GTEST_SKIP() << "host without AVX2/FMA: the vector exact rows do not run";
+  fast_test::Random r(20261130);
+  uint64_t taken = 0, declined_agreeing = 0, refused = 0;
+  for (int n = 0; n < 100000; ++n) {
+    RasterPrimitive p;
+    p.per_sample = r.chance(0.2);
+    for (uint32_t i = 0; i < 4; ++i) {
+      EdgePlane plane;
+      plane.dcdx = r.chance(0.15) ? 0 : near_bits(r, r.below(32));
+      plane.dcdy = r.chance(0.15) ? 0 : near_bits(r, r.below(32));
+      plane.c = near_bits(r, r.chance(0.5) ? r.below(24) : 40 + r.below(14));
+      p.planes.push(plane);
+    }
+    const int32_t x0 = int32_t(near_bits(r, r.chance(0.8) ? r.below(12) : 19 + r.below(3)));
+    p.visit = PixelRect{x0, 0, x0 + int32_t(r.below(300)), 0};
+    const int32_t y0 = int32_t(near_bits(r, r.chance(0.8) ? r.below(12) : 22 + r.below(2)));
+    const int32_t y1 = y0 + int32_t(r.below(r.chance(0.9) ? 300 : 1u << 24));
+    PlaneRows each, four, chosen;
+    const bool each_ok = init_plane_rows_each(each, p, 1, y0, y1);
+    ASSERT_EQ(init_plane_rows(chosen, p, 1, y0, y1), each_ok) << "primitive " << n;
+    if (!init_four_plane_rows(four, p, y0, y1)) {
+      (each_ok ? declined_agreeing : refused) += 1;
+      continue;
+    }
+    ++taken;
+    ASSERT_TRUE(each_ok) << "primitive " << n;
+    ASSERT_EQ(four.lower, each.lower);
+    ASSERT_EQ(four.upper, each.upper);
+    ASSERT_EQ(four.count, each.count);
+    for (uint32_t e = 0; e < 4; ++e) {
+      EXPECT_EQ(std::memcmp(&four.first[0][e], &each.first[0][e], sizeof(double)), 0) << "primitive " << n;
+      EXPECT_EQ(std::memcmp(&four.dy[e], &each.dy[e], sizeof(double)), 0) << "primitive " << n;
+      EXPECT_EQ(std::memcmp(&four.step[e], &each.step[e], sizeof(__m256d)), 0) << "primitive " << n;
+      EXPECT_EQ(std::memcmp(&four.gx[e], &each.gx[e], sizeof(__m256d)), 0) << "primitive " << n;
+      EXPECT_EQ(std::memcmp(&four.inv[e], &each.inv[e], sizeof(__m256d)), 0) << "primitive " << n;
+    }
+  }
+  std::printf("four-plane rows: %llu taken, %llu declined where plane by plane takes them, %llu refused by both\n",
+              (unsigned long long)taken, (unsigned long long)declined_agreeing, (unsigned long long)refused);
+  EXPECT_GT(taken, 10000u);
+  EXPECT_GT(refused, 10000u);
 }
 
 TEST(FastExactRows, SmallPerSampleTrianglesWriteWhatTheExactRasterizerWrites) {

@@ -8,6 +8,7 @@
 #include <immintrin.h>
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cstdint>
 #include <cstdlib>
@@ -22,8 +23,8 @@
 namespace rastercmp::cpu::fast {
 
 // exact_rows_avx2.hpp; the checks themselves stay inside int64 (|dcdx|, |dcdy| <= 2^30, |x| <= 2^20).
-RASTERCMP_AVX2 bool init_plane_rows(PlaneRows& rows, const RasterPrimitive& p, uint32_t samples, int32_t y0,
-                                    int32_t y1) {
+RASTERCMP_AVX2 bool init_plane_rows_each(PlaneRows& rows, const RasterPrimitive& p, uint32_t samples, int32_t y0,
+                                         int32_t y1) {
   constexpr int64_t kDeltaBound = int64_t(1) << 30;
   const int64_t widest = std::max<int64_t>(std::abs(int64_t(p.visit.x0)), std::abs(int64_t(p.visit.x1))) + 2;
   if (widest > (int64_t(1) << 20)) return false;  // then |d| * widest below stays within int64
@@ -67,6 +68,121 @@ RASTERCMP_AVX2 bool init_plane_rows(PlaneRows& rows, const RasterPrimitive& p, u
     rows.inv[e] = _mm256_set1_pd(gx != 0 ? -1.0 / gx : 0.0);
   }
   return true;
+}
+
+namespace {
+
+// Four planes' places by group (init_plane_rows_each's order: the planes bounding below in plane
+// order, then those bounding above, then the flat ones), indexed by below | above << 4 (bit i: plane
+// i): the plane at place e in bits 2e and 2e + 1.
+constexpr std::array<uint8_t, 256> four_plane_places() {
+  std::array<uint8_t, 256> places{};
+  for (uint32_t below = 0; below < 16; ++below) {
+    for (uint32_t above = 0; above < 16; ++above) {
+      if ((below & above) != 0) continue;
+      uint32_t order = 0, e = 0;
+      for (const uint32_t group : {below, above, 15u & ~(below | above)})
+        for (uint32_t i = 0; i < 4; ++i)
+          if (group >> i & 1) order |= i << (2 * e++);
+      places[below | above << 4] = uint8_t(order);
+    }
+  }
+  return places;
+}
+constexpr std::array<uint8_t, 256> kFourPlanePlaces = four_plane_places();
+
+// int64 lanes in [-2^51, 2^51) as doubles, exactly: 2^52 + 2^51 + v has v in its low mantissa bits.
+RASTERCMP_AVX2 inline __m256d exact_doubles(__m256i v) {
+  const __m256d magic = _mm256_set1_pd(0x1.8p52);
+  return _mm256_sub_pd(_mm256_castsi256_pd(_mm256_add_epi64(v, _mm256_castpd_si256(magic))), magic);
+}
+
+// The four 64-bit lanes of v in the order `index` gives (two dword indices a lane).
+RASTERCMP_AVX2 inline __m256d placed(__m256d v, __m256i index) {
+  return _mm256_castsi256_pd(_mm256_permutevar8x32_epi32(_mm256_castpd_si256(v), index));
+}
+
+}  // namespace
+
+// init_plane_rows_each for four planes and one sample, the planes in the lanes of a vector: the
+// same checks, with |first| and |last| below 2^51 and y0, the rows' span within int32 (so that the
+// products are _mm256_mul_epi32's and the conversions exact_doubles'), and the same values (each
+// an exact integer, or the same IEEE operation: 4 * dy, -double(d), -1 / gx). false where any
+// check fails: init_plane_rows_each then decides, as before.
+RASTERCMP_AVX2 bool init_four_plane_rows(PlaneRows& rows, const RasterPrimitive& p, int32_t y0, int32_t y1) {
+  const int64_t widest = std::max<int64_t>(std::abs(int64_t(p.visit.x0)), std::abs(int64_t(p.visit.x1))) + 2;
+  const int64_t sample_x = p.per_sample ? kStandardSamples4x[0].x_fixed : 0;
+  const int64_t sample_y = int64_t(y0) * kFixedOne + (p.per_sample ? kStandardSamples4x[0].y_fixed : 0);
+  const int64_t span = (int64_t(y1) + 3 - y0) * kFixedOne;
+  constexpr int64_t kInt32 = int64_t(1) << 31;
+  if (widest > (int64_t(1) << 20) || sample_y >= kInt32 || sample_y < -kInt32 || span >= kInt32 || span < -kInt32)
+    return false;
+  const EdgePlane* e = p.planes.plane.data();
+  const __m256i c = _mm256_setr_epi64x(e[0].c, e[1].c, e[2].c, e[3].c);
+  const __m256i dcdx = _mm256_setr_epi64x(e[0].dcdx, e[1].dcdx, e[2].dcdx, e[3].dcdx);
+  const __m256i dcdy = _mm256_setr_epi64x(e[0].dcdy, e[1].dcdy, e[2].dcdy, e[3].dcdy);
+  const __m256i delta_bound = _mm256_set1_epi64x(int64_t(1) << 30), low_delta = _mm256_set1_epi64x(-(int64_t(1) << 30));
+  __m256i bad =
+      _mm256_or_si256(_mm256_or_si256(_mm256_cmpgt_epi64(dcdx, delta_bound), _mm256_cmpgt_epi64(low_delta, dcdx)),
+                      _mm256_or_si256(_mm256_cmpgt_epi64(dcdy, delta_bound), _mm256_cmpgt_epi64(low_delta, dcdy)));
+  // |dcdx| * 256 * widest (< 2^59 where |dcdx| <= 2^30; a lane past that is bad already)
+  const __m256i zero = _mm256_setzero_si256();
+  const __m256i abs_dcdx = _mm256_castpd_si256(_mm256_blendv_pd(
+      _mm256_castsi256_pd(dcdx), _mm256_castsi256_pd(_mm256_sub_epi64(zero, dcdx)), _mm256_castsi256_pd(dcdx)));
+  const __m256i reach = _mm256_mul_epu32(abs_dcdx, _mm256_set1_epi64x(widest * kFixedOne));
+  const __m256i exact_bound = _mm256_set1_epi64x(kExactBound), low_bound = _mm256_set1_epi64x(-kExactBound);
+  bad = _mm256_or_si256(bad, _mm256_cmpgt_epi64(reach, exact_bound));
+  // edge_value(plane, sample_x, sample_y) - 1 and its value `span` rows on; below 2^51 in magnitude
+  const __m256i first =
+      _mm256_sub_epi64(_mm256_add_epi64(c, _mm256_sub_epi64(_mm256_mul_epi32(dcdy, _mm256_set1_epi64x(sample_y)),
+                                                            _mm256_mul_epi32(dcdx, _mm256_set1_epi64x(sample_x)))),
+                       _mm256_set1_epi64x(1));
+  const __m256i last = _mm256_add_epi64(first, _mm256_mul_epi32(dcdy, _mm256_set1_epi64x(span)));
+  const __m256i below_limit = _mm256_sub_epi64(exact_bound, _mm256_set1_epi64x(1));  // 2^51 - 1
+  bad = _mm256_or_si256(bad,
+                        _mm256_or_si256(_mm256_cmpgt_epi64(first, below_limit), _mm256_cmpgt_epi64(low_bound, first)));
+  bad =
+      _mm256_or_si256(bad, _mm256_or_si256(_mm256_cmpgt_epi64(last, below_limit), _mm256_cmpgt_epi64(low_bound, last)));
+  if (!_mm256_testz_si256(bad, bad)) return false;
+  const uint32_t below = uint32_t(_mm256_movemask_pd(_mm256_castsi256_pd(_mm256_cmpgt_epi64(zero, dcdx))));
+  const uint32_t above = uint32_t(_mm256_movemask_pd(_mm256_castsi256_pd(_mm256_cmpgt_epi64(dcdx, zero))));
+  rows.lower = uint32_t(std::popcount(below));
+  rows.upper = rows.lower + uint32_t(std::popcount(above));
+  rows.count = 4;
+  // the lanes in their places: place e takes plane (places >> 2e) & 3, two dwords a lane
+  const __m256i places = _mm256_set1_epi32(kFourPlanePlaces[below | above << 4]);
+  const __m256i plane =
+      _mm256_and_si256(_mm256_srlv_epi32(places, _mm256_setr_epi32(0, 0, 2, 2, 4, 4, 6, 6)), _mm256_set1_epi32(3));
+  const __m256i index = _mm256_add_epi32(_mm256_add_epi32(plane, plane), _mm256_setr_epi32(0, 1, 0, 1, 0, 1, 0, 1));
+  const __m256d dy = placed(exact_doubles(_mm256_slli_epi64(dcdy, kFixedOrder)), index);  // dcdy * 256
+  // gx = -double(dcdx * 256) (-0 for a flat plane, as there), inv = -1 / gx or 0
+  const __m256d gx =
+      placed(_mm256_xor_pd(exact_doubles(_mm256_slli_epi64(dcdx, kFixedOrder)), _mm256_set1_pd(-0.0)), index);
+  const __m256d flat = _mm256_cmp_pd(gx, _mm256_setzero_pd(), _CMP_EQ_OQ);
+  const __m256d inv =
+      _mm256_andnot_pd(flat, _mm256_div_pd(_mm256_set1_pd(-1.0), _mm256_blendv_pd(gx, _mm256_set1_pd(1.0), flat)));
+  const __m256d step = _mm256_mul_pd(_mm256_set1_pd(4.0), dy);
+  _mm256_storeu_pd(rows.first[0], placed(exact_doubles(first), index));
+  _mm256_storeu_pd(rows.dy, dy);
+  rows.step[0] = _mm256_permute4x64_pd(step, 0x00);
+  rows.step[1] = _mm256_permute4x64_pd(step, 0x55);
+  rows.step[2] = _mm256_permute4x64_pd(step, 0xAA);
+  rows.step[3] = _mm256_permute4x64_pd(step, 0xFF);
+  rows.gx[0] = _mm256_permute4x64_pd(gx, 0x00);
+  rows.gx[1] = _mm256_permute4x64_pd(gx, 0x55);
+  rows.gx[2] = _mm256_permute4x64_pd(gx, 0xAA);
+  rows.gx[3] = _mm256_permute4x64_pd(gx, 0xFF);
+  rows.inv[0] = _mm256_permute4x64_pd(inv, 0x00);
+  rows.inv[1] = _mm256_permute4x64_pd(inv, 0x55);
+  rows.inv[2] = _mm256_permute4x64_pd(inv, 0xAA);
+  rows.inv[3] = _mm256_permute4x64_pd(inv, 0xFF);
+  return true;
+}
+
+RASTERCMP_AVX2 bool init_plane_rows(PlaneRows& rows, const RasterPrimitive& p, uint32_t samples, int32_t y0,
+                                    int32_t y1) {
+  if (p.planes.count == 4 && samples == 1 && init_four_plane_rows(rows, p, y0, y1)) return true;
+  return init_plane_rows_each(rows, p, samples, y0, y1);
 }
 
 namespace {

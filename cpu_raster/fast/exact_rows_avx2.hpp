@@ -56,6 +56,12 @@ struct PlaneRows {
 // 2^30 and |x| <= 2^20 keep the checks themselves inside int64).
 RASTERCMP_AVX2 bool init_plane_rows(PlaneRows& rows, const RasterPrimitive& p, uint32_t samples, int32_t y0,
                                     int32_t y1);
+// Its two ways, which init_plane_rows picks between: plane by plane (any planes and samples), and
+// four planes of one sample at once (a line's), which declines (false) wherever a check fails or a
+// value nears the bounds, leaving the verdict to the other.
+RASTERCMP_AVX2 bool init_plane_rows_each(PlaneRows& rows, const RasterPrimitive& p, uint32_t samples, int32_t y0,
+                                         int32_t y1);
+RASTERCMP_AVX2 bool init_four_plane_rows(PlaneRows& rows, const RasterPrimitive& p, int32_t y0, int32_t y1);
 
 // The values of sample s in rows y0 to y0 + 3.
 RASTERCMP_AVX2 inline void start_sample(PlaneRows& rows, uint32_t s) {
