@@ -97,6 +97,14 @@ RASTERCMP_AVX2 inline __m256d exact_doubles(__m256i v) {
   return _mm256_sub_pd(_mm256_castsi256_pd(_mm256_add_epi64(v, _mm256_castpd_si256(magic))), magic);
 }
 
+// out[e] = lane e of v in every lane, e = 0..3.
+RASTERCMP_AVX2 inline void broadcast_lanes(__m256d v, __m256d* out) {
+  out[0] = _mm256_permute4x64_pd(v, 0x00);
+  out[1] = _mm256_permute4x64_pd(v, 0x55);
+  out[2] = _mm256_permute4x64_pd(v, 0xAA);
+  out[3] = _mm256_permute4x64_pd(v, 0xFF);
+}
+
 // The four 64-bit lanes of v in the order `index` gives (two dword indices a lane).
 RASTERCMP_AVX2 inline __m256d placed(__m256d v, __m256i index) {
   return _mm256_castsi256_pd(_mm256_permutevar8x32_epi32(_mm256_castpd_si256(v), index));
@@ -164,18 +172,9 @@ RASTERCMP_AVX2 bool init_four_plane_rows(PlaneRows& rows, const RasterPrimitive&
   const __m256d step = _mm256_mul_pd(_mm256_set1_pd(4.0), dy);
   _mm256_storeu_pd(rows.first[0], placed(exact_doubles(first), index));
   _mm256_storeu_pd(rows.dy, dy);
-  rows.step[0] = _mm256_permute4x64_pd(step, 0x00);
-  rows.step[1] = _mm256_permute4x64_pd(step, 0x55);
-  rows.step[2] = _mm256_permute4x64_pd(step, 0xAA);
-  rows.step[3] = _mm256_permute4x64_pd(step, 0xFF);
-  rows.gx[0] = _mm256_permute4x64_pd(gx, 0x00);
-  rows.gx[1] = _mm256_permute4x64_pd(gx, 0x55);
-  rows.gx[2] = _mm256_permute4x64_pd(gx, 0xAA);
-  rows.gx[3] = _mm256_permute4x64_pd(gx, 0xFF);
-  rows.inv[0] = _mm256_permute4x64_pd(inv, 0x00);
-  rows.inv[1] = _mm256_permute4x64_pd(inv, 0x55);
-  rows.inv[2] = _mm256_permute4x64_pd(inv, 0xAA);
-  rows.inv[3] = _mm256_permute4x64_pd(inv, 0xFF);
+  broadcast_lanes(step, rows.step);
+  broadcast_lanes(gx, rows.gx);
+  broadcast_lanes(inv, rows.inv);
   return true;
 }
 
