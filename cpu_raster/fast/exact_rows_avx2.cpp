@@ -22,12 +22,25 @@
 
 namespace rastercmp::cpu::fast {
 
-// exact_rows_avx2.hpp; the checks themselves stay inside int64 (|dcdx|, |dcdy| <= 2^30, |x| <= 2^20).
+namespace {
+
+// The bounds of init_plane_rows' checks, which themselves stay inside int64: |dcdx|, |dcdy| <= 2^30
+// and the widest column |x| + 2 <= 2^20, so that |d| * widest (d = dcdx * 256) does.
+constexpr int64_t kDeltaBound = int64_t(1) << 30;
+constexpr int64_t kWidestBound = int64_t(1) << 20;
+
+// The largest |x| of p's visit columns, plus the two columns past them that the steps test.
+inline int64_t widest_column(const RasterPrimitive& p) {
+  return std::max<int64_t>(std::abs(int64_t(p.visit.x0)), std::abs(int64_t(p.visit.x1))) + 2;
+}
+
+}  // namespace
+
+// exact_rows_avx2.hpp.
 RASTERCMP_AVX2 bool init_plane_rows_each(PlaneRows& rows, const RasterPrimitive& p, uint32_t samples, int32_t y0,
                                          int32_t y1) {
-  constexpr int64_t kDeltaBound = int64_t(1) << 30;
-  const int64_t widest = std::max<int64_t>(std::abs(int64_t(p.visit.x0)), std::abs(int64_t(p.visit.x1))) + 2;
-  if (widest > (int64_t(1) << 20)) return false;  // then |d| * widest below stays within int64
+  const int64_t widest = widest_column(p);
+  if (widest > kWidestBound) return false;
   const int64_t span = (int64_t(y1) + 3 - y0) * kFixedOne;
   uint32_t below = 0, above = 0;  // planes bounding the columns below (d < 0), above (d > 0): bit i
   for (uint32_t i = 0; i < p.planes.count; ++i) {
@@ -118,18 +131,18 @@ RASTERCMP_AVX2 inline __m256d placed(__m256d v, __m256i index) {
 // an exact integer, or the same IEEE operation: 4 * dy, -double(d), -1 / gx). false where any
 // check fails: init_plane_rows_each then decides, as before.
 RASTERCMP_AVX2 bool init_four_plane_rows(PlaneRows& rows, const RasterPrimitive& p, int32_t y0, int32_t y1) {
-  const int64_t widest = std::max<int64_t>(std::abs(int64_t(p.visit.x0)), std::abs(int64_t(p.visit.x1))) + 2;
+  const int64_t widest = widest_column(p);
   const int64_t sample_x = p.per_sample ? kStandardSamples4x[0].x_fixed : 0;
   const int64_t sample_y = int64_t(y0) * kFixedOne + (p.per_sample ? kStandardSamples4x[0].y_fixed : 0);
   const int64_t span = (int64_t(y1) + 3 - y0) * kFixedOne;
   constexpr int64_t kInt32 = int64_t(1) << 31;
-  if (widest > (int64_t(1) << 20) || sample_y >= kInt32 || sample_y < -kInt32 || span >= kInt32 || span < -kInt32)
+  if (widest > kWidestBound || sample_y >= kInt32 || sample_y < -kInt32 || span >= kInt32 || span < -kInt32)
     return false;
   const EdgePlane* e = p.planes.plane.data();
   const __m256i c = _mm256_setr_epi64x(e[0].c, e[1].c, e[2].c, e[3].c);
   const __m256i dcdx = _mm256_setr_epi64x(e[0].dcdx, e[1].dcdx, e[2].dcdx, e[3].dcdx);
   const __m256i dcdy = _mm256_setr_epi64x(e[0].dcdy, e[1].dcdy, e[2].dcdy, e[3].dcdy);
-  const __m256i delta_bound = _mm256_set1_epi64x(int64_t(1) << 30), low_delta = _mm256_set1_epi64x(-(int64_t(1) << 30));
+  const __m256i delta_bound = _mm256_set1_epi64x(kDeltaBound), low_delta = _mm256_set1_epi64x(-kDeltaBound);
   __m256i bad =
       _mm256_or_si256(_mm256_or_si256(_mm256_cmpgt_epi64(dcdx, delta_bound), _mm256_cmpgt_epi64(low_delta, dcdx)),
                       _mm256_or_si256(_mm256_cmpgt_epi64(dcdy, delta_bound), _mm256_cmpgt_epi64(low_delta, dcdy)));
