@@ -6,11 +6,13 @@
 #include <sys/mman.h>
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
 
 #include "cpu_raster/exact/front_end.hpp"
+#include "cpu_raster/exact/line_setup.hpp"
 #include "cpu_raster/exact/rasterize.hpp"
 #include "cpu_raster/exact/render_targets.hpp"
 #include "cpu_raster/fast/cpu_features.hpp"
@@ -345,6 +347,82 @@ TEST(FastExactRows, FourPlaneRowsAreThePlaneByPlaneRows) {
               (unsigned long long)taken, (unsigned long long)declined_agreeing, (unsigned long long)refused);
   EXPECT_GT(taken, 10000u);
   EXPECT_GT(refused, 10000u);
+}
+
+// A line's middle rows (parallelogram_middle, where thin_rows takes a step's columns from the long
+// edges alone): on lines from setup_line (rectangular and Bresenham, widths 0.5-6 px, 1-200 px
+// long, every angle, ends anywhere in a pixel), in every middle row of the visit every sample
+// from two columns before the visit to two after that passes both long edges passes both caps; the
+// places name the long edges (the lower one bounds below, the upper one above, with their planes.
+// column steps), and lines of fewer than two steps' rows have no middle. A quad that is not a
+// parallelogram (one corner moved, its planes made from its corners) has no middle either.
+TEST(FastExactRows, ParallelogramMiddleRowsNeedNoCaps) {
+  if (!host_has_avx2_fma()) GTEST_SKIP() << "host without AVX2/FMA: the vector exact rows do not run";
+  fast_test::Random r(20261201);
+  RasterState state;
+  SetupContext ctx;
+  ctx.framebuffer = PixelRect{0, 0, 1023, 1023};
+  ctx.region = ctx.framebuffer;
+  ctx.state = &state;
+  ctx.depth_format = DepthFormat::D32Sfloat;
+  uint64_t middles = 0, rows_checked = 0, samples_checked = 0, trapezoids = 0;
+  for (int n = 0; n < 4000; ++n) {
+    state.line_mode = r.chance(0.2) ? LineMode::Bresenham : LineMode::Default;
+    state.line_width = r.chance(0.5) ? 1.0f : float(r.range(0.5, 6.0));
+    const double length = r.range(1.0, 200.0), angle = r.range(0.0, 6.283185307179586);
+    const double cx = r.range(200.0, 800.0), cy = r.range(200.0, 800.0);
+    const std::array<WindowVertex, 2> window{
+        WindowVertex{float(cx), float(cy), 0.5f},
+        WindowVertex{float(cx + length * std::cos(angle)), float(cy + length * std::sin(angle)), 0.5f}};
+    const LineSetup setup = setup_line(window, 1, ctx);
+    if (setup.fate != SetupFate::Rasterized || setup.raster.binned) continue;
+    const RasterPrimitive& p = setup.raster;
+    const int32_t y0 = p.visit.y0, y1 = p.visit.y1;
+    PlaneRows rows;
+    if (!init_plane_rows(rows, p, 1, y0, y1)) continue;
+    const ParallelogramMiddle middle = parallelogram_middle(p, rows, y0, y1);
+    if (y1 - y0 < 7) {
+      ASSERT_GT(middle.first_row, middle.last_row) << "line " << n;
+      continue;
+    }
+    if (middle.first_row <= middle.last_row) {
+      ++middles;
+      const EdgePlane* e = p.planes.plane.data();
+      const uint32_t long_below = e[0].dcdx < 0 ? 0 : 2;
+      ASSERT_LT(middle.lower, rows.lower) << "line " << n;
+      ASSERT_GE(middle.upper, rows.lower) << "line " << n;
+      ASSERT_LT(middle.upper, rows.upper) << "line " << n;
+      ASSERT_EQ(rows.dy[middle.lower], double(e[long_below].dcdy * kFixedOne)) << "line " << n;
+      ASSERT_EQ(rows.dy[middle.upper], double(e[2 - long_below].dcdy * kFixedOne)) << "line " << n;
+      for (int32_t py = std::max(middle.first_row, y0); py <= std::min(middle.last_row, y1); ++py) {
+        ++rows_checked;
+        for (int32_t px = p.visit.x0 - 2; px <= p.visit.x1 + 2; ++px) {
+          const int64_t x = int64_t(px) * kFixedOne, y = int64_t(py) * kFixedOne;
+          if (edge_value(e[0], x, y) <= 0 || edge_value(e[2], x, y) <= 0) continue;
+          ++samples_checked;
+          ASSERT_GT(edge_value(e[1], x, y), 0) << "line " << n << " row " << py << " column " << px;
+          ASSERT_GT(edge_value(e[3], x, y), 0) << "line " << n << " row " << py << " column " << px;
+        }
+      }
+    }
+    RasterPrimitive trapezoid = p;  // corner 2 a pixel to the right, the planes its corners'
+    trapezoid.vertex_fixed[2].x.raw += kFixedOne;
+    trapezoid.planes.count = 0;
+    for (uint32_t i = 0; i < 4; ++i)
+      trapezoid.planes.push(
+          make_edge(trapezoid.vertex_fixed[i], trapezoid.vertex_fixed[(i + 1) % 4], ctx.methods.tie_break));
+    PlaneRows trapezoid_rows;
+    if (!init_plane_rows(trapezoid_rows, trapezoid, 1, y0, y1)) continue;
+    ++trapezoids;
+    const ParallelogramMiddle none = parallelogram_middle(trapezoid, trapezoid_rows, y0, y1);
+    ASSERT_GT(none.first_row, none.last_row) << "line " << n;
+  }
+  std::printf("parallelogram middles: %llu lines, %llu rows, %llu samples inside the long edges; %llu trapezoids\n",
+              (unsigned long long)middles, (unsigned long long)rows_checked, (unsigned long long)samples_checked,
+              (unsigned long long)trapezoids);
+  EXPECT_GT(middles, 2000u);
+  EXPECT_GT(samples_checked, 100000u);
+  EXPECT_GT(trapezoids, 2000u);
 }
 
 TEST(FastExactRows, SmallPerSampleTrianglesWriteWhatTheExactRasterizerWrites) {

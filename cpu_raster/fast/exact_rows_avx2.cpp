@@ -191,6 +191,39 @@ RASTERCMP_AVX2 bool init_four_plane_rows(PlaneRows& rows, const RasterPrimitive&
   return true;
 }
 
+// exact_rows_avx2.hpp.
+RASTERCMP_AVX2 ParallelogramMiddle parallelogram_middle(const RasterPrimitive& p, const PlaneRows& rows, int32_t y0,
+                                                        int32_t y1) {
+  ParallelogramMiddle middle;
+  if (y1 - y0 < 7 || !p.is_line || p.per_sample || p.binned || p.edge_count != 4 || rows.count != 4) return middle;
+  const EdgePlane* e = p.planes.plane.data();
+  const std::array<FixedPoint, 4>& v = p.vertex_fixed;
+  if (v[0].x.wide() + v[2].x.wide() != v[1].x.wide() + v[3].x.wide() ||
+      v[0].y.wide() + v[2].y.wide() != v[1].y.wide() + v[3].y.wide() || e[0].dcdx == 0)
+    return middle;  // not a parallelogram, or a flat long edge (the caps then span its rows)
+  // the caps' y ranges: edge 1 from corner 1 to 2, edge 3 from corner 3 to 0
+  const int64_t a_lo = std::min(v[1].y.wide(), v[2].y.wide()), a_hi = std::max(v[1].y.wide(), v[2].y.wide());
+  const int64_t b_lo = std::min(v[3].y.wide(), v[0].y.wide()), b_hi = std::max(v[3].y.wide(), v[0].y.wide());
+  const bool a_below = a_hi < b_lo;
+  if (!a_below && !(b_hi < a_lo)) return middle;
+  const int64_t below = a_below ? a_hi : b_hi, above = a_below ? b_lo : a_lo;  // 24.8, within int32
+  // sample rows py with below < py * 256 < above (row py's pixel centre is at py * 256)
+  middle.first_row = int32_t((below >> kFixedOrder) + 1);
+  middle.last_row = int32_t(-((-above) >> kFixedOrder) - 1);
+  // the long edges' places: init_plane_rows' order, the planes bounding below (dcdx < 0) in plane
+  // order, then those bounding above (dcdx > 0)
+  uint32_t below_planes = 0, above_planes = 0;
+  for (uint32_t i = 0; i < 4; ++i) {
+    below_planes |= uint32_t(e[i].dcdx < 0) << i;
+    above_planes |= uint32_t(e[i].dcdx > 0) << i;
+  }
+  const uint32_t long_below = e[0].dcdx < 0 ? 0 : 2, long_above = 2 - long_below;
+  middle.lower = uint32_t(std::popcount(below_planes & ((1u << long_below) - 1)));
+  middle.upper =
+      uint32_t(std::popcount(below_planes)) + uint32_t(std::popcount(above_planes & ((1u << long_above) - 1)));
+  return middle;
+}
+
 RASTERCMP_AVX2 bool init_plane_rows(PlaneRows& rows, const RasterPrimitive& p, uint32_t samples, int32_t y0,
                                     int32_t y1) {
   if (p.planes.count == 4 && samples == 1 && init_four_plane_rows(rows, p, y0, y1)) return true;
@@ -478,23 +511,26 @@ RASTERCMP_AVX2 inline void prefetch_rows(uintptr_t depth_bytes, uintptr_t owner_
 }
 
 // With an active depth test, a primitive in a frame of one sample per pixel (lines, mostly): the
-// columns of up to kChunkRows rows worked out and each row's depth and owner lines asked for, then
-// per step of four rows either one gathered eight-lane step, when every row's run is at most two
-// columns (lane 2k + j: row k, column u0[k] + j, valid when j < the run), or, row by row, steps of
-// eight contiguous columns masked to the run (a row of one sample per pixel is contiguous in the
-// attachments; a step whose eight columns are all the worker's, in the visit or in the row up to
-// owned_row_end, read and written whole, the others masked). Each lane's depth, test and write are
-// draw_gathered's (the gathered step's writes scattered on AVX-512 hosts, blended elsewhere:
-// StepWrites), or where the frame's rows spread over the L1's sets draw_pairs' (each row's two
-// pixels one 64-bit word); a step holds distinct samples of one primitive, so reading its stored
-// values before writing any reads what the exact path's order reads. Without the queue of
-// depth_rows: a thin line's fragment is drawn where its row's columns are known.
+// columns of up to kChunkRows rows worked out (between a line's caps from its long edges alone:
+// parallelogram_middle) and each row's depth and owner lines asked for, then per step of four rows
+// either one gathered eight-lane step, when every row's run is at most two columns (lane 2k + j:
+// row k, column u0[k] + j, valid when j < the run), or, row by row, steps of eight contiguous
+// columns masked to the run (a row of one sample per pixel is contiguous in the attachments; a step
+// whose eight columns are all the worker's, in the visit or in the row up to owned_row_end, read
+// and written whole, the others masked). Each lane's depth, test and write are draw_gathered's (the
+// gathered step's writes scattered on AVX-512 hosts, blended elsewhere: StepWrites), or where the
+// frame's rows spread over the L1's sets draw_pairs' (each row's two pixels one 64-bit word); a
+// step holds distinct samples of one primitive, so reading its stored values before writing any
+// reads what the exact path's order reads. Without the queue of depth_rows: a thin line's fragment
+// is drawn where its row's columns are known.
 template <DepthFormat F, CompareOp Op>
 RASTERCMP_AVX2 bool thin_rows(const RasterPrimitive& p, int32_t y0, int32_t y1, const KernelDepth& d,
                               RenderTargets& targets, bool avx512_writes, int32_t owned_row_end) {
   PlaneRows planes;
   if (!init_plane_rows(planes, p, 1, y0, y1)) return false;
   start_sample(planes, 0);
+  // a line's rows between its caps: the columns from its long edges alone
+  const ParallelogramMiddle middle = parallelogram_middle(p, planes, y0, y1);
   const int32_t width = int32_t(targets.width);
   const GatheredStep gathered = gathered_step_of(p, targets, avx512_writes);
   uint32_t* depth = gathered.depth;
@@ -517,7 +553,10 @@ RASTERCMP_AVX2 bool thin_rows(const RasterPrimitive& p, int32_t y0, int32_t y1, 
   for (int32_t chunk = y0; chunk <= y1; chunk += kChunkRows) {
     const int32_t chunk_end = std::min(y1, chunk + kChunkRows - 1);
     for (int32_t y = chunk, b = 0; y <= chunk_end; y += 4, ++b) {
-      next_plane_rows(planes, 0, first, last, u[b][0], u[b][1]);
+      if (y >= middle.first_row && y <= middle.last_row - 3)
+        next_middle_rows(planes, middle, 0, first, last, u[b][0], u[b][1]);
+      else
+        next_plane_rows(planes, 0, first, last, u[b][0], u[b][1]);
       // each of the four rows' first column, without a branch on empty rows or rows past the
       // chunk (their lines are asked for all the same; a prefetch never faults, so the address,
       // formed as an integer, may lie past the attachments): into the L1 where the frame's rows

@@ -70,38 +70,75 @@ RASTERCMP_AVX2 inline void start_sample(PlaneRows& rows, uint32_t s) {
     rows.n[s][e] = _mm256_fmadd_pd(_mm256_set1_pd(rows.dy[e]), lanes, _mm256_set1_pd(rows.first[s][e]));
 }
 
+// Plane e's bound on the covered columns in each of the step's four rows (n its values there),
+// from c, ceil or floor of n * (-1 / gx) clamped to [clamp_lo, clamp_hi]: for a plane bounding below
+// (kLeast) the least, L = c - 1 + [G(c-1) < 0] + [G(c) < 0]; for one bounding above the greatest,
+// U = c + 1 - [G(c+1) < 0] - [G(c) < 0].
+template <bool kLeast>
+RASTERCMP_AVX2 inline __m256d bound_columns(const PlaneRows& rows, uint32_t e, __m256d n, __m256d clamp_lo,
+                                            __m256d clamp_hi) {
+  const __m256d zero = _mm256_setzero_pd(), one = _mm256_set1_pd(1.0);
+  const __m256d q = _mm256_mul_pd(n, rows.inv[e]);
+  const __m256d c = _mm256_min_pd(_mm256_max_pd(kLeast ? _mm256_ceil_pd(q) : _mm256_floor_pd(q), clamp_lo), clamp_hi);
+  const __m256d outer = kLeast ? _mm256_sub_pd(c, one) : _mm256_add_pd(c, one);
+  const __m256d out_fails = _mm256_cmp_pd(_mm256_fmadd_pd(rows.gx[e], outer, n), zero, _CMP_LT_OQ);
+  const __m256d c_fails = _mm256_cmp_pd(_mm256_fmadd_pd(rows.gx[e], c, n), zero, _CMP_LT_OQ);
+  const __m256d fails = _mm256_add_pd(_mm256_and_pd(out_fails, one), _mm256_and_pd(c_fails, one));
+  return kLeast ? _mm256_add_pd(outer, fails) : _mm256_sub_pd(outer, fails);
+}
+
 // The covered columns [u0[k], u1[k]] (u0 > u1: none) of sample s in the step's four rows, then the
 // sample's next step.
 RASTERCMP_AVX2 inline void next_plane_rows(PlaneRows& rows, uint32_t s, __m256d first, __m256d last, int32_t* u0,
                                            int32_t* u1) {
   __m256d* n = rows.n[s];
-  const __m256d zero = _mm256_setzero_pd(), one = _mm256_set1_pd(1.0);
+  const __m256d one = _mm256_set1_pd(1.0);
   const __m256d clamp_lo = _mm256_sub_pd(first, one), clamp_hi = _mm256_add_pd(last, one);
   __m256d lo = first, hi = last;
-  for (uint32_t e = 0; e < rows.lower; ++e) {  // L = c - 1 + [G(c-1) < 0] + [G(c) < 0]
-    const __m256d c =
-        _mm256_min_pd(_mm256_max_pd(_mm256_ceil_pd(_mm256_mul_pd(n[e], rows.inv[e])), clamp_lo), clamp_hi);
-    const __m256d outer = _mm256_sub_pd(c, one);
-    const __m256d out_fails = _mm256_cmp_pd(_mm256_fmadd_pd(rows.gx[e], outer, n[e]), zero, _CMP_LT_OQ);
-    const __m256d c_fails = _mm256_cmp_pd(_mm256_fmadd_pd(rows.gx[e], c, n[e]), zero, _CMP_LT_OQ);
-    lo = _mm256_max_pd(lo,
-                       _mm256_add_pd(outer, _mm256_add_pd(_mm256_and_pd(out_fails, one), _mm256_and_pd(c_fails, one))));
+  for (uint32_t e = 0; e < rows.lower; ++e) {
+    lo = _mm256_max_pd(lo, bound_columns<true>(rows, e, n[e], clamp_lo, clamp_hi));
     n[e] = _mm256_add_pd(n[e], rows.step[e]);
   }
-  for (uint32_t e = rows.lower; e < rows.upper; ++e) {  // U = c + 1 - [G(c+1) < 0] - [G(c) < 0]
-    const __m256d c =
-        _mm256_min_pd(_mm256_max_pd(_mm256_floor_pd(_mm256_mul_pd(n[e], rows.inv[e])), clamp_lo), clamp_hi);
-    const __m256d outer = _mm256_add_pd(c, one);
-    const __m256d out_fails = _mm256_cmp_pd(_mm256_fmadd_pd(rows.gx[e], outer, n[e]), zero, _CMP_LT_OQ);
-    const __m256d c_fails = _mm256_cmp_pd(_mm256_fmadd_pd(rows.gx[e], c, n[e]), zero, _CMP_LT_OQ);
-    hi = _mm256_min_pd(hi,
-                       _mm256_sub_pd(outer, _mm256_add_pd(_mm256_and_pd(out_fails, one), _mm256_and_pd(c_fails, one))));
+  for (uint32_t e = rows.lower; e < rows.upper; ++e) {
+    hi = _mm256_min_pd(hi, bound_columns<false>(rows, e, n[e], clamp_lo, clamp_hi));
     n[e] = _mm256_add_pd(n[e], rows.step[e]);
   }
   for (uint32_t e = rows.upper; e < rows.count; ++e) {  // flat: the whole row (n >= 0) or none
-    lo = _mm256_blendv_pd(lo, clamp_hi, _mm256_cmp_pd(n[e], zero, _CMP_LT_OQ));
+    lo = _mm256_blendv_pd(lo, clamp_hi, _mm256_cmp_pd(n[e], _mm256_setzero_pd(), _CMP_LT_OQ));
     n[e] = _mm256_add_pd(n[e], rows.step[e]);
   }
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(u0), _mm256_cvttpd_epi32(lo));
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(u1), _mm256_cvttpd_epi32(hi));
+}
+
+// A line's parallelogram (a line's planes 0 to 3 are the edges from vertex_fixed[i] to
+// vertex_fixed[i + 1], as both line set-ups make them; here also v0 + v2 = v1 + v3): the sample rows
+// [first_row, last_row] where its "caps", edges 1 and 3, cannot bind, and the places in PlaneRows of
+// its long edges 0 and 2, one bounding below (`lower`), one above. Cap k's line meets the strip
+// between the long edges' lines only in the cap, whose y range is its corners'; a sample row outside
+// both caps' ranges and between them crosses the strip on the side of each cap that holds the other,
+// so every sample of it that passes both long edges is strictly on the inner side of both caps:
+// where the long edges' columns are not empty they are the four planes' (where the parallelogram is
+// wound the other way, the long edges' covered half-planes do not meet, and both are empty). Empty
+// (first_row > last_row) where p is not such a line, a cap is level with the other, a long edge is
+// flat, or the rows [y0, y1] are fewer than two steps.
+struct ParallelogramMiddle {
+  int32_t first_row = 1, last_row = 0;
+  uint32_t lower = 0, upper = 0;
+};
+RASTERCMP_AVX2 ParallelogramMiddle parallelogram_middle(const RasterPrimitive& p, const PlaneRows& rows, int32_t y0,
+                                                        int32_t y1);
+
+// next_plane_rows in the middle rows of a parallelogram: the columns from its long edges alone, every
+// plane's values stepped.
+RASTERCMP_AVX2 inline void next_middle_rows(PlaneRows& rows, const ParallelogramMiddle& middle, uint32_t s,
+                                            __m256d first, __m256d last, int32_t* u0, int32_t* u1) {
+  __m256d* n = rows.n[s];
+  const __m256d one = _mm256_set1_pd(1.0);
+  const __m256d clamp_lo = _mm256_sub_pd(first, one), clamp_hi = _mm256_add_pd(last, one);
+  const __m256d lo = _mm256_max_pd(first, bound_columns<true>(rows, middle.lower, n[middle.lower], clamp_lo, clamp_hi));
+  const __m256d hi = _mm256_min_pd(last, bound_columns<false>(rows, middle.upper, n[middle.upper], clamp_lo, clamp_hi));
+  for (uint32_t e = 0; e < rows.count; ++e) n[e] = _mm256_add_pd(n[e], rows.step[e]);
   _mm_storeu_si128(reinterpret_cast<__m128i*>(u0), _mm256_cvttpd_epi32(lo));
   _mm_storeu_si128(reinterpret_cast<__m128i*>(u1), _mm256_cvttpd_epi32(hi));
 }
