@@ -192,10 +192,9 @@ RASTERCMP_AVX2 bool init_four_plane_rows(PlaneRows& rows, const RasterPrimitive&
 }
 
 // exact_rows_avx2.hpp.
-RASTERCMP_AVX2 ParallelogramMiddle parallelogram_middle(const RasterPrimitive& p, const PlaneRows& rows, int32_t y0,
-                                                        int32_t y1) {
+RASTERCMP_AVX2 ParallelogramMiddle parallelogram_middle(const RasterPrimitive& p, const PlaneRows& rows) {
   ParallelogramMiddle middle;
-  if (y1 - y0 < 7 || !p.is_line || p.per_sample || p.binned || p.edge_count != 4 || rows.count != 4) return middle;
+  if (!p.is_line || p.per_sample || p.binned || p.edge_count != 4 || rows.count != 4) return middle;
   const EdgePlane* e = p.planes.plane.data();
   const std::array<FixedPoint, 4>& v = p.vertex_fixed;
   if (v[0].x.wide() + v[2].x.wide() != v[1].x.wide() + v[3].x.wide() ||
@@ -530,7 +529,8 @@ RASTERCMP_AVX2 bool thin_rows(const RasterPrimitive& p, int32_t y0, int32_t y1, 
   if (!init_plane_rows(planes, p, 1, y0, y1)) return false;
   start_sample(planes, 0);
   // a line's rows between its caps: the columns from its long edges alone
-  const ParallelogramMiddle middle = parallelogram_middle(p, planes, y0, y1);
+  const ParallelogramMiddle middle =
+      y1 - y0 + 1 >= kMiddleMinRows ? parallelogram_middle(p, planes) : ParallelogramMiddle{};
   const int32_t width = int32_t(targets.width);
   const GatheredStep gathered = gathered_step_of(p, targets, avx512_writes);
   uint32_t* depth = gathered.depth;

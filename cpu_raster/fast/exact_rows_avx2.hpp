@@ -120,14 +120,18 @@ RASTERCMP_AVX2 inline void next_plane_rows(PlaneRows& rows, uint32_t s, __m256d 
 // so every sample of it that passes both long edges is strictly on the inner side of both caps:
 // where the long edges' columns are not empty they are the four planes' (where the parallelogram is
 // wound the other way, the long edges' covered half-planes do not meet, and both are empty). Empty
-// (first_row > last_row) where p is not such a line, a cap is level with the other, a long edge is
-// flat, or the rows [y0, y1] are fewer than two steps.
+// (first_row > last_row) where p is not such a line, a cap is level with the other, or a long edge
+// is flat.
 struct ParallelogramMiddle {
   int32_t first_row = 1, last_row = 0;
   uint32_t lower = 0, upper = 0;
 };
-RASTERCMP_AVX2 ParallelogramMiddle parallelogram_middle(const RasterPrimitive& p, const PlaneRows& rows, int32_t y0,
-                                                        int32_t y1);
+RASTERCMP_AVX2 ParallelogramMiddle parallelogram_middle(const RasterPrimitive& p, const PlaneRows& rows);
+// Rows below which thin_rows does not look for a middle: working one out costs about 100
+// instructions and a middle step saves about 25, so a line needs four middle steps to gain
+// (instructions a line of lines_20k: 4,597 from 8 rows, 4,589 from 16, 4,595 from 24;
+// docs/performance-log.md, "A line's middle rows without its caps").
+inline constexpr int32_t kMiddleMinRows = 16;
 
 // next_plane_rows in the middle rows of a parallelogram: the columns from its long edges alone, every
 // plane's values stepped.
