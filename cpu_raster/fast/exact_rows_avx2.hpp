@@ -1,7 +1,8 @@
-// The covered columns of the AVX2 exact rows (exact_rows.hpp; exact_rows_avx2.cpp for frames of
-// one sample per pixel and the queue, exact_rows_4x_avx2.cpp for per-sample primitives in 4x
-// frames): every plane's columns of four sample rows per vector step, then the covered samples'
-// raw depths, depth tests and stored values eight at a time.
+// The covered columns of the AVX2 exact rows (exact_rows.hpp; plane_rows_avx2.cpp sets the planes'
+// rows up, exact_rows_avx2.cpp draws frames of one sample per pixel and the queue,
+// exact_rows_4x_avx2.cpp per-sample primitives in 4x frames): every plane's columns of four sample
+// rows per vector step, then the covered samples' raw depths, depth tests and stored values eight
+// at a time.
 //
 // Coverage. For a sample row (sample point y Y, x offset sx in fixed units), plane i's value at
 // column px is E(px) = k - d * px with k = E at column 0 and d = dcdx * 256: an integer, covered
