@@ -30,7 +30,7 @@ namespace {
 
 // --scaling --model: a model of the fast path on N cores, measured on the cores there are. Each
 // render runs with N workers (as render_cpu_fast does: a small scene takes one worker), their jobs
-// run by at most the host's hardware threads one after another (FastConfig::profile_threads), and
+// run by at most the CPUs it may use one after another (FastConfig::profile_threads), and
 // records each worker's thread CPU time per phase and each queue task's (RenderProfile); on N free
 // cores a phase would take projected_seconds (its busiest worker; a queue phase: its tasks handed
 // in order to the first worker free), so the projected render time is the calling thread's serial
@@ -40,7 +40,8 @@ namespace {
 // each worker's time the median of the reps'), so that a task the host held up in one rep does not
 // set its phase. The projected speed-up at N is projected(1) / projected(N). What it leaves out:
 // waking the workers, memory bandwidth and caches shared by N cores. Checked against the measured
-// wall time where N <= hardware threads: the same renders again without a profile, right after the
+// wall time where N <= the CPUs it may use (host_usable_cpus: `taskset -c 0,1` on a larger host
+// measures the two-core projection and times nothing past 2): the same renders again without a profile, right after the
 // profiled ones (a profiled render also pays the clock readings the projection leaves out, two a
 // queued task: about 0.1 ms of perspective's at two workers).
 struct ModelRep {
@@ -74,7 +75,7 @@ ModelRep model_rep(std::vector<Scene>& scenes, std::vector<RenderResult>& result
                    bool side_by_side, bool timed) {
   options.threads = workers;
   cpu::fast::FastConfig config;
-  config.profile_threads = std::max(1u, std::thread::hardware_concurrency());
+  config.profile_threads = host_usable_cpus();
   ModelRep rep;
   rep.profiles.resize(scenes.size());
   rep.queued_seconds.assign(scenes.size(), 0.0);
@@ -204,12 +205,13 @@ nlohmann::ordered_json describe_serial(const ModelPoint& point, uint32_t workers
 int run_scaling_model(const BenchArgs& args) {
   std::vector<BenchCase> cases = make_cases(args);
   const std::vector<uint32_t>& counts = kModelWorkers;
-  const uint32_t cores = std::max(1u, std::thread::hardware_concurrency());
+  const uint32_t cores = host_usable_cpus();
   CpuOptions options;
   options.fma = lavapipe_fuses_on_this_host();
   bench::LoadMonitor load;
   load.start();
-  fmt::print("CPU: {} ({} hardware threads), fast path kernels: {}\n", cpu_model(), cores, fast_kernels());
+  fmt::print("CPU: {} ({} hardware threads, {} usable), fast path kernels: {}\n", cpu_model(),
+             std::thread::hardware_concurrency(), cores, fast_kernels());
   fmt::print(
       "fast path on N workers, projected from each worker's thread CPU time per phase; {} reps, each rep every N "
       "in turn, each scene's profile the median of its reps'; each interval less the clock's own cost, {:.2f} us\n",
@@ -217,13 +219,14 @@ int run_scaling_model(const BenchArgs& args) {
   fmt::print(
       "projected = serial + per phase its busiest worker (queue phases: their tasks list-scheduled on N); "
       "speed-up: projected(1) / projected(N); measured: wall time of the same renders unprofiled, where N <= {} "
-      "hardware threads\n\n",
+      "usable hardware threads\n\n",
       cores);
   fmt::print("| scene | N | projected ms | speed-up | measured ms | bands busiest/mean | largest phase |\n");
   fmt::print("|---|---:|---:|---:|---:|---:|---|\n");
   nlohmann::ordered_json j;
   j["cpu_model"] = cpu_model();
-  j["hardware_threads"] = cores;
+  j["hardware_threads"] = std::thread::hardware_concurrency();
+  j["usable_cpus"] = cores;
   j["fast_kernels"] = fast_kernels();
   j["reps"] = args.reps;
   j["clock_cost_seconds"] = thread_cpu_clock_cost();

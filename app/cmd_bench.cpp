@@ -204,8 +204,8 @@ void print_table(const std::vector<CaseReport>& reports, const BenchArgs& args, 
       "\nmedian ms [min-max] over {} reps ({} for the exact path); fast CPU path: {} thread(s); lavapipe: "
       "LP_NUM_THREADS={}\n\n",
       args.reps, args.exact_reps, args.threads, std::getenv("LP_NUM_THREADS"));
-  fmt::print("CPU: {} ({} hardware threads), fast path kernels: {}\n\n", cpu_model(),
-             std::thread::hardware_concurrency(), fast_kernels());
+  fmt::print("CPU: {} ({} hardware threads, {} usable), fast path kernels: {}\n\n", cpu_model(),
+             std::thread::hardware_concurrency(), host_usable_cpus(), fast_kernels());
   fmt::print(
       "| scene | tris | frags | exact ms | fast ms | fast+alloc ms | lavapipe ms | lvp/fast | lvp/exact | fast "
       "Mtri/s | fast Mpix/s | lvp Mtri/s | lvp Mpix/s | peak MiB exact/fast/lvp | same bytes exact/lvp |\n");
@@ -247,6 +247,7 @@ void write_json(const std::string& path, const std::vector<CaseReport>& reports,
   nlohmann::ordered_json j;
   j["cpu_model"] = cpu_model();
   j["hardware_threads"] = std::thread::hardware_concurrency();
+  j["usable_cpus"] = host_usable_cpus();
   j["fast_kernels"] = fast_kernels();
   j["fast_threads"] = args.threads;
   j["lp_num_threads"] = std::getenv("LP_NUM_THREADS");
@@ -278,10 +279,11 @@ void write_json(const std::string& path, const std::vector<CaseReport>& reports,
   out << j.dump(2) << "\n";
 }
 
-// --scaling: the fast path alone, at 1, 2, 4, ... threads up to the host's hardware threads (and
-// that number itself), median of --reps renders into reused buffers per scene and count.
+// --scaling: the fast path alone, at 1, 2, 4, ... threads up to the CPUs it may use
+// (host_usable_cpus, and that number itself), median of --reps renders into reused buffers per
+// scene and count.
 std::vector<uint32_t> scaling_threads() {
-  const uint32_t cores = std::max(1u, std::thread::hardware_concurrency());
+  const uint32_t cores = host_usable_cpus();
   std::vector<uint32_t> counts;
   for (uint32_t t = 1; t < cores; t *= 2) counts.push_back(t);
   counts.push_back(cores);
@@ -293,8 +295,8 @@ int run_scaling(const BenchArgs& args) {
   const std::vector<uint32_t> counts = scaling_threads();
   CpuOptions options;
   options.fma = lavapipe_fuses_on_this_host();
-  fmt::print("CPU: {} ({} hardware threads), fast path kernels: {}\n", cpu_model(), std::thread::hardware_concurrency(),
-             fast_kernels());
+  fmt::print("CPU: {} ({} hardware threads, {} usable), fast path kernels: {}\n", cpu_model(),
+             std::thread::hardware_concurrency(), host_usable_cpus(), fast_kernels());
   fmt::print("fast path, median ms over {} reps (speed-up over 1 thread)\n\n| scene |", args.reps);
   for (uint32_t t : counts) fmt::print(" {} thr |", t);
   fmt::print("\n|---|");
@@ -303,6 +305,7 @@ int run_scaling(const BenchArgs& args) {
   nlohmann::ordered_json j;
   j["cpu_model"] = cpu_model();
   j["hardware_threads"] = std::thread::hardware_concurrency();
+  j["usable_cpus"] = host_usable_cpus();
   j["fast_kernels"] = fast_kernels();
   std::vector<experiments::DataBlock> blocks;
   std::string plot = "plot ";

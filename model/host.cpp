@@ -1,6 +1,7 @@
 #include "model/host.hpp"
 
 #include <cpuid.h>
+#include <sched.h>
 #include <time.h>
 
 #include <algorithm>
@@ -8,6 +9,7 @@
 #include <fstream>
 #include <sstream>
 #include <string_view>
+#include <thread>
 
 namespace rastercmp {
 
@@ -49,6 +51,16 @@ std::string host_cpu_model() {
   std::ostringstream text;
   text << in.rdbuf();
   return cpu_model_from_cpuinfo(text.str());
+}
+
+uint32_t host_usable_cpus() {
+#ifdef __linux__
+  cpu_set_t allowed;
+  CPU_ZERO(&allowed);
+  if (sched_getaffinity(0, sizeof(allowed), &allowed) == 0 && CPU_COUNT(&allowed) > 0)
+    return uint32_t(CPU_COUNT(&allowed));
+#endif
+  return std::max(1u, std::thread::hardware_concurrency());
 }
 
 double thread_cpu_seconds() {

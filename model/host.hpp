@@ -2,6 +2,7 @@
 // §7.1), and those a measurement records (its CPU model, a thread's CPU clock).
 #pragma once
 
+#include <cstdint>
 #include <string>
 
 namespace rastercmp {
@@ -18,6 +19,11 @@ std::string cpu_model_from_cpuinfo(const std::string& cpuinfo);
 
 // This host's CPU model, from /proc/cpuinfo ("unknown" where it cannot be read).
 std::string host_cpu_model();
+
+// The CPUs this process may run on: its affinity mask (`taskset`, a container's cpuset), at least 1;
+// the hardware threads where the mask cannot be read. A measurement on N workers is a measurement
+// on N cores only up to this number.
+uint32_t host_usable_cpus();
 
 // The calling thread's CPU time in seconds (CLOCK_THREAD_CPUTIME_ID).
 double thread_cpu_seconds();

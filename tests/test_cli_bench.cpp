@@ -2,6 +2,7 @@
 // parts at N workers, printed after the table and in the JSON (app/bench_model.cpp; the fast path
 // alone: no Vulkan device); `rastercmp bench --json`: each scene's target beside its times.
 #include <gtest/gtest.h>
+#include <sched.h>
 
 #include <algorithm>
 #include <map>
@@ -36,9 +37,11 @@ TEST(CliBench, ModelListsEachQueuePhasesTasksAtTheWorkersAsked) {
       << r.out;
   const nlohmann::json j = nlohmann::json::parse(read_file(tmp / "model.json"));
   size_t with_tasks = 0;
-  const uint32_t cores = j["hardware_threads"];
+  const uint32_t cores = j["usable_cpus"];
+  EXPECT_GE(cores, 1u);
+  EXPECT_LE(cores, j["hardware_threads"].get<uint32_t>());
   for (const nlohmann::json& point : j["scenes"][0]["workers"]) {
-    // the measured wall time (unprofiled renders) where N <= the host's hardware threads, else none
+    // the measured wall time (unprofiled renders) where N <= the CPUs it may use, else none
     if (point["workers"].get<uint32_t>() <= cores)
       EXPECT_GT(point["measured_wall_seconds"].get<double>(), 0.0) << point["workers"];
     else
@@ -83,6 +86,45 @@ TEST(CliBench, ModelListsEachQueuePhasesTasksAtTheWorkersAsked) {
     EXPECT_NEAR(parts, serial["serial_seconds"].get<double>(), 1e-9);
   }
   EXPECT_EQ(with_tasks, 1u);
+}
+
+// Confined to one CPU (as `taskset -c 0` confines it; the affinity mask is inherited), the model
+// projects every N from that CPU and times only N = 1, and --scaling times only 1 thread: a
+// render of N workers taking turns on one core is no measurement of N cores.
+TEST(CliBench, ScalingMeasuresNoMoreWorkersThanTheCpusItMayUse) {
+  cpu_set_t before;
+  CPU_ZERO(&before);
+  ASSERT_EQ(sched_getaffinity(0, sizeof(before), &before), 0);
+  int first = 0;
+  while (!CPU_ISSET(first, &before)) ++first;
+  cpu_set_t one;
+  CPU_ZERO(&one);
+  CPU_SET(first, &one);
+  ASSERT_EQ(sched_setaffinity(0, sizeof(one), &one), 0);
+  const TempDir tmp;
+  const RunResult model = run_cli({"bench", "--scaling", "--model", "--reps", "1", "--scene", "fill_f2b", "--json",
+                                   (tmp / "model.json").string(), "--chart-dir", (tmp / "chart").string()});
+  const RunResult scaling = run_cli({"bench", "--scaling", "--reps", "1", "--scene", "fill_f2b", "--json",
+                                     (tmp / "scaling.json").string(), "--chart-dir", (tmp / "chart").string()});
+  ASSERT_EQ(sched_setaffinity(0, sizeof(before), &before), 0);
+  ASSERT_EQ(model.exit_code, 0) << describe({"bench", "--scaling", "--model"}, model);
+  ASSERT_EQ(scaling.exit_code, 0) << describe({"bench", "--scaling"}, scaling);
+  EXPECT_NE(model.out.find(" usable), fast path kernels"), std::string::npos) << model.out;
+  const nlohmann::json m = nlohmann::json::parse(read_file(tmp / "model.json"));
+  EXPECT_EQ(m["usable_cpus"], 1);
+  ASSERT_EQ(m["scenes"].size(), 1u);
+  for (const nlohmann::json& point : m["scenes"][0]["workers"]) {
+    EXPECT_GT(point["projected_seconds"].get<double>(), 0.0) << point["workers"];
+    if (point["workers"] == 1)
+      EXPECT_GT(point["measured_wall_seconds"].get<double>(), 0.0);
+    else
+      EXPECT_TRUE(point["measured_wall_seconds"].is_null()) << point["workers"];
+  }
+  const nlohmann::json s = nlohmann::json::parse(read_file(tmp / "scaling.json"));
+  EXPECT_EQ(s["usable_cpus"], 1);
+  ASSERT_EQ(s["scenes"].size(), 1u);
+  ASSERT_EQ(s["scenes"][0]["threads"].size(), 1u);
+  EXPECT_EQ(s["scenes"][0]["threads"][0]["threads"], 1);
 }
 
 // The bench's JSON carries each scene's target (kTargets), the one its printed verdict reads.
