@@ -41,9 +41,9 @@ namespace {
 // set its phase. The projected speed-up at N is projected(1) / projected(N). What it leaves out:
 // waking the workers, memory bandwidth and caches shared by N cores. Checked against the measured
 // wall time where N <= the CPUs it may use (host_usable_cpus: `taskset -c 0,1` on a larger host
-// measures the two-core projection and times nothing past 2): the same renders again without a profile, right after the
-// profiled ones (a profiled render also pays the clock readings the projection leaves out, two a
-// queued task: about 0.1 ms of perspective's at two workers).
+// measures the two-core projection and times nothing past 2): the same renders again without a
+// profile, right after the profiled ones (a profiled render also pays the clock readings the
+// projection leaves out, two a queued task: about 0.1 ms of perspective's at two workers).
 struct ModelRep {
   double wall = 0;  // seconds per unprofiled render of the case (0 where not timed)
   // per scene (the case's order): its profile on N workers; a scene queued side by side: its
