@@ -256,8 +256,8 @@ void write_json(const std::string& path, const std::vector<CaseReport>& reports,
                {"loadavg_1min", load.load_average_1min()},
                {"wall_s", load.wall_seconds()}};
   for (const CaseReport& r : reports) {
-    const auto target = std::find_if(std::begin(kTargets), std::end(kTargets),
-                                     [&](const Target& t) { return t.scene == r.name; });
+    const auto target =
+        std::find_if(std::begin(kTargets), std::end(kTargets), [&](const Target& t) { return t.scene == r.name; });
     j["scenes"].push_back(
         {{"name", r.name},
          {"target", target == std::end(kTargets)
@@ -354,7 +354,7 @@ int run_bench(const BenchArgs& args) {
     throw UsageError("--tasks: expected with --scaling --model (the tasks are those of the model's renders)");
   if (args.scaling && args.model) return run_scaling_model(args);
   if (args.scaling) return run_scaling(args);
-  setenv("LP_NUM_THREADS", "2", 0);  // before the device exists; an explicit setting wins
+  setenv("LP_NUM_THREADS", "2", 0);         // before the device exists; an explicit setting wins
   std::optional<OutputFolder> json_folder;  // --json checked before the minutes of timing
   if (!args.json_path.empty()) json_folder.emplace(output_file_folder(args.json_path));
   std::vector<BenchCase> cases = make_cases(args);
