@@ -1,5 +1,10 @@
 // Memory of an attachment (RenderResult::owner and depth_raw, the CPU paths' RenderTargets): a
-// std::vector whose storage starts `colour` * 2 KiB into a 4 KiB page.
+// std::vector whose storage starts `colour` * 2 KiB into a 4 KiB page, and whose growth (resize(n),
+// PixelBuffer(n)) zeroes the new elements as std::vector's does, or, for an allocator made with
+// PixelFill::Unwritten, leaves them as the memory holds them: the fast path's attachments, every element
+// of which it writes before reading (its tiles cleared or drawn), so that a render into new
+// buffers does not write them twice (perspective into new buffers at two threads 0.96-1.02 ms
+// instead of 1.17-1.39; docs/performance-log.md, "Result buffers not zeroed before the render").
 //
 // Why: with a row pitch that is a multiple of 4 KiB (a width that is a multiple of 1024 pixels)
 // every row of a 16-pixel column band falls in the same L1 set (Zen 5: 64 sets of 12 ways), and
@@ -11,7 +16,9 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <new>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace rastercmp {
@@ -20,6 +27,9 @@ namespace rastercmp {
 // std::bad_alloc when none is left. Freed by free_coloured.
 void* allocate_coloured(size_t bytes, uint32_t colour);
 void free_coloured(void* data) noexcept;
+
+// How a PixelBuffer's growth forms its new elements (PixelAllocator::construct).
+enum class PixelFill { Zero, Unwritten };
 
 template <class T>
 class PixelAllocator {
@@ -31,13 +41,31 @@ class PixelAllocator {
   using propagate_on_container_move_assignment = std::true_type;
 
   PixelAllocator() = default;
-  explicit PixelAllocator(uint32_t colour) : colour_(colour) {}
+  explicit PixelAllocator(uint32_t colour, PixelFill fill = PixelFill::Zero)
+      : colour_(colour), zero_(fill == PixelFill::Zero) {}
   template <class U>
-  PixelAllocator(const PixelAllocator<U>& other) : colour_(other.colour()) {}
+  PixelAllocator(const PixelAllocator<U>& other) : colour_(other.colour()), zero_(other.fill() == PixelFill::Zero) {}
 
   T* allocate(size_t n) { return static_cast<T*>(allocate_coloured(n * sizeof(T), colour_)); }
   void deallocate(T* p, size_t) noexcept { free_coloured(p); }
   uint32_t colour() const { return colour_; }
+  PixelFill fill() const { return zero_ ? PixelFill::Zero : PixelFill::Unwritten; }
+
+  // An element added without a value: value-initialized (zero), or default-initialized.
+  template <class U>
+  void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) {
+    if (zero_)
+      ::new (static_cast<void*>(p)) U();
+    else
+      ::new (static_cast<void*>(p)) U;
+  }
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+  // A copy of a buffer zeroes its growth whatever the original does: only the buffers the fast
+  // path sizes for itself leave it unwritten.
+  PixelAllocator select_on_container_copy_construction() const { return PixelAllocator(colour_); }
 
   template <class U>
   bool operator==(const PixelAllocator<U>&) const {
@@ -46,6 +74,7 @@ class PixelAllocator {
 
  private:
   uint32_t colour_ = 0;
+  bool zero_ = true;  // a bool, which no element store may alias: the test stays out of resize's loop
 };
 
 using PixelBuffer = std::vector<uint32_t, PixelAllocator<uint32_t>>;

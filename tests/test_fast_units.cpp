@@ -29,6 +29,7 @@
 #include "cpu_raster/fast/tile_depth_bounds.hpp"
 #include "cpu_raster/fast/tile_raster.hpp"
 #include "cpu_raster/fast/worker_pool.hpp"
+#include "model/host.hpp"
 #include "tests/test_fast_support.hpp"
 
 namespace rastercmp::cpu::fast {
@@ -89,6 +90,47 @@ TEST(FastMemory, DepthBufferTakesTheOtherHalfOfThePage) {
   render_cpu_fast_into(bench::perspective_scene(20, 128), options, result);
   EXPECT_EQ(page_offset(result.owner), 0u);
   EXPECT_EQ(page_offset(result.depth_raw), 2048u);
+}
+
+// The fast path's new buffers are not zeroed (PixelFill::Unwritten), so it must write every value
+// itself: rendered into buffers of the right sizes and colours (reused as they are, not zeroed)
+// that hold a poison value, every kind of frame (a frame of lines drawn at a wider pitch and packed,
+// triangles with tile rows no triangle reaches, 4x samples, layers) gives the exact path's bytes
+// at one and two workers. Growth of a buffer of the default allocator, and of a copy, is zeroed.
+TEST(FastMemory, NewBuffersAreLeftUnwrittenAndEveryValueIsRendered) {
+  PixelBuffer fresh;
+  size_buffer(fresh, 4096, 0);
+  EXPECT_EQ(fresh.get_allocator().fill(), PixelFill::Unwritten);
+  PixelBuffer copy = fresh;
+  EXPECT_EQ(copy.get_allocator().fill(), PixelFill::Zero);
+  copy.assign(100, 9u);
+  copy.resize(10);
+  copy.resize(100);  // within its capacity: the old nines zeroed
+  EXPECT_EQ(copy[50], 0u);
+  PixelBuffer plain;
+  EXPECT_EQ(plain.get_allocator().fill(), PixelFill::Zero);
+
+  constexpr uint32_t kPoison = 0xA5A5A5A5u;
+  const bool fma = lavapipe_fuses_on_this_host();
+  std::vector<Scene> scenes = {bench::lines_scene(300, 512), bench::perspective_scene(20, 256),
+                               bench::msaa_grid_scene(12, 128), fast_test::layered_scene(3)};
+  EXPECT_NE(frame_row_pitch(scenes[0]), scenes[0].width);  // drawn at a wider pitch, then packed
+  for (const Scene& scene : scenes) {
+    for (const uint32_t threads : {1u, 2u}) {
+      RenderResult result;
+      const size_t count = size_t(scene.width) * scene.height * scene.samples;
+      size_buffer(result.owner, count, 0);
+      size_buffer(result.depth_raw, count, 1);
+      std::fill(result.owner.begin(), result.owner.end(), kPoison);
+      std::fill(result.depth_raw.begin(), result.depth_raw.end(), kPoison);
+      CpuOptions options;
+      options.threads = threads;
+      options.fma = fma;
+      render_cpu_fast_into(scene, options, result);
+      EXPECT_TRUE(fast_test::same_bytes(fast_test::render_exact(scene, fma), result))
+          << scene.name << " at " << threads << " workers";
+    }
+  }
 }
 
 // bench --scaling --model's input: a profiled render lists its phases in order, each with one CPU
