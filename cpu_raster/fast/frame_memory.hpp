@@ -20,7 +20,8 @@ namespace rastercmp::cpu::fast {
 // Gives `buffer` exactly `count` elements, reusing its memory when it is large enough; the
 // contents are unspecified (the caller writes every element). New memory gets `colour`
 // (model/pixel_buffer.hpp): the owner buffer 0, the depth buffer 1; and is not zeroed first
-// (PixelFill::Unwritten): a page is first touched by the worker that clears or draws it.
+// (PixelFill::Unwritten): the render's own writes are the first, each value cleared, drawn or
+// packed by a worker.
 void size_buffer(PixelBuffer& buffer, size_t count, uint32_t colour);
 
 // madvise(MADV_HUGEPAGE) over the 2 MiB-aligned part of [data, data + bytes), where supported.
