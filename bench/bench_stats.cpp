@@ -9,6 +9,8 @@
 #include <sstream>
 #include <string>
 
+#include "model/pixel_buffer.hpp"
+
 namespace rastercmp::bench {
 namespace {
 
@@ -82,6 +84,7 @@ TimingStats summarize(std::vector<double> seconds) {
 }
 
 uint64_t peak_memory_delta(const std::function<void()>& run) {
+  release_kept_blocks();  // the run's own memory, none of it kept from earlier frees (pixel_buffer.hpp)
   if (reset_peak_rss()) {
     const uint64_t before = status_bytes("VmRSS");
     run();

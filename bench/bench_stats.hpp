@@ -16,7 +16,8 @@ struct TimingStats {
 // Quartiles by linear interpolation between order statistics; all zero for no samples.
 TimingStats summarize(std::vector<double> seconds);
 
-// Peak resident memory a call adds above what the process held when it started, in bytes.
+// Peak resident memory a call adds above what the process held when it started, in bytes, with
+// no freed attachment blocks kept from before it (release_kept_blocks, model/pixel_buffer.hpp).
 // Uses Linux's resettable high-water mark (/proc/self/clear_refs "5", VmHWM); where that is not
 // available, the growth of getrusage ru_maxrss (0 when an earlier peak was higher).
 uint64_t peak_memory_delta(const std::function<void()>& run);

@@ -24,9 +24,22 @@
 namespace rastercmp {
 
 // `bytes` of storage starting colour * 2 KiB (colour 0 or 1) into a 4 KiB page, 64-byte aligned;
-// std::bad_alloc when none is left. Freed by free_coloured.
+// std::bad_alloc when none is left. Freed by free_coloured. Its bytes are unspecified: a freed
+// block of kCachedMinBytes or more is kept for the next request of its size or up to a fifth
+// less (pixel_buffer.cpp), at most kCacheBlocks of them and kCacheBytes in all, the oldest given
+// back to the system first.
 void* allocate_coloured(size_t bytes, uint32_t colour);
 void free_coloured(void* data) noexcept;
+
+inline constexpr size_t kCachedMinBytes = size_t(256) << 10;
+inline constexpr size_t kCacheBlocks = 8;
+inline constexpr size_t kCacheBytes = size_t(128) << 20;
+
+// The blocks kept, their bytes (each a whole block: storage and the page and a half around it).
+size_t kept_block_bytes();
+size_t kept_block_count();
+// Gives every kept block back to the system (what a measure of a render's own memory starts from).
+void release_kept_blocks();
 
 // How a PixelBuffer's growth forms its new elements (PixelAllocator::construct).
 enum class PixelFill { Zero, Unwritten };

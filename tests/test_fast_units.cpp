@@ -92,6 +92,95 @@ TEST(FastMemory, DepthBufferTakesTheOtherHalfOfThePage) {
   EXPECT_EQ(page_offset(result.depth_raw), 2048u);
 }
 
+// Freed blocks of kCachedMinBytes and more are kept (model/pixel_buffer.hpp) and handed out again
+// for a request of their size or up to a fifth less, in either colour; a buffer of the Zero fill
+// built on a kept block is zeroed; at most kCacheBlocks are kept, the oldest given back first; a
+// small block or one larger than kCacheBytes is not kept.
+TEST(FastMemory, FreedLargeBlocksAreKeptForTheNextRequestOfTheirSize) {
+  release_kept_blocks();
+  ASSERT_EQ(kept_block_count(), 0u);
+  ASSERT_EQ(kept_block_bytes(), 0u);
+  constexpr size_t kWords = size_t(1) << 18;  // 1 MiB
+  uintptr_t page = 0;
+  {
+    PixelBuffer sevens;
+    size_buffer(sevens, kWords, 0);
+    std::fill(sevens.begin(), sevens.end(), 7u);
+    page = reinterpret_cast<uintptr_t>(sevens.data());
+  }
+  EXPECT_EQ(kept_block_count(), 1u);
+  EXPECT_GT(kept_block_bytes(), kWords * sizeof(uint32_t));
+  {
+    const PixelBuffer zeroed(kWords, PixelAllocator<uint32_t>(1));  // the other colour, the same block
+    EXPECT_EQ(reinterpret_cast<uintptr_t>(zeroed.data()), page + 2048);
+    EXPECT_EQ(kept_block_count(), 0u);
+    EXPECT_TRUE(std::all_of(zeroed.begin(), zeroed.end(), [](uint32_t v) { return v == 0; }));  // not the sevens
+  }
+  ASSERT_EQ(kept_block_count(), 1u);
+  {
+    PixelBuffer half;
+    size_buffer(half, kWords / 2, 0);  // half the size: not from the kept block
+    EXPECT_EQ(kept_block_count(), 1u);
+    PixelBuffer smaller(PixelAllocator<uint32_t>(0));
+    smaller.resize(kWords - kWords / 8);  // an eighth less: the kept block serves it
+    EXPECT_EQ(reinterpret_cast<uintptr_t>(smaller.data()), page);
+    EXPECT_EQ(kept_block_count(), 0u);
+  }
+  release_kept_blocks();
+
+  // sizes 1.5 times apart, so that no block serves another's request
+  std::vector<size_t> words;
+  for (size_t k = 0, w = size_t(80) << 10; k < kCacheBlocks + 2; ++k, w = w * 3 / 2) words.push_back(w);
+  for (const size_t w : words) free_coloured(allocate_coloured(w * sizeof(uint32_t), 0));
+  EXPECT_EQ(kept_block_count(), kCacheBlocks);
+  EXPECT_LE(kept_block_bytes(), kCacheBytes);
+  void* evicted = allocate_coloured(words[0] * sizeof(uint32_t), 0);  // the oldest, given back
+  EXPECT_EQ(kept_block_count(), kCacheBlocks);
+  void* kept = allocate_coloured(words[2] * sizeof(uint32_t), 0);  // the oldest still kept
+  EXPECT_EQ(kept_block_count(), kCacheBlocks - 1);
+  free_coloured(kept);
+  free_coloured(evicted);
+  release_kept_blocks();
+  free_coloured(allocate_coloured(kCachedMinBytes / 2, 1));
+  free_coloured(allocate_coloured(kCacheBytes + 1, 1));  // never touched: only its pages' mapping
+  EXPECT_EQ(kept_block_count(), 0u);
+}
+
+// A render into new buffers that are given blocks another buffer left a poison value in writes
+// every value itself (with the fast path's PixelFill::Unwritten nothing else does).
+TEST(FastMemory, RendersIntoKeptBlocksWriteEveryValue) {
+  constexpr uint32_t kPoison = 0xA5A5A5A5u;
+  const bool fma = lavapipe_fuses_on_this_host();
+  for (const Scene& scene : {bench::lines_scene(300, 512), bench::perspective_scene(20, 512)}) {
+    for (const uint32_t threads : {1u, 2u}) {
+      release_kept_blocks();
+      const size_t count = size_t(scene.width) * scene.height * scene.samples;
+      std::vector<uintptr_t> poisoned;  // the kept blocks' pages
+      {
+        PixelBuffer a, b;
+        size_buffer(a, count, 0);
+        size_buffer(b, count, 1);
+        std::fill(a.begin(), a.end(), kPoison);
+        std::fill(b.begin(), b.end(), kPoison);
+        poisoned = {reinterpret_cast<uintptr_t>(a.data()) / 4096, reinterpret_cast<uintptr_t>(b.data()) / 4096};
+      }
+      ASSERT_EQ(kept_block_count(), 2u);
+      CpuOptions options;
+      options.threads = threads;
+      options.fma = fma;
+      const RenderResult result = render_cpu_fast(scene, options);
+      std::vector<uintptr_t> taken = {reinterpret_cast<uintptr_t>(result.owner.data()) / 4096,
+                                      reinterpret_cast<uintptr_t>(result.depth_raw.data()) / 4096};
+      std::sort(poisoned.begin(), poisoned.end());
+      std::sort(taken.begin(), taken.end());
+      EXPECT_EQ(taken, poisoned) << "the result's buffers are the kept blocks";
+      EXPECT_TRUE(fast_test::same_bytes(fast_test::render_exact(scene, fma), result))
+          << scene.name << " at " << threads << " workers";
+    }
+  }
+  release_kept_blocks();
+}
+
 // The fast path's new buffers are not zeroed (PixelFill::Unwritten), so it must write every value
 // itself: rendered into buffers of the right sizes and colours (reused as they are, not zeroed)
 // that hold a poison value, every kind of frame (a frame of lines drawn at a wider pitch and packed,
