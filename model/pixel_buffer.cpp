@@ -80,10 +80,7 @@ class BlockCache {
       blocks_[count_++] = Block{start, size};
       bytes_ += size;
     }
-    for (size_t i = 0; i < evictions; ++i) {
-      RASTERCMP_UNPOISON(evicted[i].start, evicted[i].size);
-      std::free(evicted[i].start);
-    }
+    give_back(evicted, evictions);
     return true;
   }
 
@@ -102,10 +99,7 @@ class BlockCache {
         remove(0);
       }
     }
-    for (size_t i = 0; i < count; ++i) {
-      RASTERCMP_UNPOISON(released[i].start, released[i].size);
-      std::free(released[i].start);
-    }
+    give_back(released, count);
   }
 
   size_t count() {
@@ -118,6 +112,14 @@ class BlockCache {
     void* start;
     size_t size;
   };
+
+  // Blocks taken out of the cache, to the system (outside the lock).
+  static void give_back(const Block* blocks, size_t count) {
+    for (size_t i = 0; i < count; ++i) {
+      RASTERCMP_UNPOISON(blocks[i].start, blocks[i].size);
+      std::free(blocks[i].start);
+    }
+  }
 
   void remove(size_t i) {  // keeps the others oldest first
     bytes_ -= blocks_[i].size;
@@ -142,8 +144,8 @@ BlockCache& block_cache() {
 void* allocate_coloured(size_t bytes, uint32_t colour) {
   if (bytes > SIZE_MAX - kPage - kHalfPage) throw std::bad_alloc();
   const size_t size = bytes + kPage + kHalfPage;
-  size_t kept_size = 0;
   if (size >= kCachedMinBytes) {
+    size_t kept_size = 0;
     if (void* kept = block_cache().take(size, kept_size)) return storage_of(kept, kept_size, colour);
   }
   void* start = std::malloc(size);

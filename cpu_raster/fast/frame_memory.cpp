@@ -21,7 +21,7 @@ void advise_huge_pages(void* data, size_t bytes) {
 void size_buffer(PixelBuffer& buffer, size_t count, uint32_t colour) {
   if (buffer.capacity() < count || buffer.get_allocator().colour() != colour) {
     PixelBuffer fresh{PixelAllocator<uint32_t>(colour, PixelFill::Unwritten)};
-    fresh.reserve(count);  // not yet touched: the hint still applies to every page
+    fresh.reserve(count);  // new memory, or a kept block (pixel_buffer.hpp): the hint applies to its untouched pages
     advise_huge_pages(fresh.data(), count * sizeof(uint32_t));
     buffer = std::move(fresh);
   }
