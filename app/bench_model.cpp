@@ -1,9 +1,14 @@
 // rastercmp bench --scaling --model [--tasks N]: the fast path on 1, 2, 4, ..., 64 workers, each
 // worker's and queued task's thread CPU time per phase projected onto as many free cores
 // (docs/performance.md, "Scaling model").
+#include <sys/mman.h>
+#include <sys/resource.h>
+
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <memory_resource>
+#include <new>
 #include <string>
 #include <thread>
 #include <utility>
@@ -44,14 +49,121 @@ namespace {
 // measures the two-core projection and times nothing past 2): the same renders again without a
 // profile, right after the profiled ones (a profiled render also pays the clock readings the
 // projection leaves out, two a queued task: about 0.1 ms of perspective's at two workers).
+//
+// The reps' profiles are kept out of the heap the renders allocate from (ProfileStore), and every
+// ModelRep is sized before the first render: a profile kept in that heap between renders takes
+// the memory a render freed, so the next render's arrays come from pages never touched, and a
+// first touch cost 10-35 us on the Zen 5 host (2-5 faults in a third of perspective's renders at
+// two workers, 50-160 us more of its serial part; docs/performance-log.md, "Page faults in the
+// model's profiled renders"). Each render is profiled into one reused RenderProfile, copied into
+// the store after it; the page faults during the profiled renders are counted and printed.
+
+// Pages from mmap, outside malloc's heap, given back when the store goes.
+class MappedResource : public std::pmr::memory_resource {
+  void* do_allocate(size_t bytes, size_t) override {
+    void* p = mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    if (p == MAP_FAILED) throw std::bad_alloc();
+    return p;
+  }
+  void do_deallocate(void* p, size_t bytes, size_t) override { munmap(p, bytes); }
+  bool do_is_equal(const std::pmr::memory_resource& other) const noexcept override { return this == &other; }
+};
+
+// A RenderProfile flattened into doubles in mapped memory: the serial time, the phase count, then
+// per phase its name (an index into `names`), serial_before, its workers' times and its tasks'
+// (seconds, worker).
+struct StoredProfile {
+  const double* data = nullptr;
+  size_t size = 0;
+};
+
+class ProfileStore {
+ public:
+  ProfileStore() { names_.reserve(64); }
+
+  StoredProfile store(const cpu::fast::RenderProfile& profile) {
+    size_t size = 2;
+    for (const cpu::fast::PhaseTimes& phase : profile.phases)
+      size += 4 + phase.worker_seconds.size() + 2 * phase.tasks.size();
+    auto* data = static_cast<double*>(arena_.allocate(size * sizeof(double), alignof(double)));
+    size_t at = 0;
+    data[at++] = profile.serial_seconds;
+    data[at++] = double(profile.phases.size());
+    for (const cpu::fast::PhaseTimes& phase : profile.phases) {
+      data[at++] = double(name_index(phase.phase));
+      data[at++] = phase.serial_before;
+      data[at++] = double(phase.worker_seconds.size());
+      for (const double t : phase.worker_seconds) data[at++] = t;
+      data[at++] = double(phase.tasks.size());
+      for (const cpu::fast::TaskTime& task : phase.tasks) {
+        data[at++] = task.seconds;
+        data[at++] = double(task.worker);
+      }
+    }
+    return StoredProfile{data, size};
+  }
+
+  cpu::fast::RenderProfile load(const StoredProfile& stored) const {
+    cpu::fast::RenderProfile profile;
+    if (stored.size == 0) return profile;
+    const double* d = stored.data;
+    size_t at = 0;
+    profile.serial_seconds = d[at++];
+    profile.phases.resize(size_t(d[at++]));
+    for (cpu::fast::PhaseTimes& phase : profile.phases) {
+      phase.phase = names_[size_t(d[at++])];
+      phase.serial_before = d[at++];
+      phase.worker_seconds.resize(size_t(d[at++]));
+      for (double& t : phase.worker_seconds) t = d[at++];
+      phase.tasks.resize(size_t(d[at++]));
+      for (cpu::fast::TaskTime& task : phase.tasks) {
+        task.seconds = d[at++];
+        task.worker = uint32_t(d[at++]);
+      }
+    }
+    return profile;
+  }
+
+ private:
+  // a phase's name, added the first time it is met (a handful: reserved, so no allocation after)
+  size_t name_index(const std::string& name) {
+    for (size_t i = 0; i < names_.size(); ++i)
+      if (names_[i] == name) return i;
+    names_.push_back(name);
+    return names_.size() - 1;
+  }
+
+  MappedResource mapped_;
+  std::pmr::monotonic_buffer_resource arena_{size_t(1) << 20, &mapped_};
+  std::vector<std::string> names_;
+};
+
+// The process's page faults so far (all its threads; minor ones: a first touch of a page).
+long fault_count() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_minflt + usage.ru_majflt;
+}
+
 struct ModelRep {
   double wall = 0;  // seconds per unprofiled render of the case (0 where not timed)
+  long faults = 0;  // page faults during its profiled renders (fault_count)
   // per scene (the case's order): its profile on N workers; a scene queued side by side: its
   // time on one worker (queued_seconds) instead
-  std::vector<cpu::fast::RenderProfile> profiles;
+  std::vector<StoredProfile> profiles;
   std::vector<double> queued_seconds;
   std::vector<size_t> queue;  // the queued scenes in queue order (side_by_side_queue)
   std::vector<bool> in_queue;
+
+  explicit ModelRep(size_t scenes) : profiles(scenes), queued_seconds(scenes, 0.0), in_queue(scenes, false) {
+    queue.reserve(scenes);
+  }
+};
+
+// What the renders of a rep reuse: the profile each is profiled into (one per scene side by side).
+struct ModelScratch {
+  cpu::fast::RenderProfile profile;
+  std::vector<cpu::fast::RenderProfile> side_by_side;
 };
 
 struct ModelPoint {
@@ -70,39 +182,44 @@ double side_by_side_seconds(const std::vector<double>& scene_seconds, uint32_t w
   return *std::max_element(free.begin(), free.end());
 }
 
-// One rep of the case's scenes on `workers` workers, profiled, then (`timed`) timed unprofiled.
-ModelRep model_rep(std::vector<Scene>& scenes, std::vector<RenderResult>& results, CpuOptions options, uint32_t workers,
-                   bool side_by_side, bool timed) {
+// One rep of the case's scenes on `workers` workers into `rep` (sized for them), profiled, then
+// (`timed`) timed unprofiled.
+void model_rep(ModelRep& rep, ProfileStore& store, ModelScratch& scratch, std::vector<Scene>& scenes,
+               std::vector<RenderResult>& results, CpuOptions options, uint32_t workers, bool side_by_side,
+               bool timed) {
   options.threads = workers;
   cpu::fast::FastConfig config;
   config.profile_threads = host_usable_cpus();
-  ModelRep rep;
-  rep.profiles.resize(scenes.size());
-  rep.queued_seconds.assign(scenes.size(), 0.0);
-  rep.in_queue.assign(scenes.size(), false);
   if (side_by_side) {
-    cpu::fast::render_fast_side_by_side(scenes, options, config, results, &rep.profiles);
-    rep.queue = cpu::fast::side_by_side_queue(scenes, options, config);
+    const long faults = fault_count();
+    cpu::fast::render_fast_side_by_side(scenes, options, config, results, &scratch.side_by_side);
+    rep.faults = fault_count() - faults;
+    for (size_t i = 0; i < scenes.size(); ++i) rep.profiles[i] = store.store(scratch.side_by_side[i]);
+    const std::vector<size_t> queue = cpu::fast::side_by_side_queue(scenes, options, config);
+    rep.queue.assign(queue.begin(), queue.end());
     for (const size_t i : rep.queue) {
       rep.in_queue[i] = true;
-      rep.queued_seconds[i] = cpu::fast::projected_seconds(rep.profiles[i]);
+      rep.queued_seconds[i] = cpu::fast::projected_seconds(scratch.side_by_side[i]);
     }
     if (timed)
       rep.wall = seconds_of([&] { cpu::fast::render_fast_side_by_side(scenes, options, config, results, nullptr); });
-    return rep;
+    return;
   }
   for (size_t i = 0; i < scenes.size(); ++i) {
-    config.profile = &rep.profiles[i];
+    config.profile = &scratch.profile;
+    const long faults = fault_count();
     cpu::fast::render_fast_into(scenes[i], options, config, results[i]);
+    rep.faults += fault_count() - faults;
     config.profile = nullptr;
+    rep.profiles[i] = store.store(scratch.profile);
     if (timed) rep.wall += seconds_of([&] { cpu::fast::render_fast_into(scenes[i], options, config, results[i]); });
   }
-  return rep;
 }
 
 // The point at N from its reps: each scene's median profile projected, the queued scenes' median
 // times on one worker list-scheduled on N.
-ModelPoint model_point(const std::vector<ModelRep>& reps, const std::vector<Scene>& scenes, uint32_t workers) {
+ModelPoint model_point(const std::vector<ModelRep>& reps, const ProfileStore& store, const std::vector<Scene>& scenes,
+                       uint32_t workers) {
   ModelPoint point;
   std::vector<double> walls, queued;
   for (const ModelRep& rep : reps) walls.push_back(rep.wall);
@@ -112,7 +229,7 @@ ModelPoint model_point(const std::vector<ModelRep>& reps, const std::vector<Scen
   for (size_t i = 0; i < scenes.size(); ++i) {
     if (reps.front().in_queue[i]) continue;
     std::vector<cpu::fast::RenderProfile> of_scene;
-    for (const ModelRep& rep : reps) of_scene.push_back(rep.profiles[i]);
+    for (const ModelRep& rep : reps) of_scene.push_back(store.load(rep.profiles[i]));
     const cpu::fast::RenderProfile profile = cpu::fast::median_profile(of_scene);
     point.projected += profile.serial_seconds;
     point.phases.front().second += profile.serial_seconds;
@@ -233,6 +350,7 @@ int run_scaling_model(const BenchArgs& args) {
   std::vector<experiments::DataBlock> blocks;
   std::string plot = "plot ";
   std::string tasks_text, serial_text;  // --tasks, after the table
+  std::string fault_text;               // each case's page faults during its reps
   for (BenchCase& c : cases) {
     std::vector<Scene> kept;  // the scenes the CPU profile supports
     std::vector<RenderResult> results;
@@ -240,14 +358,23 @@ int run_scaling_model(const BenchArgs& args) {
     experiments::DataBlock block{c.name, {{"workers", "speedup", experiments::gp_quote(c.name)}}};
     nlohmann::ordered_json row{{"name", c.name}};
     // every N in turn within a rep (ModelRep)
-    std::vector<std::vector<ModelRep>> reps(counts.size());
+    ProfileStore store;
+    ModelScratch scratch;
+    std::vector<std::vector<ModelRep>> reps(counts.size(), std::vector<ModelRep>(args.reps, ModelRep(kept.size())));
     for (unsigned rep = 0; rep < args.reps; ++rep)
       for (size_t k = 0; k < counts.size(); ++k)
-        reps[k].push_back(model_rep(kept, results, options, counts[k], c.side_by_side, counts[k] <= cores));
+        model_rep(reps[k][rep], store, scratch, kept, results, options, counts[k], c.side_by_side, counts[k] <= cores);
+    // the first rep's renders set up the pools' threads and the scratch: counted apart
+    long first = 0, later = 0;
+    for (const std::vector<ModelRep>& of_n : reps)
+      for (size_t r = 0; r < of_n.size(); ++r) (r == 0 ? first : later) += of_n[r].faults;
+    fault_text += fmt::format("{}: {} in the first rep's profiled renders, {} in the {} other reps'\n", c.name, first,
+                              later, args.reps - 1);
+    row["page_faults_profiled"] = {{"first_rep", first}, {"other_reps", later}};
     double one = 0;
     for (size_t k = 0; k < counts.size(); ++k) {
       const uint32_t n = counts[k];
-      const ModelPoint point = model_point(reps[k], kept, n);
+      const ModelPoint point = model_point(reps[k], store, kept, n);
       if (n == 1) one = point.projected;
       const double speedup = point.projected > 0 ? one / point.projected : 0;
       const auto largest = std::max_element(point.phases.begin(), point.phases.end(),
@@ -279,6 +406,8 @@ int run_scaling_model(const BenchArgs& args) {
     j["scenes"].push_back(std::move(row));
   }
   load.stop();
+  fmt::print("\npage faults in the profiled renders (first touches of pages, 10-35 us each on a shared VM):\n{}",
+             fault_text);
   if (args.tasks_at != 0) {
     fmt::print("\nqueue phases' tasks at {} workers (thread CPU time; --tasks):\n{}", args.tasks_at,
                tasks_text.empty() ? std::string("none: no scene ran a queue phase\n") : tasks_text);

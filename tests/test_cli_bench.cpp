@@ -35,7 +35,13 @@ TEST(CliBench, ModelListsEachQueuePhasesTasksAtTheWorkersAsked) {
                                                   R"(before vertices, .* [0-9.]+ before bands, [0-9.]+ after the )"
                                                   R"(last phase)")))
       << r.out;
+  // the page faults of the profiled renders (their profiles kept out of the renders' heap)
+  EXPECT_TRUE(std::regex_search(r.out, std::regex(R"(\nperspective: \d+ in the first rep's profiled renders, \d+ in )"
+                                                  R"(the 0 other reps')")))
+      << r.out;
   const nlohmann::json j = nlohmann::json::parse(read_file(tmp / "model.json"));
+  EXPECT_GE(j["scenes"][0]["page_faults_profiled"]["first_rep"].get<long>(), 0);
+  EXPECT_EQ(j["scenes"][0]["page_faults_profiled"]["other_reps"].get<long>(), 0) << "one rep";
   size_t with_tasks = 0;
   const uint32_t cores = j["usable_cpus"];
   EXPECT_GE(cores, 1u);
@@ -131,8 +137,8 @@ TEST(CliBench, ScalingMeasuresNoMoreWorkersThanTheCpusItMayUse) {
 TEST(CliBench, JsonCarriesEachScenesTarget) {
   RASTERCMP_SKIP_WITHOUT_VULKAN();
   const TempDir tmp;
-  const RunResult r = run_cli({"bench", "--reps", "1", "--exact-reps", "1", "--scene", "fill_f2b", "--json",
-                               (tmp / "bench.json").string()});
+  const RunResult r = run_cli(
+      {"bench", "--reps", "1", "--exact-reps", "1", "--scene", "fill_f2b", "--json", (tmp / "bench.json").string()});
   ASSERT_EQ(r.exit_code, 0) << describe({"bench"}, r);
   const std::regex verdict(R"(target fill_f2b +lavapipe/fast +[0-9.]+x +must reach +([0-9]+)x: .* aim +([0-9]+)x)");
   std::smatch m;
