@@ -350,7 +350,7 @@ int run_scaling_model(const BenchArgs& args) {
   std::vector<experiments::DataBlock> blocks;
   std::string plot = "plot ";
   std::string tasks_text, serial_text;  // --tasks, after the table
-  std::string fault_text;               // each case's page faults during its reps
+  std::string fault_text;               // each case's page faults in its profiled renders
   for (BenchCase& c : cases) {
     std::vector<Scene> kept;  // the scenes the CPU profile supports
     std::vector<RenderResult> results;
