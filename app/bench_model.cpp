@@ -74,7 +74,6 @@ class MappedResource : public std::pmr::memory_resource {
 // (seconds, worker).
 struct StoredProfile {
   const double* data = nullptr;
-  size_t size = 0;
 };
 
 class ProfileStore {
@@ -100,12 +99,11 @@ class ProfileStore {
         data[at++] = double(task.worker);
       }
     }
-    return StoredProfile{data, size};
+    return StoredProfile{data};
   }
 
   cpu::fast::RenderProfile load(const StoredProfile& stored) const {
     cpu::fast::RenderProfile profile;
-    if (stored.size == 0) return profile;
     const double* d = stored.data;
     size_t at = 0;
     profile.serial_seconds = d[at++];
