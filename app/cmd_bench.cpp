@@ -199,11 +199,12 @@ std::string ms(const TimingStats& s) {
 double rate(uint64_t count, const TimingStats& s) { return s.median > 0 ? double(count) / s.median * 1e-6 : 0; }
 double mib(uint64_t bytes) { return double(bytes) / (1024.0 * 1024.0); }
 
-void print_table(const std::vector<CaseReport>& reports, const BenchArgs& args, const bench::LoadMonitor& load) {
+void print_table(const std::vector<CaseReport>& reports, const BenchArgs& args, const bench::LoadMonitor& load,
+                 bool memory_kept) {
   fmt::print(
       "\nmedian ms [min-max] over {} reps ({} for the exact path); fast CPU path: {} thread(s); lavapipe: "
-      "LP_NUM_THREADS={}\n\n",
-      args.reps, args.exact_reps, args.threads, std::getenv("LP_NUM_THREADS"));
+      "LP_NUM_THREADS={}; freed memory kept by the allocator: {}\n\n",
+      args.reps, args.exact_reps, args.threads, std::getenv("LP_NUM_THREADS"), memory_kept ? "yes" : "no");
   fmt::print("CPU: {} ({} hardware threads, {} usable), fast path kernels: {}\n\n", cpu_model(),
              std::thread::hardware_concurrency(), host_usable_cpus(), fast_kernels());
   fmt::print(
@@ -243,7 +244,7 @@ nlohmann::ordered_json stats_json(const std::vector<double>& samples) {
 }
 
 void write_json(const std::string& path, const std::vector<CaseReport>& reports, const BenchArgs& args,
-                const bench::LoadMonitor& load) {
+                const bench::LoadMonitor& load, bool memory_kept) {
   nlohmann::ordered_json j;
   j["cpu_model"] = cpu_model();
   j["hardware_threads"] = std::thread::hardware_concurrency();
@@ -251,6 +252,7 @@ void write_json(const std::string& path, const std::vector<CaseReport>& reports,
   j["fast_kernels"] = fast_kernels();
   j["fast_threads"] = args.threads;
   j["lp_num_threads"] = std::getenv("LP_NUM_THREADS");
+  j["freed_memory_kept"] = memory_kept;
   j["load"] = {{"other_cores", load.other_cores()},
                {"own_cores", load.own_cores()},
                {"loadavg_1min", load.load_average_1min()},
@@ -352,6 +354,8 @@ int run_scaling(const BenchArgs& args) {
 int run_bench(const BenchArgs& args) {
   if (args.tasks_at != 0 && !(args.scaling && args.model))
     throw UsageError("--tasks: expected with --scaling --model (the tasks are those of the model's renders)");
+  // every mode times renders, not the page faults of memory the render before freed
+  const bool memory_kept = bench::keep_freed_memory();
   if (args.scaling && args.model) return run_scaling_model(args);
   if (args.scaling) return run_scaling(args);
   setenv("LP_NUM_THREADS", "2", 0);         // before the device exists; an explicit setting wins
@@ -368,8 +372,8 @@ int run_bench(const BenchArgs& args) {
     reports.push_back(run_case(c, vulkan, args, fma));
   }
   load.stop();
-  print_table(reports, args, load);
-  if (!args.json_path.empty()) write_json(args.json_path, reports, args, load);
+  print_table(reports, args, load, memory_kept);
+  if (!args.json_path.empty()) write_json(args.json_path, reports, args, load, memory_kept);
   if (json_folder) json_folder->keep();
   for (const CaseReport& r : reports)
     if (!r.fast_equals_exact || !r.fast_equals_lavapipe) return kExitMismatch;

@@ -1,10 +1,12 @@
 #include "bench/bench_stats.hpp"
 
+#include <malloc.h>
 #include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
+#include <climits>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -83,8 +85,16 @@ TimingStats summarize(std::vector<double> seconds) {
   return stats;
 }
 
+bool keep_freed_memory() {
+  // mallopt returns 1 when it took the setting (glibc), 0 otherwise (ASan's interceptor)
+  const bool trim = mallopt(M_TRIM_THRESHOLD, INT_MAX) == 1;
+  const bool mapped = mallopt(M_MMAP_THRESHOLD, kKeptBlockBytes) == 1;
+  return trim && mapped;
+}
+
 uint64_t peak_memory_delta(const std::function<void()>& run) {
   release_kept_blocks();  // the run's own memory, none of it kept from earlier frees (pixel_buffer.hpp)
+  malloc_trim(0);
   if (reset_peak_rss()) {
     const uint64_t before = status_bytes("VmRSS");
     run();

@@ -4,11 +4,14 @@
 // phases before the walks (vertex pass, chunk flags, list reach, block rows, row balance) are in
 // test_fast_phases.cpp, the rasterizing stages (set-ups, edges, kernels) in test_fast_kernels.cpp.
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 
 #include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
+#include <cstring>
 #include <limits>
 #include <numeric>
 #include <stdexcept>
@@ -498,6 +501,54 @@ TEST(FastBenchStats, QuartilesAndExtremes) {
   EXPECT_DOUBLE_EQ(s.max, 5);
   EXPECT_DOUBLE_EQ(bench::summarize({1, 2}).median, 1.5);
   EXPECT_EQ(bench::summarize({}).count, 0u);
+}
+
+// Minor page faults of this process so far.
+long minor_faults() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_minflt;
+}
+
+// Keeps a block's pages in use, as far as the compiler knows (a malloc, memset and free of memory
+// nothing reads may otherwise be left out).
+void escape(void* p) { asm volatile("" : : "r"(p) : "memory"); }
+
+// Whether this build's allocator is AddressSanitizer's (GCC defines the first, clang has the feature).
+#if defined(__SANITIZE_ADDRESS__)
+constexpr bool kAsanAllocator = true;
+#elif defined(__has_feature)
+constexpr bool kAsanAllocator = __has_feature(address_sanitizer);
+#else
+constexpr bool kAsanAllocator = false;
+#endif
+
+// bench::keep_freed_memory: a block above glibc's default mmap threshold (128 KiB) and below
+// kKeptBlockBytes, freed and allocated again, is not faulted in again (it would be 4,096 page
+// faults mapped and unmapped each time, or trimmed off the heap's top). ASan's allocator refuses
+// the settings.
+TEST(FastBenchStats, FreedMemoryIsKeptForTheNextAllocation) {
+  const bool kept = bench::keep_freed_memory();
+  if (kAsanAllocator) {
+    EXPECT_FALSE(kept);
+    return;
+  }
+  ASSERT_TRUE(kept);
+  constexpr size_t kBytes = size_t(16) << 20;
+  static_assert(kBytes < size_t(bench::kKeptBlockBytes));
+  void* first = std::malloc(kBytes);
+  ASSERT_NE(first, nullptr);
+  std::memset(first, 1, kBytes);
+  escape(first);
+  std::free(first);
+  const long before = minor_faults();
+  void* again = std::malloc(kBytes);
+  ASSERT_NE(again, nullptr);
+  std::memset(again, 2, kBytes);
+  escape(again);
+  const long faults = minor_faults() - before;
+  std::free(again);
+  EXPECT_LT(faults, 64) << "the block's 4,096 pages were faulted in again";
 }
 
 }  // namespace
