@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "bench/bench_scenes.hpp"
+#include "bench/bench_stats.hpp"
 #include "cpu_raster/cpu_raster.hpp"
 #include "cpu_raster/fast/render_fast.hpp"
 #include "model/errors.hpp"
@@ -126,6 +127,8 @@ void interleaved(benchmark::State& state, const Scene* scene) {
 
 int main(int argc, char** argv) {
   using namespace rastercmp;
+  // as `rastercmp bench`: no render pays page faults of memory the one before freed (bench_stats.hpp)
+  const bool memory_kept = bench::keep_freed_memory();
   static const std::vector<bench::BenchScene> scenes = bench::standard_bench_scenes();
   for (const bench::BenchScene& s : scenes) {
     benchmark::RegisterBenchmark(("Exact/" + s.name).c_str(), exact, &s.scene)
@@ -157,6 +160,7 @@ int main(int argc, char** argv) {
       ->UseRealTime();
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::AddCustomContext("freed_memory_kept", memory_kept ? "yes" : "no");
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
   return 0;
