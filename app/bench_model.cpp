@@ -2,7 +2,6 @@
 // worker's and queued task's thread CPU time per phase projected onto as many free cores
 // (docs/performance.md, "Scaling model").
 #include <sys/mman.h>
-#include <sys/resource.h>
 
 #include <algorithm>
 #include <cmath>
@@ -136,16 +135,9 @@ class ProfileStore {
   std::vector<std::string> names_;
 };
 
-// The process's page faults so far (all its threads; minor ones: a first touch of a page).
-long fault_count() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return usage.ru_minflt + usage.ru_majflt;
-}
-
 struct ModelRep {
   double wall = 0;  // seconds per unprofiled render of the case (0 where not timed)
-  long faults = 0;  // page faults during its profiled renders (fault_count)
+  long faults = 0;  // page faults during its profiled renders (bench::page_fault_count)
   // per scene (the case's order): its profile on N workers; a scene queued side by side: its
   // time on one worker (queued_seconds) instead
   std::vector<StoredProfile> profiles;
@@ -189,9 +181,9 @@ void model_rep(ModelRep& rep, ProfileStore& store, ModelScratch& scratch, std::v
   cpu::fast::FastConfig config;
   config.profile_threads = host_usable_cpus();
   if (side_by_side) {
-    const long faults = fault_count();
+    const long faults = bench::page_fault_count();
     cpu::fast::render_fast_side_by_side(scenes, options, config, results, &scratch.side_by_side);
-    rep.faults = fault_count() - faults;
+    rep.faults = bench::page_fault_count() - faults;
     for (size_t i = 0; i < scenes.size(); ++i) rep.profiles[i] = store.store(scratch.side_by_side[i]);
     const std::vector<size_t> queue = cpu::fast::side_by_side_queue(scenes, options, config);
     rep.queue.assign(queue.begin(), queue.end());
@@ -205,9 +197,9 @@ void model_rep(ModelRep& rep, ProfileStore& store, ModelScratch& scratch, std::v
   }
   for (size_t i = 0; i < scenes.size(); ++i) {
     config.profile = &scratch.profile;
-    const long faults = fault_count();
+    const long faults = bench::page_fault_count();
     cpu::fast::render_fast_into(scenes[i], options, config, results[i]);
-    rep.faults += fault_count() - faults;
+    rep.faults += bench::page_fault_count() - faults;
     config.profile = nullptr;
     rep.profiles[i] = store.store(scratch.profile);
     if (timed) rep.wall += seconds_of([&] { cpu::fast::render_fast_into(scenes[i], options, config, results[i]); });

@@ -85,6 +85,12 @@ TimingStats summarize(std::vector<double> seconds) {
   return stats;
 }
 
+long page_fault_count() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_minflt + usage.ru_majflt;
+}
+
 bool keep_freed_memory() {
   // mallopt returns 1 when it took the setting (glibc), 0 otherwise (ASan's interceptor)
   const bool trim = mallopt(M_TRIM_THRESHOLD, INT_MAX) == 1;

@@ -26,6 +26,9 @@ TimingStats summarize(std::vector<double> seconds);
 inline constexpr int kKeptBlockBytes = 32 << 20;  // glibc's largest mmap threshold on 64-bit hosts
 bool keep_freed_memory();
 
+// The process's page faults so far (all its threads; minor ones: a first touch of a page).
+long page_fault_count();
+
 // Peak resident memory a call adds above what the process held when it started, in bytes, with
 // no freed attachment blocks kept from before it (release_kept_blocks, model/pixel_buffer.hpp) and
 // the allocator's free memory handed back first (malloc_trim: kept by keep_freed_memory, it would

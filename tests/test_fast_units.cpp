@@ -4,7 +4,6 @@
 // phases before the walks (vertex pass, chunk flags, list reach, block rows, row balance) are in
 // test_fast_phases.cpp, the rasterizing stages (set-ups, edges, kernels) in test_fast_kernels.cpp.
 #include <gtest/gtest.h>
-#include <sys/resource.h>
 
 #include <algorithm>
 #include <atomic>
@@ -503,25 +502,9 @@ TEST(FastBenchStats, QuartilesAndExtremes) {
   EXPECT_EQ(bench::summarize({}).count, 0u);
 }
 
-// Minor page faults of this process so far.
-long minor_faults() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return usage.ru_minflt;
-}
-
 // Keeps a block's pages in use, as far as the compiler knows (a malloc, memset and free of memory
 // nothing reads may otherwise be left out).
 void escape(void* p) { asm volatile("" : : "r"(p) : "memory"); }
-
-// Whether this build's allocator is AddressSanitizer's (GCC defines the first, clang has the feature).
-#if defined(__SANITIZE_ADDRESS__)
-constexpr bool kAsanAllocator = true;
-#elif defined(__has_feature)
-constexpr bool kAsanAllocator = __has_feature(address_sanitizer);
-#else
-constexpr bool kAsanAllocator = false;
-#endif
 
 // bench::keep_freed_memory: a block above glibc's default mmap threshold (128 KiB) and below
 // kKeptBlockBytes, freed and allocated again, is not faulted in again (it would be 4,096 page
@@ -529,10 +512,10 @@ constexpr bool kAsanAllocator = false;
 // the settings.
 TEST(FastBenchStats, FreedMemoryIsKeptForTheNextAllocation) {
   const bool kept = bench::keep_freed_memory();
-  if (kAsanAllocator) {
-    EXPECT_FALSE(kept);
-    return;
-  }
+#ifdef RASTERCMP_SANITIZER_BUILD
+  EXPECT_FALSE(kept);
+  return;
+#endif
   ASSERT_TRUE(kept);
   constexpr size_t kBytes = size_t(16) << 20;
   static_assert(kBytes < size_t(bench::kKeptBlockBytes));
@@ -541,12 +524,12 @@ TEST(FastBenchStats, FreedMemoryIsKeptForTheNextAllocation) {
   std::memset(first, 1, kBytes);
   escape(first);
   std::free(first);
-  const long before = minor_faults();
+  const long before = bench::page_fault_count();
   void* again = std::malloc(kBytes);
   ASSERT_NE(again, nullptr);
   std::memset(again, 2, kBytes);
   escape(again);
-  const long faults = minor_faults() - before;
+  const long faults = bench::page_fault_count() - before;
   std::free(again);
   EXPECT_LT(faults, 64) << "the block's 4,096 pages were faulted in again";
 }
