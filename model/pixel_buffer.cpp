@@ -5,7 +5,16 @@
 #include <mutex>
 #include <new>
 
+// AddressSanitizer's presence: GCC defines __SANITIZE_ADDRESS__, clang answers __has_feature.
 #if defined(__SANITIZE_ADDRESS__)
+#define RASTERCMP_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define RASTERCMP_ASAN 1
+#endif
+#endif
+
+#if defined(RASTERCMP_ASAN)
 #include <sanitizer/asan_interface.h>
 #define RASTERCMP_POISON(p, n) ASAN_POISON_MEMORY_REGION(p, n)
 #define RASTERCMP_UNPOISON(p, n) ASAN_UNPOISON_MEMORY_REGION(p, n)

@@ -34,6 +34,10 @@
 #include "model/host.hpp"
 #include "tests/test_fast_support.hpp"
 
+#ifdef RASTERCMP_SANITIZER_BUILD
+#include <sanitizer/asan_interface.h>
+#endif
+
 namespace rastercmp::cpu::fast {
 namespace {
 
@@ -147,6 +151,29 @@ TEST(FastMemory, FreedLargeBlocksAreKeptForTheNextRequestOfTheirSize) {
   free_coloured(allocate_coloured(kCacheBytes + 1, 1));  // never touched: only its pages' mapping
   EXPECT_EQ(kept_block_count(), 0u);
 }
+
+#ifdef RASTERCMP_SANITIZER_BUILD
+// Under AddressSanitizer (the sanitizer tree, built by clang) a kept block is poisoned, so that a
+// read through a freed buffer is still reported, and unpoisoned when it is handed out again.
+TEST(FastMemory, KeptBlocksArePoisonedUnderAddressSanitizer) {
+  release_kept_blocks();
+  constexpr size_t kBytes = size_t(1) << 20;
+  void* data = allocate_coloured(kBytes, 0);
+  const char* first = static_cast<const char*>(data);
+  const char* last = first + kBytes - 1;
+  EXPECT_EQ(__asan_address_is_poisoned(first), 0);
+  free_coloured(data);
+  ASSERT_EQ(kept_block_count(), 1u);
+  EXPECT_NE(__asan_address_is_poisoned(first), 0);
+  EXPECT_NE(__asan_address_is_poisoned(last), 0);
+  void* again = allocate_coloured(kBytes, 0);
+  ASSERT_EQ(again, data);
+  EXPECT_EQ(__asan_address_is_poisoned(first), 0);
+  EXPECT_EQ(__asan_address_is_poisoned(last), 0);
+  free_coloured(again);
+  release_kept_blocks();
+}
+#endif
 
 // A render into new buffers that are given blocks another buffer left a poison value in writes
 // every value itself (with the fast path's PixelFill::Unwritten nothing else does).
