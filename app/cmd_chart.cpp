@@ -9,6 +9,7 @@
 #include <fmt/core.h>
 
 #include "app/commands.hpp"
+#include "bench/bench_stats.hpp"
 #include "compare/case_select.hpp"
 #include "experiments/depth_precision.hpp"
 #include "experiments/resolution_sweep.hpp"
@@ -38,6 +39,7 @@ void add_chart_command(CLI::App& app, int& exit_code) {
       ->check(CLI::IsMember({"cpu", "wall"}))
       ->capture_default_str();
   cmd->callback([options, reps, clock, &exit_code] {
+    options->freed_memory_kept = bench::keep_freed_memory();  // timed renders, as `rastercmp bench` times them
     experiments::run_speed_accuracy(*options, *reps,
                                     *clock == "wall" ? experiments::FrontClock::Wall : experiments::FrontClock::Cpu);
     fmt::print("speed-accuracy chart → {}/index.html\n", options->out_dir);
@@ -54,6 +56,7 @@ void add_chart_command(CLI::App& app, int& exit_code) {
   needs_cmd->callback([needs, &exit_code] {
     std::vector<std::pair<std::string, Scene>> suite;
     for (SuiteCase& c : load_suite(default_suite_dir())) suite.push_back({c.name, std::move(c.scene)});
+    needs->freed_memory_kept = bench::keep_freed_memory();
     experiments::run_scene_needs(*needs, suite);
     fmt::print("scene-needs chart → {}/index.html\n", needs->out_dir);
     exit_code = kExitOk;

@@ -125,13 +125,16 @@ void write_zfight_tables(const std::string& dir, const std::string& zfight_json)
   write_markdown_table(dir, "zfight-series", t);
 }
 
-// Where a timed run took place (host columns: not compared) and how many repetitions it took.
+// Where a timed run took place (host columns: not compared), whether the allocator kept freed
+// memory ("—" in a run that did not record it) and how many repetitions it took.
 MarkdownTable run_table(const Json& r) {
-  MarkdownTable run = exact_table({"host", "CPU", "commit", "load before", "load after", "repetitions"});
-  run.columns = {kHost, kHost, kHost, kHost, kHost, kExact};
+  MarkdownTable run =
+      exact_table({"host", "CPU", "commit", "load before", "load after", "freed memory kept", "repetitions"});
+  run.columns = {kHost, kHost, kHost, kHost, kHost, kHost, kExact};
   run.rows.push_back({r["host"].get<std::string>(), r["cpu_model"].get<std::string>(),
                       r["git_commit"].get<std::string>().substr(0, 7) + (r["git_dirty"].get<bool>() ? " (dirty)" : ""),
                       fixed(r["load_average_1min_before"], 2), fixed(r["load_average_1min_after"], 2),
+                      yes_no(r.contains("freed_memory_kept") ? r["freed_memory_kept"] : Json()),
                       std::to_string(r["repeats"].get<int>())});
   return run;
 }

@@ -163,6 +163,7 @@ void run_scene_needs(const SweepOptions& options, const std::vector<std::pair<st
   json["git_commit"] = host.git_commit;
   json["git_dirty"] = host.git_dirty;
   json["load_average_1min_before"] = run_load_average();
+  json["freed_memory_kept"] = options.freed_memory_kept;
   json["timing_scenes"] = nlohmann::ordered_json::array();
   CsvAppender csv((dir / kSkipSavingsCsv).string(),
                   {"scene", "skip", "stages", "on_ms", "off_ms", "ratio", "ratio_ci_low", "ratio_ci_high", "ci_coverage"},

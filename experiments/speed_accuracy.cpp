@@ -491,6 +491,7 @@ void run_speed_accuracy(const SweepOptions& options, int repetitions, FrontClock
   run.host.host = host_name();
   run.host.cpu_model = host_cpu_model();
   fill_git(run.host);
+  run.host.freed_memory_kept = options.freed_memory_kept;
   const std::vector<MethodEntry> entries = speed_accuracy_entries();
   CsvAppender csv((std::filesystem::path(options.out_dir) / kSpeedAccuracyCsv).string(),
                   {"family", "method", "tier", "scene", "format", "seconds_per_frame", "seconds_ci_low",

@@ -116,6 +116,7 @@ struct RunHost {
   std::string host = "unknown", cpu_model = "unknown", git_commit = "unknown";
   bool git_dirty = false;                    // the checkout had uncommitted changes
   double load_before = -1, load_after = -1;  // 1-minute load average; -1 when unreadable
+  bool freed_memory_kept = false;            // SweepOptions::freed_memory_kept
 };
 // This host, its CPU model and the commit the binary was built from (loads left at -1).
 RunHost current_run_host();

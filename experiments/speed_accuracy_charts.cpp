@@ -297,6 +297,7 @@ std::string speed_accuracy_json(const SpeedAccuracyRun& run) {
   out["git_dirty"] = run.host.git_dirty;
   out["load_average_1min_before"] = run.host.load_before;
   out["load_average_1min_after"] = run.host.load_after;
+  out["freed_memory_kept"] = run.host.freed_memory_kept;
   out["repeats"] = run.repeats;
   out["fronts"] =
       "scalar tier only (the exact path and the classic methods); the fast path and lavapipe are references";

@@ -15,6 +15,11 @@ struct SweepOptions {
   std::string out_dir;
   bool quick = false;   // a small grid, for the tests (< 30 s)
   bool resume = false;  // keep the CSV's points and compute only the missing ones
+  // The timed charts (speed-accuracy, scene-needs): whether the process's allocator keeps the
+  // memory a render frees (set by the command line, as `rastercmp bench` does: bench_stats.hpp
+  // keep_freed_memory), recorded beside the timings. Where it is not kept, a method that builds
+  // large lists pays page faults on every render (10-35 us each on a shared VM).
+  bool freed_memory_kept = false;
 };
 
 // Shortest text that reads back as the same double.

@@ -1,6 +1,7 @@
 // `rastercmp bench --scaling --model --tasks N`: each queue phase's tasks and the serial time's
 // parts at N workers, printed after the table and in the JSON (app/bench_model.cpp; the fast path
-// alone: no Vulkan device); `rastercmp bench --json`: each scene's target beside its times.
+// alone: no Vulkan device); `rastercmp bench --json`: each scene's target beside its times; the
+// timed charts keep freed memory as the bench does.
 #include <gtest/gtest.h>
 #include <sched.h>
 
@@ -148,6 +149,21 @@ TEST(CliBench, JsonCarriesEachScenesTarget) {
   EXPECT_EQ(j["scenes"][0]["name"], "fill_f2b");
   EXPECT_EQ(j["scenes"][0]["target"]["must"].get<double>(), std::stod(m[1]));
   EXPECT_EQ(j["scenes"][0]["target"]["aim"].get<double>(), std::stod(m[2]));
+}
+
+// `rastercmp chart scene-needs` times its renders as the bench does, with the memory a render
+// frees kept for the next (bench::keep_freed_memory), and records it; ASan's allocator refuses it.
+TEST(CliBench, TimedChartsKeepFreedMemoryAndSaySo) {
+  const TempDir tmp;
+  const RunResult r = run_cli({"chart", "scene-needs", "--quick", "--out", (tmp / "needs").string()});
+  ASSERT_EQ(r.exit_code, 0) << describe({"chart"}, r);
+  const nlohmann::json j = nlohmann::json::parse(read_file(tmp / "needs" / "scene_needs.json"));
+  ASSERT_TRUE(j.contains("freed_memory_kept")) << j.dump();
+#ifdef RASTERCMP_SANITIZER_BUILD
+  EXPECT_FALSE(j["freed_memory_kept"].get<bool>());
+#else
+  EXPECT_TRUE(j["freed_memory_kept"].get<bool>());
+#endif
 }
 
 }  // namespace

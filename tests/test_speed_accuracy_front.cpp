@@ -132,7 +132,7 @@ TEST(SpeedAccuracyFront, CpuModelComesFromCpuinfo) {
 TEST(SpeedAccuracyFront, JsonRecordsTheRunAndEachFrontPoint) {
   SpeedAccuracyRun run;
   run.repeats = 3;
-  run.host = RunHost{"box", "Some CPU", "0123abcd", true, 1.5, 2.25};
+  run.host = RunHost{"box", "Some CPU", "0123abcd", true, 1.5, 2.25, true};
   run.clock = FrontClock::Wall;  // the synthetic entries carry wall times only
   SceneSetRun set;
   set.name = "triangles";
@@ -149,6 +149,7 @@ TEST(SpeedAccuracyFront, JsonRecordsTheRunAndEachFrontPoint) {
   EXPECT_EQ(json["git_dirty"], true);
   EXPECT_EQ(json["load_average_1min_before"], 1.5);
   EXPECT_EQ(json["load_average_1min_after"], 2.25);
+  EXPECT_EQ(json["freed_memory_kept"], true);
   EXPECT_EQ(json["repeats"], 3);
   EXPECT_EQ(json["front_clock"], "wall");
   const nlohmann::json& s = json["sets"][0];
