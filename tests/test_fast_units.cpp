@@ -422,8 +422,9 @@ TEST(FastWorkerPool, AJobsExceptionReachesTheCaller) {
 
 // The pool's pace (WorkerPool::record_pace, relative_speeds): equal until every worker is
 // measured, equal while the slowest keeps kPaceEven of the fastest's rate, then each worker's rate
-// over the fastest's, smoothed (a mean of paces), never below kPaceSlowest; phases shorter than
-// kPaceMinSeconds and workers given no work are left out.
+// over the fastest's, a slower pace taken at once and a faster one smoothed (a mean of paces),
+// never below kPaceSlowest; phases shorter than kPaceMinSeconds and workers given no work are left
+// out.
 TEST(FastWorkerPool, PaceFromTheBandPhasesBefore) {
   WorkerPool pool(2);
   const std::vector<double> equal{1.0, 1.0};
@@ -434,10 +435,14 @@ TEST(FastWorkerPool, PaceFromTheBandPhasesBefore) {
   EXPECT_EQ(pool.relative_speeds(), equal);
   pool.record_pace({100, 100}, {0.0002, 0.0008});  // too short to say anything
   EXPECT_EQ(pool.relative_speeds(), equal);
-  pool.record_pace({100, 100}, {0.004, 0.008});  // paces 40 and (45 + 80) / 2 us a unit
+  pool.record_pace({100, 100}, {0.004, 0.008});  // paces 40 and 80 us a unit: slower, at once
   std::vector<double> speeds = pool.relative_speeds();
   EXPECT_EQ(speeds[0], 1.0);
-  EXPECT_NEAR(speeds[1], 40.0 / 62.5, 1e-9);
+  EXPECT_NEAR(speeds[1], 0.5, 1e-9);
+  pool.record_pace({100, 100}, {0.004, 0.004});  // faster: (80 + 40) / 2
+  EXPECT_NEAR(pool.relative_speeds()[1], 40.0 / 60.0, 1e-9);
+  pool.record_pace({100, 100}, {0.004, 0.012});  // slower: 120 at once
+  EXPECT_NEAR(pool.relative_speeds()[1], 40.0 / 120.0, 1e-9);
   for (int k = 0; k < 8; ++k) pool.record_pace({100, 100}, {0.004, 0.04});  // a tenth of the rate
   speeds = pool.relative_speeds();
   EXPECT_EQ(speeds[1], WorkerPool::kPaceSlowest);

@@ -148,7 +148,8 @@ void WorkerPool::record_pace(const std::vector<double>& work, const std::vector<
   for (size_t w = 0; w < pace_.size(); ++w) {
     if (!(work[w] > 0.0 && seconds[w] > 0.0)) continue;
     const double pace = seconds[w] / work[w];
-    pace_[w] = pace_[w] > 0.0 ? (1.0 - kPaceSmoothing) * pace_[w] + kPaceSmoothing * pace : pace;
+    // slower: at once; faster: smoothed
+    pace_[w] = pace_[w] > 0.0 && pace < pace_[w] ? (1.0 - kPaceSmoothing) * pace_[w] + kPaceSmoothing * pace : pace;
   }
 }
 

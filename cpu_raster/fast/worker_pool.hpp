@@ -54,9 +54,14 @@ class WorkerPool {
 
   // A band phase measured: worker w was given `work[w]` (the row estimate's units) and finished
   // `seconds[w]` after the phase began. Phases shorter than kPaceMinSeconds (waking and timer
-  // noise) and workers given no work are left out; each worker's pace (seconds a unit of work) is
-  // smoothed over the phases (kPaceSmoothing, the new measurement's share): a mean of paces, not
-  // of rates, so that a phase in which a shared core happened to be free moves it less.
+  // noise) and workers given no work are left out. Each worker's pace (seconds a unit of work): a
+  // slower one than it had is taken at once, a faster one smoothed over the phases
+  // (kPaceSmoothing, the new measurement's share; a mean of paces, not of rates). A thread that
+  // shares its core with another process often runs its whole band before the scheduler hands the
+  // core back, and waits a slice in the next render: beside a busy loop lines_20k's 5 rows of 16
+  // took 2.9 or 6.7-6.9 ms from one render to the next, and the smoothed pace swung the split
+  // between 11/5 and 10/6 rows. Kept at its slow readings, the thread keeps the smaller share
+  // (docs/performance-log.md, "A slower pace at once").
   static constexpr double kPaceMinSeconds = 1e-3;
   static constexpr double kPaceSmoothing = 0.5;
   void record_pace(const std::vector<double>& work, const std::vector<double>& seconds);
